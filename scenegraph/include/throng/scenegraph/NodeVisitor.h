@@ -1,0 +1,32 @@
+#pragma once
+// Double dispatch over node types, as in the VulkanSceneGraph: a traversal overrides apply() for
+// the types it cares about; the defaults visit every child in order.
+
+namespace throng {
+
+class Node;
+class Group;
+class Transform;
+class LOD;
+class Geometry;
+
+/// Visits nodes by type. Types added by other libraries dispatch to the closest base overload.
+class NodeVisitor {
+public:
+    virtual ~NodeVisitor() = default;
+    /// Any node; the default does nothing.
+    virtual void apply(Node& node);
+    /// A group; the default visits every child.
+    virtual void apply(Group& group);
+    /// A transform; the default calls apply(Group&).
+    virtual void apply(Transform& transform);
+    /// An LOD; the default calls apply(Group&).
+    virtual void apply(LOD& lod);
+    /// A geometry leaf; the default calls apply(Node&).
+    virtual void apply(Geometry& geometry);
+
+    /// Visits every child of `group` in order.
+    void traverse(Group& group);
+};
+
+}  // namespace throng

@@ -1,0 +1,31 @@
+#pragma once
+// The operation categories of Table 1 of Rodriguez et al. 2010 (seed 002), used to account the
+// scenegraph's work in FMULT units by what the work is for.
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+namespace throng {
+
+/// What a counted operation is for, as in Table 1 of the cost model.
+enum class OpCategory : std::uint8_t {
+    SkeletonMatrix,       ///< NO_01: DOF values and matrix of an articulation (a Skeleton node or generic Transform).
+    RefpointMatrix,       ///< NO_02: DOF values and matrix of an actor's Reference Point.
+    SkeletonRootMatrix,   ///< NO_03: DOF values and matrix of an actor's Skeleton Root.
+    BsphereRecompute,     ///< NO_04a: a bounding sphere recomputed from its descendants.
+    BsphereFrustumTest,   ///< NO_04b: a bounding sphere tested against the frustum.
+    LodDistance,          ///< NO_05: a distance computed for level of detail selection.
+};
+
+/// Number of categories in OpCategory.
+inline constexpr std::size_t kOpCategoryCount = 6;
+
+/// The paper's name of a category ("NO_01", "NO_02", "NO_03", "NO_04a", "NO_04b", "NO_05").
+constexpr std::string_view opCategoryName(OpCategory c) {
+    constexpr std::array<std::string_view, kOpCategoryCount> names = {
+        "NO_01", "NO_02", "NO_03", "NO_04a", "NO_04b", "NO_05"};
+    return names[static_cast<std::size_t>(c)];
+}
+
+}  // namespace throng

@@ -1,0 +1,52 @@
+#pragma once
+// Traditional processing (DESIGN.md, "One frame, two ways"), the baseline every benchmark compares
+// against: APP runs every callback, every matrix is composed on the CPU, bounds are recomputed
+// bottom-up, CULL tests them with plane masks, each LOD node computes its own distance, then DRAW.
+
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Frustum.h"
+#include "throng/scenegraph/FrameStatistics.h"
+#include "throng/scenegraph/OpCounter.h"
+
+#include <optional>
+
+namespace throng {
+
+class Camera;
+class DrawBackend;
+class Node;
+
+/// Runs APP / matrices-and-bounds / CULL / DRAW on a tree, one frame at a time.
+class TraditionalProcessor {
+public:
+    /// Sets the LOD scale (distance multiplier; > 1 lowers detail sooner). Must be finite and > 0.
+    void setLodScale(double scale);
+    /// Forces every matrix and bound to be recomputed every frame (no temporal coherence).
+    void setFullRecompute(bool full) { fullRecompute_ = full; }
+    /// Culls against `frustum` instead of the camera's (null restores the camera's).
+    void setCullingFrustum(std::optional<Frustum> frustum) { cullingFrustum_ = frustum; }
+    /// The operation counter (disabled until counter().setEnabled(true)).
+    OpCounter& counter() { return counter_; }
+
+    /// Processes one frame at simulation time `time` (seconds; must be finite) seen by `camera`.
+    /// `backend` may be null to stop after CULL. Returns the frame's statistics.
+    const FrameStatistics& processFrame(Node& root, const Camera& camera, double time,
+                                        DrawBackend* backend = nullptr);
+
+    /// The draw list of the last frame.
+    const DrawList& drawList() const { return drawList_; }
+    /// Statistics of the last frame.
+    const FrameStatistics& statistics() const { return stats_; }
+
+private:
+    OpCounter counter_;
+    DrawList drawList_;
+    FrameStatistics stats_;
+    std::optional<Frustum> cullingFrustum_;
+    double lodScale_ = 1.0;
+    double lastTime_ = 0.0;
+    std::uint64_t frame_ = 0;
+    bool fullRecompute_ = false;
+};
+
+}  // namespace throng

@@ -1,0 +1,112 @@
+#include "throng/scenegraph/CullVisitor.h"
+
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Geometry.h"
+#include "throng/scenegraph/LOD.h"
+#include "throng/scenegraph/OpCounter.h"
+#include "throng/scenegraph/Transform.h"
+#include "throng/scenegraph/Validation.h"
+
+#include <stdexcept>
+
+namespace throng {
+namespace {
+const Mat4 kIdentity(1.0);
+}
+
+CullVisitor::CullVisitor(const Camera& camera, DrawList& drawList, OpCounter* counter, double lodScale)
+    : frustum_(camera.frustum()),
+      eye_(camera.eye()),
+      drawList_(drawList),
+      counter_(counter),
+      lodScale2_(lodScale * lodScale),
+      mask_(frustum_.activePlanes()),
+      world_(&kIdentity) {
+    requireFinite(lodScale, "CullVisitor", "lodScale");
+    if (!(lodScale > 0.0)) throw std::invalid_argument("CullVisitor: argument 'lodScale' must be positive");
+}
+
+void CullVisitor::setCullingFrustum(const Frustum& frustum) {
+    frustum_ = frustum;
+    mask_ = frustum_.activePlanes();
+}
+
+bool CullVisitor::enter(const Node& node) {
+    ++stats_.nodesVisited;
+    const BoundingSphere& bound = node.worldBound();
+    if (!bound.valid()) return false;  // nothing below can be drawn
+    if (mask_ == 0) return true;       // an ancestor is inside every plane
+    ++stats_.spheresTested;
+    OpTally* ops = nullptr;
+    if (counter_) {
+        counter_->countOperations(OpCategory::BsphereFrustumTest);
+        ops = counter_->tally(OpCategory::BsphereFrustumTest);
+    }
+    if (frustum_.classify(bound, mask_, ops) == Containment::Outside) {
+        ++stats_.nodesRejected;
+        return false;
+    }
+    return true;
+}
+
+void CullVisitor::apply(Node& node) {
+    const PlaneMask saved = mask_;
+    enter(node);
+    mask_ = saved;
+}
+
+void CullVisitor::apply(Group& group) {
+    const PlaneMask saved = mask_;
+    if (enter(group)) traverse(group);
+    mask_ = saved;
+}
+
+void CullVisitor::apply(Transform& transform) {
+    const PlaneMask saved = mask_;
+    const Mat4* savedWorld = world_;
+    if (enter(transform)) {
+        world_ = &transform.worldMatrix();
+        traverse(transform);
+    }
+    world_ = savedWorld;
+    mask_ = saved;
+}
+
+void CullVisitor::apply(LOD& lod) {
+    const PlaneMask saved = mask_;
+    if (enter(lod)) {
+        // Traditional LOD: this node finds its own centre in world space and its own distance.
+        const Mat4& m = *world_;
+        const Vec3& c = lod.center();
+        const Vec3 worldCenter = Vec3(m[0]) * c.x + Vec3(m[1]) * c.y + Vec3(m[2]) * c.z + Vec3(m[3]);
+        const Vec3 d = worldCenter - eye_;
+        const double scaled2 = glm::dot(d, d) * lodScale2_;
+        const int index = lod.selectChildSquared(scaled2);
+        ++stats_.lodDistances;
+        if (counter_) {
+            counter_->countOperations(OpCategory::LodDistance);
+            [[maybe_unused]] const std::size_t compares = index < 0 ? lod.childCount() : static_cast<std::size_t>(index) + 1;
+            THRONG_TALLY(counter_->tally(OpCategory::LodDistance), 13, 14 + compares, 0, 0);
+        }
+        if (index >= 0) {
+            const std::uint32_t savedLevel = lodLevel_;
+            lodLevel_ = static_cast<std::uint32_t>(index);
+            lod.children()[static_cast<std::size_t>(index)]->accept(*this);
+            lodLevel_ = savedLevel;
+        }
+    }
+    mask_ = saved;
+}
+
+void CullVisitor::apply(Geometry& geometry) {
+    const PlaneMask saved = mask_;
+    if (enter(geometry)) {
+        const Drawable& drawable = geometry.drawable();
+        drawList_.add(DrawItem{&drawable, world_, &geometry, 0, lodLevel_}, drawable.primitiveCount());
+        ++stats_.drawItems;
+        stats_.primitives += drawable.primitiveCount();
+    }
+    mask_ = saved;
+}
+
+}  // namespace throng

@@ -1,0 +1,65 @@
+#include "throng/scenegraph/TraditionalProcessor.h"
+
+#include <stdexcept>
+
+#include "throng/scenegraph/AppVisitor.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/CullVisitor.h"
+#include "throng/scenegraph/DrawBackend.h"
+#include "throng/scenegraph/MatrixBoundsVisitor.h"
+#include "throng/scenegraph/Node.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenegraph/Validation.h"
+
+namespace throng {
+
+void TraditionalProcessor::setLodScale(double scale) {
+    requireFinite(scale, "TraditionalProcessor::setLodScale", "scale");
+    if (!(scale > 0.0))
+        throw std::invalid_argument("TraditionalProcessor::setLodScale: argument 'scale' must be positive");
+    lodScale_ = scale;
+}
+
+const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Camera& camera, double time,
+                                                          DrawBackend* backend) {
+    requireFinite(time, "TraditionalProcessor::processFrame", "time");
+    OpCounter* counter = counter_.enabled() ? &counter_ : nullptr;
+    counter_.reset();
+    stats_ = FrameStatistics{};
+    stats_.frame = frame_;
+    const FrameContext context{time, frame_ == 0 ? 0.0 : time - lastTime_, frame_, counter};
+
+    Stopwatch watch;
+    AppVisitor app(context);
+    root.accept(app);
+    stats_.appMs = watch.elapsedMs();
+    stats_.callbacksRun = app.callbacksRun();
+
+    watch.restart();
+    MatrixBoundsVisitor matrices(counter, fullRecompute_);
+    root.accept(matrices);
+    stats_.matricesBoundsMs = watch.elapsedMs();
+    stats_.matrices = matrices.statistics();
+
+    watch.restart();
+    drawList_.clear();
+    CullVisitor cull(camera, drawList_, counter, lodScale_);
+    if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
+    root.accept(cull);
+    stats_.cullMs = watch.elapsedMs();
+    stats_.cull = cull.statistics();
+
+    if (backend) {
+        watch.restart();
+        backend->beginFrame(camera);
+        backend->draw(drawList_);
+        backend->endFrame();
+        stats_.drawMs = watch.elapsedMs();
+    }
+    stats_.fmultTotal = counter ? counter_.totalFmult() : 0;
+    lastTime_ = time;
+    ++frame_;
+    return stats_;
+}
+
+}  // namespace throng

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Throng builds, tests and runs with. Idempotent: it does nothing
+# when every package is present, and refreshes the package lists only when a package is unknown.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  g++ clang libclang-rt-14-dev cmake ninja-build pkg-config git
+  # libraries named by the design card
+  libvtk9-dev libglm-dev libglfw3-dev libosmesa6-dev libgl-dev libgl1-mesa-dri libtinygltf-dev
+  # tests, benchmarks, navigation, scene files, images, GL loader, virtual display
+  libgtest-dev libgmock-dev libbenchmark-dev librecast-dev nlohmann-json3-dev libstb-dev
+  python3 python3-glad xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo=sudo
+fi
+echo "setup: installing ${missing[*]}"
+# Refresh the lists only if apt does not know one of the packages yet (a fresh image ships none).
+if ! apt-cache show "${missing[@]}" >/dev/null 2>&1; then
+  $sudo apt-get update
+fi
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
