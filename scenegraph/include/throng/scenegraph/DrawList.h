@@ -4,6 +4,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
 #include "throng/scenegraph/Math.h"
 
 namespace throng {
@@ -18,6 +21,10 @@ struct DrawItem {
     const Node* node = nullptr;          ///< the node that produced it (a Geometry leaf, or an actor)
     std::uint32_t part = 0;              ///< index of the part within `node` (0 for a Geometry leaf)
     std::uint32_t lodLevel = 0;          ///< level of detail chosen (0 = highest)
+    const glm::mat4* skinPalette = nullptr;  ///< for skinned meshes: joint matrices (joint-to-model times
+                                             ///< inverse bind), in the frame of `worldMatrix`; else null
+    std::uint32_t skinPaletteSize = 0;   ///< number of matrices in `skinPalette`
+    glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
 };
 
 /// An ordered list of draw items with running totals, reused from frame to frame without reallocating.

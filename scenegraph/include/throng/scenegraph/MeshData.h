@@ -1,0 +1,51 @@
+#pragma once
+// A triangle mesh on the CPU with one material, optionally skinned (up to 8 joint influences per
+// vertex, in two sets of four as glTF stores them). Shared by every clone that shows it; renderers
+// upload it once.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+#include <glm/gtc/type_precision.hpp>
+
+#include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/Image.h"
+
+namespace throng {
+
+/// Indexed triangles with per-vertex attributes, in the mesh's own frame (float: meshes are small).
+struct MeshData {
+    std::string name;                          ///< for messages and statistics
+    std::vector<glm::vec3> positions;          ///< one per vertex
+    std::vector<glm::vec3> normals;            ///< one per vertex, or empty (flat shading)
+    std::vector<glm::vec2> texcoords;          ///< one per vertex, or empty
+    std::vector<std::uint32_t> indices;        ///< three per triangle
+    std::vector<glm::u16vec4> joints0;         ///< skin: first four joint indices per vertex, or empty
+    std::vector<glm::vec4> weights0;           ///< skin: their weights
+    std::vector<glm::u16vec4> joints1;         ///< skin: influences 5-8 per vertex, or empty
+    std::vector<glm::vec4> weights1;           ///< skin: their weights
+    glm::vec4 baseColor{1.0f};                 ///< multiplies the texture (linear RGBA)
+    std::shared_ptr<const Image> baseColorTexture;  ///< or null
+
+    /// Number of vertices.
+    std::size_t vertexCount() const { return positions.size(); }
+    /// Number of triangles.
+    std::size_t triangleCount() const { return indices.size() / 3; }
+    /// Whether the mesh carries skin influences.
+    bool skinned() const { return !joints0.empty(); }
+    /// Number of influences per vertex (0, 4 or 8).
+    int influenceCount() const { return joints0.empty() ? 0 : joints1.empty() ? 4 : 8; }
+
+    /// Throws std::invalid_argument naming the mesh and the problem if attribute counts disagree,
+    /// an index is out of range, the index count is not a multiple of 3, or a value is not finite.
+    void validate() const;
+    /// Smallest-ish sphere holding every vertex (in the mesh frame). Throws if there is no vertex.
+    BoundingSphere computeBound() const;
+};
+
+}  // namespace throng

@@ -1,0 +1,51 @@
+#include "throng/scenegraph/MeshData.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace throng {
+namespace {
+
+[[noreturn]] void fail(const MeshData& m, const std::string& what) {
+    throw std::invalid_argument("mesh '" + m.name + "': " + what);
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+void MeshData::validate() const {
+    const std::size_t n = positions.size();
+    if (n == 0) fail(*this, "has no vertices");
+    if (!normals.empty() && normals.size() != n) fail(*this, "has " + std::to_string(normals.size()) + " normals for " + std::to_string(n) + " vertices");
+    if (!texcoords.empty() && texcoords.size() != n) fail(*this, "has " + std::to_string(texcoords.size()) + " texture coordinates for " + std::to_string(n) + " vertices");
+    if (joints0.size() != weights0.size() || (!joints0.empty() && joints0.size() != n))
+        fail(*this, "has skin influence arrays (joints0/weights0) whose sizes do not match the vertex count");
+    if (joints1.size() != weights1.size() || (!joints1.empty() && joints1.size() != n) || (!joints1.empty() && joints0.empty()))
+        fail(*this, "has skin influence arrays (joints1/weights1) whose sizes do not match the vertex count");
+    if (indices.size() % 3 != 0) fail(*this, "has " + std::to_string(indices.size()) + " indices, not a multiple of 3");
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= n) fail(*this, "index " + std::to_string(i) + " refers to vertex " + std::to_string(indices[i]) + " of " + std::to_string(n));
+    for (std::size_t i = 0; i < n; ++i)
+        if (!finite(positions[i])) fail(*this, "position " + std::to_string(i) + " is not finite");
+    if (baseColorTexture && !baseColorTexture->valid()) fail(*this, "has an invalid base colour texture");
+}
+
+BoundingSphere MeshData::computeBound() const {
+    if (positions.empty()) fail(*this, "has no vertices to bound");
+    // Centre of the axis-aligned box, then the farthest vertex: never too small, close to minimal.
+    glm::dvec3 lo(positions[0]), hi(positions[0]);
+    for (const glm::vec3& p : positions) {
+        lo = glm::min(lo, glm::dvec3(p));
+        hi = glm::max(hi, glm::dvec3(p));
+    }
+    const glm::dvec3 c = 0.5 * (lo + hi);
+    double r2 = 0.0;
+    for (const glm::vec3& p : positions) {
+        const glm::dvec3 d = glm::dvec3(p) - c;
+        r2 = std::max(r2, glm::dot(d, d));
+    }
+    return BoundingSphere(c, std::sqrt(r2) * (1.0 + 1e-7));
+}
+
+}  // namespace throng
