@@ -13,7 +13,9 @@ const std::shared_ptr<const MeshData>& checked(const std::shared_ptr<const MeshD
 
 }  // namespace
 
-MeshDrawable::MeshDrawable(std::shared_ptr<const MeshData> mesh)
-    : Drawable(checked(mesh)->name, mesh->computeBound(), mesh->triangleCount()), mesh_(std::move(mesh)) {}
+MeshDrawable::MeshDrawable(std::shared_ptr<const MeshData> mesh) : MeshDrawable(Checked{}, checked(mesh)) {}
+
+MeshDrawable::MeshDrawable(Checked, std::shared_ptr<const MeshData> mesh)
+    : Drawable(mesh->name, mesh->computeBound(), mesh->triangleCount()), mesh_(std::move(mesh)) {}
 
 }  // namespace throng

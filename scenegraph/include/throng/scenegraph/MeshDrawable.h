@@ -19,6 +19,8 @@ public:
     const std::shared_ptr<const MeshData>& meshPtr() const { return mesh_; }
 
 private:
+    struct Checked {};
+    MeshDrawable(Checked, std::shared_ptr<const MeshData> mesh);
     std::shared_ptr<const MeshData> mesh_;
 };
 
