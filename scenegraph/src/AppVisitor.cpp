@@ -12,13 +12,16 @@ void AppVisitor::runCallback(Node& node) {
     }
 }
 
-void AppVisitor::apply(Node& node) { runCallback(node); }
+void AppVisitor::apply(Node& node) {
+    runCallback(node);
+    node.traverseApp(*this);
+}
 
 void AppVisitor::apply(Group& group) {
-    if (group.updateCallbackCount() == 0) return;
+    if (group.appNodeCount() == 0) return;
     runCallback(group);
     for (const auto& child : group.children())
-        if (child->updateCallbackCount() != 0) child->accept(*this);
+        if (child->appNodeCount() != 0) child->accept(*this);
 }
 
 }  // namespace throng

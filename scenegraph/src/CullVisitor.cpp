@@ -31,18 +31,27 @@ void CullVisitor::setCullingFrustum(const Frustum& frustum) {
     mask_ = frustum_.activePlanes();
 }
 
-bool CullVisitor::enter(const Node& node) {
-    ++stats_.nodesVisited;
-    const BoundingSphere& bound = node.worldBound();
-    if (!bound.valid()) return false;  // nothing below can be drawn
-    if (mask_ == 0) return true;       // an ancestor is inside every plane
+Containment CullVisitor::testSphere(const BoundingSphere& sphere, PlaneMask& mask) {
+    if (!sphere.valid()) return Containment::Outside;
+    if (mask == 0) return Containment::Inside;  // an ancestor is inside every plane
     ++stats_.spheresTested;
     OpTally* ops = nullptr;
     if (counter_) {
         counter_->countOperations(OpCategory::BsphereFrustumTest);
         ops = counter_->tally(OpCategory::BsphereFrustumTest);
     }
-    if (frustum_.classify(bound, mask_, ops) == Containment::Outside) {
+    return frustum_.classify(sphere, mask, ops);
+}
+
+void CullVisitor::addDrawItem(const DrawItem& item, std::uint64_t primitives) {
+    drawList_.add(item, primitives);
+    ++stats_.drawItems;
+    stats_.primitives += primitives;
+}
+
+bool CullVisitor::enter(const Node& node) {
+    ++stats_.nodesVisited;
+    if (testSphere(node.worldBound(), mask_) == Containment::Outside) {
         ++stats_.nodesRejected;
         return false;
     }
@@ -51,7 +60,7 @@ bool CullVisitor::enter(const Node& node) {
 
 void CullVisitor::apply(Node& node) {
     const PlaneMask saved = mask_;
-    enter(node);
+    if (enter(node)) node.traverseCull(*this);
     mask_ = saved;
 }
 
@@ -102,9 +111,12 @@ void CullVisitor::apply(Geometry& geometry) {
     const PlaneMask saved = mask_;
     if (enter(geometry)) {
         const Drawable& drawable = geometry.drawable();
-        drawList_.add(DrawItem{&drawable, world_, &geometry, 0, lodLevel_}, drawable.primitiveCount());
-        ++stats_.drawItems;
-        stats_.primitives += drawable.primitiveCount();
+        DrawItem item;
+        item.drawable = &drawable;
+        item.worldMatrix = world_;
+        item.node = &geometry;
+        item.lodLevel = lodLevel_;
+        addDrawItem(item, drawable.primitiveCount());
     }
     mask_ = saved;
 }

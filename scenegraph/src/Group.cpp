@@ -23,9 +23,9 @@ void Group::addChild(std::shared_ptr<Node> child) {
     child->parent_ = this;
     child->worldStale_ = true;
     child->boundDirty_ = true;
-    const std::size_t callbacks = child->updateCallbackCount();
+    const std::size_t callbacks = child->appNodeCount();
     children_.push_back(std::move(child));
-    if (callbacks) adjustUpdateCallbackCount(static_cast<std::ptrdiff_t>(callbacks));
+    if (callbacks) adjustAppNodeCount(static_cast<std::ptrdiff_t>(callbacks));
     boundDirty_ = false;  // force dirtyBound() to propagate from here
     dirtyBound();
 }
@@ -34,11 +34,11 @@ bool Group::removeChild(const Node* child) {
     auto it = std::find_if(children_.begin(), children_.end(),
                            [child](const std::shared_ptr<Node>& c) { return c.get() == child; });
     if (it == children_.end()) return false;
-    const std::size_t callbacks = (*it)->updateCallbackCount();
+    const std::size_t callbacks = (*it)->appNodeCount();
     (*it)->parent_ = nullptr;
     (*it)->dirtyBound();
     children_.erase(it);
-    if (callbacks) adjustUpdateCallbackCount(-static_cast<std::ptrdiff_t>(callbacks));
+    if (callbacks) adjustAppNodeCount(-static_cast<std::ptrdiff_t>(callbacks));
     boundDirty_ = false;
     dirtyBound();
     return true;

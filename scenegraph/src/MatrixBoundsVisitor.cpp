@@ -14,7 +14,9 @@ MatrixBoundsVisitor::MatrixBoundsVisitor(OpCounter* counter, bool fullRecompute)
     : counter_(counter), fullRecompute_(fullRecompute), parentWorld_(&kIdentity) {}
 
 void MatrixBoundsVisitor::apply(Node& node) {
-    // A node type this pass does not know has no bound of its own.
+    // Node types of other libraries compute their own matrices and bound.
+    if (!needsVisit(node)) return;
+    node.updateMatricesAndBound(*this);
     node.boundDirty_ = false;
     node.worldStale_ = false;
 }

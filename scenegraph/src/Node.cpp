@@ -11,16 +11,27 @@ Node::~Node() = default;
 
 void Node::accept(NodeVisitor& visitor) { visitor.apply(*this); }
 
+void Node::traverseApp(AppVisitor&) {}
+void Node::updateMatricesAndBound(MatrixBoundsVisitor&) { worldBound_ = BoundingSphere(); }
+void Node::traverseCull(CullVisitor&) {}
+
 void Node::setUpdateCallback(std::shared_ptr<UpdateCallback> callback) {
-    const std::ptrdiff_t before = updateCallback_ ? 1 : 0;
-    const std::ptrdiff_t after = callback ? 1 : 0;
+    const std::ptrdiff_t before = (updateCallback_ || needsApp_) ? 1 : 0;
     updateCallback_ = std::move(callback);
-    if (after != before) adjustUpdateCallbackCount(after - before);
+    const std::ptrdiff_t after = (updateCallback_ || needsApp_) ? 1 : 0;
+    if (after != before) adjustAppNodeCount(after - before);
 }
 
-void Node::adjustUpdateCallbackCount(std::ptrdiff_t delta) {
+void Node::setNeedsApp(bool needs) {
+    const std::ptrdiff_t before = (updateCallback_ || needsApp_) ? 1 : 0;
+    needsApp_ = needs;
+    const std::ptrdiff_t after = (updateCallback_ || needsApp_) ? 1 : 0;
+    if (after != before) adjustAppNodeCount(after - before);
+}
+
+void Node::adjustAppNodeCount(std::ptrdiff_t delta) {
     for (Node* n = this; n; n = n->parent_)
-        n->updateCallbackCount_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(n->updateCallbackCount_) + delta);
+        n->appNodeCount_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(n->appNodeCount_) + delta);
 }
 
 void Node::dirtyBound() {

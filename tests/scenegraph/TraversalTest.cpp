@@ -72,8 +72,8 @@ TEST(Traversal, AppRunsCallbacksDepthFirstParentsFirstAndSkipsSubtreesWithoutCal
     for (Node* n : {static_cast<Node*>(root.get()), static_cast<Node*>(a.get()), static_cast<Node*>(a1.get()),
                     static_cast<Node*>(a2.get()), static_cast<Node*>(b.get()), static_cast<Node*>(c.get())})
         n->setUpdateCallback(cb);
-    EXPECT_EQ(root->updateCallbackCount(), 6u);
-    EXPECT_EQ(quiet->updateCallbackCount(), 0u);
+    EXPECT_EQ(root->appNodeCount(), 6u);
+    EXPECT_EQ(quiet->appNodeCount(), 0u);
 
     AppVisitor app(FrameContext{});
     root->accept(app);
@@ -82,9 +82,9 @@ TEST(Traversal, AppRunsCallbacksDepthFirstParentsFirstAndSkipsSubtreesWithoutCal
 
     // Removing a subtree removes its callbacks from the ancestors' counts.
     root->removeChild(a.get());
-    EXPECT_EQ(root->updateCallbackCount(), 3u);
+    EXPECT_EQ(root->appNodeCount(), 3u);
     a1->setUpdateCallback(nullptr);
-    EXPECT_EQ(a->updateCallbackCount(), 2u);
+    EXPECT_EQ(a->appNodeCount(), 2u);
 }
 
 TEST(Traversal, TreeRulesAreEnforced) {

@@ -21,6 +21,8 @@ public:
 
     /// Number of callbacks run so far.
     std::uint64_t callbacksRun() const { return callbacksRun_; }
+    /// The frame being processed.
+    const FrameContext& context() const { return context_; }
 
 private:
     void runCallback(Node& node);

@@ -43,6 +43,28 @@ public:
     /// Work done and results so far.
     const CullStatistics& statistics() const { return stats_; }
 
+    // For Node::traverseCull of node types defined in other libraries.
+
+    /// The culling frustum.
+    const Frustum& frustum() const { return frustum_; }
+    /// The eye position.
+    const Vec3& eye() const { return eye_; }
+    /// Planes still to be tested for the node being visited (its ancestors were inside the others).
+    PlaneMask planeMask() const { return mask_; }
+    /// Square of the LOD scale (distances are compared squared).
+    double lodScaleSquared() const { return lodScale2_; }
+    /// Where operations are accounted, or null.
+    OpCounter* counter() const { return counter_; }
+    /// World matrix of the frame the node being visited lives in.
+    const Mat4& worldMatrix() const { return *world_; }
+    /// Tests `sphere` against the planes in `mask`, clearing those it is inside, and accounts the
+    /// test (NO_04b) unless `mask` is already empty.
+    Containment testSphere(const BoundingSphere& sphere, PlaneMask& mask);
+    /// Appends an item to the draw list and to the statistics.
+    void addDrawItem(const DrawItem& item, std::uint64_t primitives);
+    /// Work counters, for nodes that cull parts themselves.
+    CullStatistics& statistics() { return stats_; }
+
 protected:
     /// Tests `node`'s world bound against the planes still in the mask; false if it is outside.
     /// Clears mask bits of planes the bound is fully inside.

@@ -19,7 +19,8 @@ struct DrawItem {
     const Drawable* drawable = nullptr;  ///< the shared drawable data
     const Mat4* worldMatrix = nullptr;   ///< its model matrix; valid until the next matrices-and-bounds pass
     const Node* node = nullptr;          ///< the node that produced it (a Geometry leaf, or an actor)
-    std::uint32_t part = 0;              ///< index of the part within `node` (0 for a Geometry leaf)
+    std::uint32_t instance = 0;          ///< which of the node's instances (an actor of an actor group)
+    std::uint32_t part = 0;              ///< index of the part within the instance (0 for a Geometry leaf)
     std::uint32_t lodLevel = 0;          ///< level of detail chosen (0 = highest)
     const glm::mat4* skinPalette = nullptr;  ///< for skinned meshes: joint matrices (joint-to-model times
                                              ///< inverse bind), in the frame of `worldMatrix`; else null

@@ -36,6 +36,19 @@ public:
     /// Work done so far.
     const MatrixBoundsStatistics& statistics() const { return stats_; }
 
+    // For Node::updateMatricesAndBound of node types defined in other libraries.
+
+    /// World matrix of the frame the node being visited lives in.
+    const Mat4& parentWorld() const { return *parentWorld_; }
+    /// Whether that frame changed since the node was last visited (or everything is recomputed).
+    bool frameChanged(const Node& node) const { return parentChanged_ || fullRecompute_ || node.worldStale(); }
+    /// Where operations are accounted, or null.
+    OpCounter* counter() const { return counter_; }
+    /// Whether nothing may be reused from the previous frame.
+    bool fullRecompute() const { return fullRecompute_; }
+    /// Work counters, for nodes that do matrix and bound work themselves.
+    MatrixBoundsStatistics& statistics() { return stats_; }
+
 private:
     bool needsVisit(const Node& node) const { return fullRecompute_ || parentChanged_ || node.boundDirty(); }
     void mergeChildren(Group& group);

@@ -11,7 +11,10 @@
 
 namespace throng {
 
+class AppVisitor;
+class CullVisitor;
 class Group;
+class MatrixBoundsVisitor;
 class NodeVisitor;
 class UpdateCallback;
 
@@ -38,21 +41,39 @@ public:
     void setUpdateCallback(std::shared_ptr<UpdateCallback> callback);
     /// The APP callback, or null.
     UpdateCallback* updateCallback() const { return updateCallback_.get(); }
-    /// Number of nodes in this subtree (this one included) with an APP callback; APP skips zeros.
-    std::size_t updateCallbackCount() const { return updateCallbackCount_; }
+    /// Number of nodes in this subtree (this one included) that APP must visit: those with an
+    /// update callback or that ask for it (setNeedsApp); APP skips subtrees where it is zero.
+    std::size_t appNodeCount() const { return appNodeCount_; }
 
     /// World-space bounding sphere from the last matrices-and-bounds pass (empty before it).
     const BoundingSphere& worldBound() const { return worldBound_; }
     /// Whether this subtree changed since its bound was last computed.
     bool boundDirty() const { return boundDirty_; }
+    /// Whether the frame above this node changed in a way no pass has seen yet (a new parent).
+    bool worldStale() const { return worldStale_; }
     /// Marks this node and its ancestors as needing their bounds recomputed.
     void dirtyBound();
 
+    // Hooks for node types defined outside this library (actors, ...). The standard traversals call
+    // them for every node they have no overload for, so such nodes take part in traditional
+    // processing like any other; the defaults do nothing (no bound, nothing drawn).
+
+    /// APP: called after this node's update callback.
+    virtual void traverseApp(AppVisitor& visitor);
+    /// Matrices and bounds: must set worldBound_ (in world space) and may use the visitor's parent
+    /// world matrix. Called only when the subtree is dirty or its frame changed.
+    virtual void updateMatricesAndBound(MatrixBoundsVisitor& visitor);
+    /// CULL: called once the node's world bound passed the frustum test.
+    virtual void traverseCull(CullVisitor& visitor);
+
 protected:
+    /// Makes APP visit this node (and so call traverseApp) even without an update callback.
+    void setNeedsApp(bool needs);
+
     friend class Group;
     friend class MatrixBoundsVisitor;
-    /// Adds `delta` to the callback count of this node and its ancestors.
-    void adjustUpdateCallbackCount(std::ptrdiff_t delta);
+    /// Adds `delta` to the APP node count of this node and its ancestors.
+    void adjustAppNodeCount(std::ptrdiff_t delta);
 
     BoundingSphere worldBound_;
     bool boundDirty_ = true;
@@ -62,7 +83,8 @@ private:
     std::string name_;
     Group* parent_ = nullptr;
     std::shared_ptr<UpdateCallback> updateCallback_;
-    std::size_t updateCallbackCount_ = 0;
+    std::size_t appNodeCount_ = 0;
+    bool needsApp_ = false;
 };
 
 }  // namespace throng

@@ -27,6 +27,22 @@ public:
 
     /// Visits every child of `group` in order.
     void traverse(Group& group);
+
+    /// The interface this visitor offers node types of other libraries under `key` (the address of
+    /// a constant that library defines), or null. Lets such a node find, say, an actor-aware
+    /// traversal without RTTI: one compare per node.
+    void* extension(const void* key) const { return key == extensionKey_ ? extension_ : nullptr; }
+
+protected:
+    /// Registers `extension` under `key` (one per visitor).
+    void setExtension(const void* key, void* extension) {
+        extensionKey_ = key;
+        extension_ = extension;
+    }
+
+private:
+    const void* extensionKey_ = nullptr;
+    void* extension_ = nullptr;
 };
 
 }  // namespace throng

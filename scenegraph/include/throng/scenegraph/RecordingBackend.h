@@ -21,7 +21,8 @@ public:
     struct Record {
         const Drawable* drawable = nullptr;  ///< what was drawn
         const Node* node = nullptr;          ///< the node that produced it
-        std::uint32_t part = 0;              ///< part within the node
+        std::uint32_t instance = 0;          ///< instance within the node
+        std::uint32_t part = 0;              ///< part within the instance
         std::uint32_t lodLevel = 0;          ///< level of detail
         Mat4 worldMatrix{1.0};               ///< copy of the model matrix
     };
