@@ -61,6 +61,7 @@ bool CullVisitor::enter(const Node& node) {
 void CullVisitor::apply(Node& node) {
     const PlaneMask saved = mask_;
     if (enter(node)) node.traverseCull(*this);
+    else node.culledOut(*this);
     mask_ = saved;
 }
 

@@ -14,6 +14,7 @@ void Node::accept(NodeVisitor& visitor) { visitor.apply(*this); }
 void Node::traverseApp(AppVisitor&) {}
 void Node::updateMatricesAndBound(MatrixBoundsVisitor&) { worldBound_ = BoundingSphere(); }
 void Node::traverseCull(CullVisitor&) {}
+void Node::culledOut(CullVisitor&) {}
 
 void Node::setUpdateCallback(std::shared_ptr<UpdateCallback> callback) {
     const std::ptrdiff_t before = (updateCallback_ || needsApp_) ? 1 : 0;

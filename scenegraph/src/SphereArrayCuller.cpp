@@ -63,7 +63,7 @@ SphereArrayCuller::SphereArrayCuller(const Frustum& frustum, const Vec3& origin)
     }
 }
 
-void SphereArrayCuller::classify(const SphereArrays& s, std::span<Containment> out) const {
+void SphereArrayCuller::classify(const SphereArrays& s, std::span<Containment> out, OpTally* ops) const {
     const std::size_t n = s.x.size();
     if (s.y.size() != n || s.z.size() != n || s.radius.size() != n)
         throw std::invalid_argument("SphereArrayCuller::classify: argument 'spheres' has arrays of different lengths");
@@ -72,6 +72,7 @@ void SphereArrayCuller::classify(const SphereArrays& s, std::span<Containment> o
     static_assert(sizeof(Containment) == 1);
     classifyKernel(s.x.data(), s.y.data(), s.z.data(), s.radius.data(), n, nx_.data(), ny_.data(),
                    nz_.data(), d_.data(), dMargin_.data(), reinterpret_cast<std::uint8_t*>(out.data()));
+    THRONG_TALLY(ops, kOpsPerSphere.mults * n, kOpsPerSphere.adds * n, 0, 0);
 }
 
 }  // namespace throng

@@ -65,6 +65,8 @@ public:
     virtual void updateMatricesAndBound(MatrixBoundsVisitor& visitor);
     /// CULL: called once the node's world bound passed the frustum test.
     virtual void traverseCull(CullVisitor& visitor);
+    /// CULL: called when the node's world bound was found outside the frustum.
+    virtual void culledOut(CullVisitor& visitor);
 
 protected:
     /// Makes APP visit this node (and so call traverseApp) even without an update callback.

@@ -48,4 +48,13 @@ private:
     std::array<OpTally, kOpCategoryCount> tallies_{};
 };
 
+/// The tally to pass to counted primitives for `category`, or null when `counter` is null or off.
+inline OpTally* tallyFor(OpCounter* counter, OpCategory category) {
+    return counter ? counter->tally(category) : nullptr;
+}
+/// Records `n` operations of `category` when `counter` is non-null.
+inline void countOperations(OpCounter* counter, OpCategory category, std::uint64_t n = 1) {
+    if (counter) counter->countOperations(category, n);
+}
+
 }  // namespace throng

@@ -1,0 +1,60 @@
+#pragma once
+// Per-frame statistics of actor or traditional processing: time per phase, where actors left the
+// culling cascade (seed 002 Table 2), and the work done on Skeleton nodes and internal spheres.
+
+#include <cstdint>
+
+#include "throng/scenegraph/FrameStatistics.h"
+
+namespace throng {
+
+/// How a scene is processed.
+enum class Processing : std::uint8_t {
+    Traditional,  ///< as a generic scenegraph: every behaviour, matrix and sphere, then CULL
+    Actor,        ///< the seven phases of seed 002 §4.2
+};
+
+/// What one frame cost and produced.
+struct ActorFrameStatistics {
+    Processing processing = Processing::Actor;  ///< method used
+    std::uint64_t frame = 0;                    ///< frame number
+
+    // Time per phase, milliseconds. Traditional processing fills app, matricesBounds and cull.
+    double appMs = 0;             ///< generic APP (traditional: every actor's behaviour too)
+    double refpointMs = 0;        ///< phase 1: Reference Points of all actors
+    double matricesBoundsMs = 0;  ///< generic matrices and bounds (traditional: all actor matrices and spheres)
+    double cullMs = 0;            ///< generic CULL and CULL 1 (phase 2); traditional: the whole CULL
+    double skeletonRootMs = 0;    ///< phase 3: Skeleton Roots of the survivors
+    double cull2Ms = 0;           ///< phase 4: CULL 2, eye distances, skeletal LOD
+    double poseMs = 0;            ///< phase 5: behaviour of active nodes and their matrices
+    double cull3Ms = 0;           ///< phase 6: CULL 3 on internal spheres
+    double drawListMs = 0;        ///< phase 7: the draw list
+    double drawMs = 0;            ///< DRAW
+
+    // The cascade (actor processing), as in Table 2.
+    std::uint64_t actorsInScene = 0;    ///< actors held by a node of the scene
+    std::uint64_t culledWithGroup = 0;  ///< rejected with a generic group above them
+    std::uint64_t a = 0;                ///< A: Refpoint Bsphere outside (rejected by CULL 1)
+    std::uint64_t b = 0;                ///< B: Refpoint Bsphere inside
+    std::uint64_t c1 = 0;               ///< C1: Sklsroot Bsphere outside (rejected by CULL 2)
+    std::uint64_t c2 = 0;               ///< C2: Sklsroot Bsphere inside
+    std::uint64_t c3_1 = 0;             ///< C3.1: internal spheres wholly in or out
+    std::uint64_t c3_2 = 0;             ///< C3.2: internal spheres culled one by one
+
+    // Work.
+    std::uint64_t actorsPosed = 0;            ///< actors whose behaviour posed them this frame
+    std::uint64_t skeletonNodesEvaluated = 0; ///< Skeleton nodes whose DOFs and matrix were computed
+    std::uint64_t internalSpheresComputed = 0;///< internal spheres recomputed
+    std::uint64_t spheresTested = 0;          ///< sphere-frustum tests, all kinds
+    std::uint64_t lodDistances = 0;           ///< eye distances computed for LOD
+    std::uint64_t drawItems = 0;              ///< items in the draw list
+    std::uint64_t primitives = 0;             ///< their primitives
+    std::uint64_t fmultTotal = 0;             ///< FMULT counted (0 when counting is off)
+
+    /// Everything before DRAW.
+    double appCullMs() const {
+        return appMs + refpointMs + matricesBoundsMs + cullMs + skeletonRootMs + cull2Ms + poseMs + cull3Ms + drawListMs;
+    }
+};
+
+}  // namespace throng

@@ -1,0 +1,58 @@
+#pragma once
+// What drives actors (seed 002 §4.2, §5.3): the Reference Point (simulation state, computed for every
+// actor every frame whatever the camera), the Skeleton Root relative to it, and the DOF values of
+// the active Skeleton nodes. A behaviour declares distance-banded levels: lower levels are cheaper
+// and less precise; beyond the last band the actor keeps its rest pose. One behaviour object serves
+// many actors, each with its own slot of state.
+
+#include <cstdint>
+#include <span>
+
+#include "throng/actors/RootPose.h"
+#include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/FrameContext.h"
+#include "throng/scenegraph/Math.h"
+#include "throng/scenegraph/OpTally.h"
+
+namespace throng {
+
+class ActorTemplate;
+
+/// Drives the actors registered with it (each identified by a slot the behaviour gave out).
+class Behaviour {
+public:
+    virtual ~Behaviour() = default;
+
+    /// Ends of the distance bands (scaled eye distance, increasing): level i runs while the
+    /// distance is below levelEnds()[i]. Level 0 is the most precise.
+    virtual std::span<const double> levelEnds() const = 0;
+
+    /// Phase 1: the actor's Reference Point in its parent's frame for the frame `context`.
+    /// Called exactly once per frame for every actor, before anything depends on the camera.
+    virtual Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) = 0;
+    /// Phase 3: the Skeleton Root relative to the Reference Point at `time`, at `level`.
+    virtual RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) = 0;
+    /// Phase 5: writes the DOF values of the nodes flagged in `active` (every node when empty) at
+    /// `time` and `level` into `dofs` (the template's layout). Must not touch other nodes' values.
+    virtual void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
+                      std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) = 0;
+
+    /// Sphere (Reference Point frame) holding every place the Skeleton Root can take.
+    virtual BoundingSphere skeletonRootExtent(std::uint32_t slot) const = 0;
+    /// Whether poses come only from the template's clips, so the sampled Sklsroot radius bounds
+    /// them; otherwise the actor uses the template's reach radius.
+    virtual bool posesFromTemplateClips() const = 0;
+
+    /// Bytes of state one more actor takes in this behaviour.
+    virtual std::size_t bytesPerSlot() const = 0;
+
+    /// Level for a scaled eye distance: the first band holding it, or levelEnds().size() (off).
+    int levelFor(double distance) const {
+        const auto ends = levelEnds();
+        for (std::size_t i = 0; i < ends.size(); ++i)
+            if (distance < ends[i]) return static_cast<int>(i);
+        return static_cast<int>(ends.size());
+    }
+};
+
+}  // namespace throng

@@ -1,0 +1,169 @@
+#pragma once
+// The actors of a scene, stored as flat arrays (structure of arrays) so that the culling cascade
+// walks them without chasing pointers. Clones share their template (skeleton description, clips,
+// geometry); only per-actor state lives here: Reference Point and Skeleton Root transforms, bounding
+// spheres, eye distance, priority, tint, DOF values. Actor and ActorGroup nodes put actors into a
+// scenegraph.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "throng/actors/ActorId.h"
+#include "throng/actors/ActorTemplate.h"
+#include "throng/actors/Affine.h"
+#include "throng/actors/Behaviour.h"
+#include "throng/actors/MatrixArena.h"
+#include "throng/actors/RootPose.h"
+#include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/Frustum.h"
+#include "throng/scenegraph/Math.h"
+
+namespace throng {
+
+class Actor;
+class ActorGroup;
+class Drawable;
+class Node;
+
+/// How one actor looks and how much detail it deserves.
+struct ActorLook {
+    /// Detail priority (seed 002 §5): LOD distances are divided by it, so 2 keeps detail twice as
+    /// far and 0.5 drops it at half the distance. Must be positive.
+    float priority = 1.0f;
+    glm::vec4 tint{1.0f};  ///< colour multiplier for this clone
+};
+
+/// An object an actor holds (seed 002 §4.3): drawn in a Skeleton node's frame.
+struct HeldObject {
+    int node = 0;                               ///< the node holding it (for example a hand)
+    std::shared_ptr<const Drawable> drawable;   ///< what is held
+};
+
+/// Where an actor stood in the culling cascade in the last frame (seed 002 Table 2).
+enum class ActorClass : std::uint8_t {
+    NotInScene,       ///< no node holds it: simulated, never drawn
+    CulledWithGroup,  ///< a generic group above it was outside
+    A,                ///< Refpoint Bsphere outside
+    B,                ///< Refpoint Bsphere inside
+    C1,               ///< Refpoint crosses, Sklsroot Bsphere outside
+    C2,               ///< Refpoint crosses, Sklsroot Bsphere inside
+    C3_1,             ///< Sklsroot crosses, internal spheres wholly in or out
+    C3_2,             ///< Sklsroot crosses, internal spheres need culling
+};
+
+/// All actors of a scene.
+class Crowd {
+public:
+    /// Per-actor state, one entry per ActorId (for processors and nodes; users read it through
+    /// the accessors below).
+    struct State {
+        std::vector<const ActorTemplate*> tmpl;     ///< template of each actor
+        std::vector<Behaviour*> behaviour;          ///< its behaviour
+        std::vector<std::uint32_t> slot;            ///< its slot in the behaviour
+        std::vector<Mat4> refLocal;                 ///< Reference Point in the parent frame
+        std::vector<Mat4> refWorld;                 ///< Reference Point in the world
+        std::vector<BoundingSphere> refSphereLocal; ///< Refpoint Bsphere, Reference Point frame
+        std::vector<BoundingSphere> refSphereWorld; ///< Refpoint Bsphere, world
+        std::vector<RootPose> root;                 ///< Skeleton Root relative to the Reference Point
+        std::vector<Mat4> sklsWorld;                ///< Skeleton Root in the world
+        std::vector<double> sklsRadius;             ///< Sklsroot Bsphere radius
+        std::vector<double> eyeDistance;            ///< distance eye - Skeleton Root (infinite if not computed)
+        std::vector<float> priority;                ///< detail priority
+        std::vector<glm::vec4> tint;                ///< colour multiplier
+        std::vector<std::uint32_t> dofOffset;       ///< first DOF value in `dofs`
+        std::vector<float> dofs;                    ///< DOF values of every actor
+        std::vector<std::uint32_t> nodeOffset;      ///< first Skeleton node entry in per-node workspaces
+        std::vector<Node*> owner;                   ///< the node that holds the actor, or null
+        std::vector<std::uint32_t> member;          ///< its index within that node
+        std::vector<std::int32_t> held;             ///< index into heldObjects, or -1
+        std::vector<ActorClass> actorClass;         ///< classification in the last frame
+        std::vector<std::vector<HeldObject>> heldObjects;  ///< held objects, per actor that holds any
+        std::uint32_t totalNodes = 0;               ///< sum of the actors' Skeleton node counts
+    };
+
+    /// Workspace of traditional processing: every actor's Skeleton node matrices and spheres,
+    /// computed on the CPU each frame. Allocated only when traditional processing runs.
+    struct TraditionalWorkspace {
+        std::vector<Affine> model;                   ///< node to Skeleton Root
+        std::vector<Mat4> world;                     ///< node to world
+        std::vector<BoundingSphere> geometry;        ///< geometry spheres, world
+        std::vector<BoundingSphere> subtree;         ///< subtree spheres, world
+        std::vector<BoundingSphere> whole;           ///< per actor: all its internal spheres, world
+        std::vector<PlaneMask> masks;                ///< scratch: plane mask per node while culling
+    };
+
+    Crowd();
+    ~Crowd();
+    Crowd(const Crowd&) = delete;
+    Crowd& operator=(const Crowd&) = delete;
+
+    /// Adds an actor of template `tmpl` driven by `behaviour` (its slot `slot` was obtained from the
+    /// behaviour). Throws std::invalid_argument if a pointer is null or the priority is not positive.
+    ActorId add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Behaviour> behaviour,
+                std::uint32_t slot, const ActorLook& look = {});
+    /// Number of actors.
+    std::size_t size() const { return state_.tmpl.size(); }
+
+    /// A node standing for actor `id`, to put in a scenegraph. Throws std::invalid_argument if the
+    /// id is out of range or the actor already belongs to a node.
+    std::shared_ptr<Actor> makeActorNode(ActorId id);
+    /// A node standing for many actors culled together first (a crowd or flock group). Throws as
+    /// makeActorNode for any of them.
+    std::shared_ptr<ActorGroup> makeGroupNode(std::vector<ActorId> ids);
+
+    /// Makes actor `id` hold `object`: both of its static spheres grow to keep enclosing it (seed
+    /// 002 §4.3). Throws std::invalid_argument on a bad id, node or null drawable.
+    void hold(ActorId id, HeldObject object);
+    /// Sets an actor's detail priority (positive).
+    void setPriority(ActorId id, float priority);
+
+    /// The actor's template.
+    const ActorTemplate& templateOf(ActorId id) const { return *state_.tmpl[id]; }
+    /// Its Reference Point in the world, as of the last frame.
+    const Mat4& referencePoint(ActorId id) const { return state_.refWorld[id]; }
+    /// Its Skeleton Root in the world, as of the last frame it was visible.
+    const Mat4& skeletonRoot(ActorId id) const { return state_.sklsWorld[id]; }
+    /// Refpoint Bsphere in the world, as of the last frame.
+    const BoundingSphere& refpointSphere(ActorId id) const { return state_.refSphereWorld[id]; }
+    /// Radius of the Sklsroot Bsphere.
+    double skeletonRootRadius(ActorId id) const { return state_.sklsRadius[id]; }
+    /// Eye distance computed in the last frame (infinite when the actor was culled before it).
+    double eyeDistance(ActorId id) const { return state_.eyeDistance[id]; }
+    /// Classification in the last frame.
+    ActorClass actorClass(ActorId id) const { return state_.actorClass[id]; }
+    /// DOF values of the actor (as of the last frame they were evaluated).
+    std::span<const float> dofs(ActorId id) const;
+
+    /// Bytes of state one more clone of `tmpl` adds (its template is shared).
+    std::size_t bytesPerActor(const ActorTemplate& tmpl) const;
+
+    /// Per-actor state, for processors and nodes.
+    State& state() { return state_; }
+    /// Per-actor state, read-only.
+    const State& state() const { return state_; }
+    /// Traditional processing's workspace, sized for every actor on first use.
+    TraditionalWorkspace& traditionalWorkspace();
+    /// Storage for the matrices of this frame's draw items.
+    MatrixArena& drawMatrices() { return drawMatrices_; }
+    /// Starts a frame (identified by its number and time): forgets the previous frame's draw
+    /// matrices. Idempotent within a frame, so every node and processor may call it.
+    void beginFrame(std::uint64_t frame, double time);
+
+private:
+    void claim(ActorId id, Node* owner, std::uint32_t member, const char* who);
+    void updateSpheres(ActorId id);
+
+    State state_;
+    TraditionalWorkspace traditional_;
+    MatrixArena drawMatrices_;
+    std::vector<std::shared_ptr<const ActorTemplate>> templates_;
+    std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    std::uint64_t frame_ = ~std::uint64_t{0};
+    double frameTime_ = 0.0;
+};
+
+}  // namespace throng

@@ -1,0 +1,282 @@
+#include "throng/actors/ActorTemplate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/MeshDrawable.h"
+
+namespace throng {
+namespace {
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Largest absolute value a 1-value DOF can take (its limits), for the reach bound.
+double dofReach(const Dof& d) { return std::max(std::abs(double(d.min)), std::abs(double(d.max))); }
+
+}  // namespace
+
+int ActorTemplate::findNode(std::string_view name) const {
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+        if (nodes_[i].name == name) return static_cast<int>(i);
+    return -1;
+}
+
+int ActorTemplate::findClip(std::string_view name) const {
+    for (std::size_t i = 0; i < clips_.size(); ++i)
+        if (clips_[i]->name() == name) return static_cast<int>(i);
+    return -1;
+}
+
+std::size_t ActorTemplate::sharedBytes() const {
+    std::size_t bytes = sizeof(ActorTemplate);
+    std::set<const void*> meshes;
+    auto countDrawables = [&](const VaLod& lod) {
+        for (const VaLodLevel& l : lod.levels()) {
+            auto* mesh = dynamic_cast<const MeshDrawable*>(l.drawable.get());
+            if (!mesh || !meshes.insert(&mesh->mesh()).second) continue;
+            const MeshData& m = mesh->mesh();
+            bytes += m.positions.size() * sizeof(glm::vec3) + m.normals.size() * sizeof(glm::vec3) +
+                     m.texcoords.size() * sizeof(glm::vec2) + m.indices.size() * sizeof(std::uint32_t) +
+                     (m.joints0.size() + m.joints1.size()) * (sizeof(glm::u16vec4) + sizeof(glm::vec4));
+            if (m.baseColorTexture && meshes.insert(m.baseColorTexture.get()).second)
+                bytes += m.baseColorTexture->rgba.size();
+        }
+    };
+    for (const SkeletonNode& n : nodes_) {
+        bytes += sizeof(SkeletonNode) + n.name.size() + n.dofs.size() * sizeof(Dof) +
+                 n.geometry.levels().size() * sizeof(VaLodLevel);
+        countDrawables(n.geometry);
+    }
+    countDrawables(rootGeometry_);
+    bytes += (subtreeEnd_.size() + dofOffset_.size() + firstDof_.size() + dofValueOffset_.size()) * sizeof(std::uint32_t) +
+             restDofs_.size() * sizeof(float);
+    for (const auto& c : clips_)
+        for (const ClipChannel& ch : c->channels())
+            bytes += sizeof(ClipChannel) + (ch.times.size() + ch.values.size()) * sizeof(float);
+    return bytes;
+}
+
+ActorTemplateBuilder::ActorTemplateBuilder(std::string name) : name_(std::move(name)) {}
+
+int ActorTemplateBuilder::addNode(SkeletonNode node) {
+    const std::string who = "template '" + name_ + "': Skeleton node '" + node.name + "'";
+    if (node.name.empty()) throw std::invalid_argument("template '" + name_ + "': a Skeleton node has no name");
+    for (const SkeletonNode& n : nodes_)
+        if (n.name == node.name) throw std::invalid_argument(who + ": the name is already used");
+    if (node.parent != -1) {
+        bool ok = false;
+        for (int a = static_cast<int>(nodes_.size()) - 1; a >= 0; a = nodes_[static_cast<std::size_t>(a)].parent)
+            if (a == node.parent) {
+                ok = true;
+                break;
+            }
+        if (!ok)
+            throw std::invalid_argument(who + ": parent " + std::to_string(node.parent) +
+                                        " is not the previous node or one of its ancestors (nodes must come in depth-first order)");
+    }
+    if (!finite3(node.restTranslation) || !finite3(node.restScale) || !std::isfinite(node.restRotation.w) ||
+        !std::isfinite(node.restRotation.x) || !std::isfinite(node.restRotation.y) || !std::isfinite(node.restRotation.z))
+        throw std::invalid_argument(who + ": has a non-finite rest transform");
+    const float qlen = glm::length(node.restRotation);
+    if (!(qlen > 0.0f)) throw std::invalid_argument(who + ": rest rotation is a zero quaternion");
+    node.restRotation = node.restRotation / qlen;
+    if (std::isnan(node.deactivationDistance) || node.deactivationDistance <= 0.0)
+        throw std::invalid_argument(who + ": deactivation distance must be positive, got " + fmt(node.deactivationDistance));
+    for (std::size_t d = 0; d < node.dofs.size(); ++d) {
+        Dof& dof = node.dofs[d];
+        const std::string which = who + ", DOF " + std::to_string(d);
+        for (float v : dof.rest)
+            if (!std::isfinite(v)) throw std::invalid_argument(which + ": rest value is not finite");
+        if (dof.kind == DofKind::RotateAxis || dof.kind == DofKind::TranslateAxis) {
+            const float len = glm::length(dof.axis);
+            if (!finite3(dof.axis) || !(len > 0.0f)) throw std::invalid_argument(which + ": axis is zero or not finite");
+            dof.axis /= len;
+            if (std::isnan(dof.min) || std::isnan(dof.max) || dof.min > dof.max)
+                throw std::invalid_argument(which + ": limits [" + fmt(dof.min) + ", " + fmt(dof.max) + "] are not ordered");
+            if (dof.rest[0] < dof.min || dof.rest[0] > dof.max)
+                throw std::invalid_argument(which + ": rest value " + fmt(dof.rest[0]) + " is outside its limits");
+        } else if (dof.kind == DofKind::Orientation) {
+            const float len = std::sqrt(dof.rest[0] * dof.rest[0] + dof.rest[1] * dof.rest[1] +
+                                        dof.rest[2] * dof.rest[2] + dof.rest[3] * dof.rest[3]);
+            if (!(len > 0.0f)) throw std::invalid_argument(which + ": rest orientation is a zero quaternion");
+            for (float& v : dof.rest) v /= len;
+        }
+    }
+    nodes_.push_back(std::move(node));
+    return static_cast<int>(nodes_.size()) - 1;
+}
+
+void ActorTemplateBuilder::addClip(std::shared_ptr<const AnimationClip> clip) {
+    if (!clip) throw std::invalid_argument("template '" + name_ + "': addClip: argument 'clip' is null");
+    clips_.push_back(std::move(clip));
+}
+
+void ActorTemplateBuilder::setSkeletonRootMargin(double metres) {
+    if (!std::isfinite(metres) || metres < 0.0)
+        throw std::invalid_argument("template '" + name_ + "': Sklsroot margin must be finite and >= 0, got " + fmt(metres));
+    margin_ = metres;
+}
+
+void ActorTemplateBuilder::setRadiusSampleRate(double hertz) {
+    if (!std::isfinite(hertz) || hertz <= 0.0)
+        throw std::invalid_argument("template '" + name_ + "': radius sample rate must be positive, got " + fmt(hertz));
+    sampleRate_ = hertz;
+}
+
+std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
+    const std::string who = "template '" + name_ + "'";
+    if (nodes_.empty() && rootGeometry_.empty()) throw std::invalid_argument(who + ": has neither Skeleton nodes nor geometry");
+
+    // Skeletal LOD must agree with the vaLod transitions (seed 002 §5.2, Fig. 5).
+    for (const SkeletonNode& n : nodes_) {
+        const double drawn = n.geometry.lastDrawnDistance();
+        if (drawn > n.deactivationDistance)
+            throw std::invalid_argument(who + ": Skeleton node '" + n.name + "' still shows geometry up to " + fmt(drawn) +
+                                        " m but is deactivated at " + fmt(n.deactivationDistance) +
+                                        " m (a deactivated node must not keep separate geometry)");
+        if (n.parent >= 0) {
+            const SkeletonNode& p = nodes_[static_cast<std::size_t>(n.parent)];
+            if (n.deactivationDistance > p.deactivationDistance)
+                throw std::invalid_argument(who + ": Skeleton node '" + n.name + "' stays active up to " +
+                                            fmt(n.deactivationDistance) + " m but its parent '" + p.name +
+                                            "' is deactivated at " + fmt(p.deactivationDistance) + " m");
+        }
+    }
+
+    std::shared_ptr<ActorTemplate> t(new ActorTemplate());
+    t->name_ = name_;
+    t->nodes_ = nodes_;
+    t->rootGeometry_ = rootGeometry_;
+    t->margin_ = margin_;
+    const std::size_t n = nodes_.size();
+
+    t->subtreeEnd_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) t->subtreeEnd_[i] = static_cast<std::uint32_t>(i + 1);
+    for (std::size_t i = n; i-- > 0;)
+        if (nodes_[i].parent >= 0) {
+            auto& end = t->subtreeEnd_[static_cast<std::size_t>(nodes_[i].parent)];
+            end = std::max(end, t->subtreeEnd_[i]);
+        }
+
+    std::uint32_t values = 0, dofs = 0;
+    t->dofOffset_.resize(n);
+    t->firstDof_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        t->dofOffset_[i] = values;
+        t->firstDof_[i] = dofs;
+        for (const Dof& d : nodes_[i].dofs) {
+            t->dofValueOffset_.push_back(values);
+            for (int k = 0; k < dofValueCount(d.kind); ++k) t->restDofs_.push_back(d.rest[static_cast<std::size_t>(k)]);
+            values += static_cast<std::uint32_t>(dofValueCount(d.kind));
+            ++dofs;
+        }
+    }
+    t->dofValueCount_ = values;
+    t->dofCount_ = dofs;
+
+    std::size_t spheres = n;  // one subtree sphere per node
+    for (SkeletonNode& node : t->nodes_) {
+        if (!node.geometrySphere.valid()) node.geometrySphere = node.geometry.bound();
+        if (node.geometrySphere.valid()) ++spheres;
+    }
+    t->internalSphereCount_ = spheres;
+
+    // Clips: every channel must fit the skeleton.
+    for (const auto& clip : clips_) {
+        for (std::size_t i = 0; i < clip->channels().size(); ++i) {
+            const ClipChannel& c = clip->channels()[i];
+            const std::string where = who + ", clip '" + clip->name() + "', channel " + std::to_string(i);
+            int width = 0;
+            if (c.target == ClipChannel::Target::NodeDof) {
+                if (c.node >= n) throw std::invalid_argument(where + ": targets node " + std::to_string(c.node) + " of " + std::to_string(n));
+                const SkeletonNode& node = t->nodes_[c.node];
+                if (c.dof >= node.dofs.size())
+                    throw std::invalid_argument(where + ": targets DOF " + std::to_string(c.dof) + " of node '" + node.name +
+                                                "', which has " + std::to_string(node.dofs.size()));
+                width = dofValueCount(node.dofs[c.dof].kind);
+            } else {
+                width = c.target == ClipChannel::Target::RootTranslation ? 3 : 4;
+            }
+            const std::size_t expected = valuesPerKey(c.interpolation, width) * c.times.size();
+            if (c.values.size() != expected)
+                throw std::invalid_argument(where + ": has " + std::to_string(c.values.size()) + " values, expected " +
+                                            std::to_string(expected) + " for " + std::to_string(c.times.size()) + " keys");
+        }
+        t->clips_.push_back(clip);
+    }
+
+    // Reach bound: chains at full stretch within the DOF limits.
+    std::vector<double> reach(n, 0.0), scale(n, 1.0);
+    double reachRadius = 0.0;
+    const BoundingSphere rootBound = rootGeometry_.bound();
+    if (rootBound.valid()) reachRadius = glm::length(rootBound.center()) + rootBound.radius();
+    for (std::size_t i = 0; i < n; ++i) {
+        const SkeletonNode& node = t->nodes_[i];
+        const double parentReach = node.parent >= 0 ? reach[static_cast<std::size_t>(node.parent)] : 0.0;
+        const double parentScale = node.parent >= 0 ? scale[static_cast<std::size_t>(node.parent)] : 1.0;
+        double offset = glm::length(glm::dvec3(node.restTranslation));
+        double ownScale = std::max({std::abs(double(node.restScale.x)), std::abs(double(node.restScale.y)),
+                                    std::abs(double(node.restScale.z))});
+        for (const Dof& d : node.dofs) {
+            if (d.kind == DofKind::TranslateAxis) offset += dofReach(d);
+            if (d.kind == DofKind::Position || d.kind == DofKind::Scale) {
+                offset = std::numeric_limits<double>::infinity();  // unbounded: no guaranteed reach
+                ownScale = std::numeric_limits<double>::infinity();
+            }
+        }
+        reach[i] = parentReach + parentScale * offset;
+        scale[i] = parentScale * ownScale;
+        if (node.geometrySphere.valid())
+            reachRadius = std::max(reachRadius, reach[i] + scale[i] * (glm::length(node.geometrySphere.center()) +
+                                                                       node.geometrySphere.radius()));
+        else
+            reachRadius = std::max(reachRadius, reach[i]);
+    }
+    t->reachRadius_ = reachRadius;
+    t->chainReach_ = reach;
+    t->chainScale_ = scale;
+    t->sampledReach_.assign(n, 0.0);
+    t->sampledScale_.assign(n, 0.0);
+
+    // Sampled radius: every key time of every clip, plus a uniform sampling, plus the rest pose.
+    std::vector<float> pose(t->restDofs_.begin(), t->restDofs_.end());
+    std::vector<Affine> model(n);
+    std::vector<BoundingSphere> geometry(n), subtree(n);
+    auto poseRadius = [&]() {
+        computeModelTransforms(*t, pose, {}, model);
+        for (std::size_t i = 0; i < n; ++i) {
+            t->sampledReach_[i] = std::max(t->sampledReach_[i], double(glm::length(model[i].translation)) + margin_);
+            t->sampledScale_[i] = std::max(t->sampledScale_[i], maxScaleFactor(model[i].toDMat4()));
+        }
+        const BoundingSphere whole = computeInternalSpheres(*t, model, {}, geometry, subtree);
+        return whole.valid() ? glm::length(whole.center()) + whole.radius() : 0.0;
+    };
+    double sampled = poseRadius();
+    for (const auto& clip : t->clips_) {
+        std::vector<double> times;
+        for (const ClipChannel& c : clip->channels()) times.insert(times.end(), c.times.begin(), c.times.end());
+        const auto steps = static_cast<std::size_t>(std::ceil(clip->duration() * sampleRate_));
+        for (std::size_t k = 0; k <= steps; ++k)
+            times.push_back(std::min(clip->duration(), static_cast<double>(k) / sampleRate_));
+        for (double time : times) {
+            std::copy(t->restDofs_.begin(), t->restDofs_.end(), pose.begin());
+            clip->sample(*t, time, false, {}, pose);
+            sampled = std::max(sampled, poseRadius());
+        }
+    }
+    t->skeletonRootRadius_ = std::min(sampled + margin_, reachRadius);
+    return t;
+}
+
+}  // namespace throng
