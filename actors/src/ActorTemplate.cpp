@@ -250,6 +250,7 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
     t->sampledScale_.assign(n, 0.0);
 
     // Sampled radius: every key time of every clip, plus a uniform sampling, plus the rest pose.
+    // Each part's geometry sphere is the union of its levels, so every level is covered.
     std::vector<float> pose(t->restDofs_.begin(), t->restDofs_.end());
     std::vector<Affine> model(n);
     std::vector<BoundingSphere> geometry(n), subtree(n);
@@ -259,8 +260,12 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
             t->sampledReach_[i] = std::max(t->sampledReach_[i], double(glm::length(model[i].translation)) + margin_);
             t->sampledScale_[i] = std::max(t->sampledScale_[i], maxScaleFactor(model[i].toDMat4()));
         }
-        const BoundingSphere whole = computeInternalSpheres(*t, model, {}, geometry, subtree);
-        return whole.valid() ? glm::length(whole.center()) + whole.radius() : 0.0;
+        // The farthest any part gets: culling needs every part inside the Sklsroot Bsphere.
+        computeInternalSpheres(*t, model, {}, geometry, subtree);
+        double far = rootBound.valid() ? glm::length(rootBound.center()) + rootBound.radius() : 0.0;
+        for (const BoundingSphere& g : geometry)
+            if (g.valid()) far = std::max(far, glm::length(g.center()) + g.radius());
+        return far;
     };
     double sampled = poseRadius();
     for (const auto& clip : t->clips_) {

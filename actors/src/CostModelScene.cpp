@@ -10,6 +10,7 @@
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/Validation.h"
 
 namespace throng {
 
@@ -36,6 +37,7 @@ CascadeCounts CascadeCounts::scaled(std::size_t actors) {
 CostModelScene buildCostModelScene(Crowd& crowd, std::shared_ptr<const ActorTemplate> tmpl,
                                    std::shared_ptr<KeyframeBehaviour> behaviour, const CostModelSceneOptions& o) {
     if (!tmpl || !behaviour) throw std::invalid_argument("buildCostModelScene: template and behaviour are required");
+    requireFinite(o.origin, "buildCostModelScene", "options.origin");
     if (!(o.nearDepth > 0.0) || !(o.farDepth > o.nearDepth))
         throw std::invalid_argument("buildCostModelScene: depths must satisfy 0 < nearDepth < farDepth");
     CostModelScene scene;
@@ -45,7 +47,7 @@ CostModelScene buildCostModelScene(Crowd& crowd, std::shared_ptr<const ActorTemp
     // about +Y can turn any horizontal offset towards or away from it.
     const double fovY = std::numbers::pi / 3.0, aspect = 4.0 / 3.0;
     scene.camera.setPerspective(fovY, aspect, 0.5, 4.0 * o.farDepth);
-    scene.camera.setLookAt(Vec3(0.0), Vec3(0, 0, -1), Vec3(0, 1, 0));
+    scene.camera.setLookAt(o.origin, o.origin + Vec3(0, 0, -1), Vec3(0, 1, 0));
     const Frustum frustum = scene.camera.frustum();
     const Vec3 n = Vec3(frustum.plane(Frustum::kRight));  // inward normal, horizontal
     const double tanH = aspect * std::tan(0.5 * fovY);
@@ -81,7 +83,7 @@ CostModelScene buildCostModelScene(Crowd& crowd, std::shared_ptr<const ActorTemp
     auto place = [&](int cls, std::size_t count) {
         for (std::size_t i = 0; i < count; ++i) {
             const double depth = depthOf(rng);
-            const Vec3 onPlane(depth * tanH, 4.0 * (unit(rng) - 0.5), -depth);  // a point of the right plane
+            const Vec3 onPlane = o.origin + Vec3(depth * tanH, 4.0 * (unit(rng) - 0.5), -depth);  // on the right plane
             KeyframeBehaviour::Actor a;
             a.tmpl = tmpl;
             a.heading = 2.0 * std::numbers::pi * unit(rng);

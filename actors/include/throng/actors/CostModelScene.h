@@ -39,6 +39,7 @@ struct CostModelSceneOptions {
     std::uint64_t seed = 1;             ///< placement along the frustum edge
     double nearDepth = 80.0;            ///< actors stand between these depths in front of the camera,
     double farDepth = 200.0;            ///< beyond the template's half-detail distance (fLODtopo 0.5)
+    Vec3 origin{0.0};                   ///< where the camera stands (to test far from the world origin)
 };
 
 /// The scene and how to look at it.

@@ -1,0 +1,40 @@
+#include "throng/scenes/TownSpread.h"
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "throng/actors/ActorGroup.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/SeedHumanoid.h"
+
+namespace throng::scenes {
+
+TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, double blockSize, std::uint64_t seed) {
+    TownSpread town;
+    town.root = std::make_shared<Group>();
+    town.root->setName("town");
+    const auto humanoid = makeSeedHumanoid();
+    auto walk = std::make_shared<KeyframeBehaviour>();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::map<std::pair<int, int>, std::vector<ActorId>> blocks;
+    for (std::size_t i = 0; i < actors; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = humanoid;
+        a.clip = humanoid->findClip("walk");
+        a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
+        a.heading = 6.283 * u(rng);
+        a.pathRadius = 3.0 + 10.0 * u(rng);
+        a.pathSpeed = 1.2 + 0.4 * u(rng);
+        a.timeOffset = 2.0 * u(rng);
+        const ActorId id = crowd.add(humanoid, walk, walk->addActor(a));
+        blocks[{int(std::floor(a.position.x / blockSize)), int(std::floor(a.position.z / blockSize))}].push_back(id);
+    }
+    for (auto& [key, ids] : blocks) town.root->addChild(crowd.makeGroupNode(std::move(ids)));
+    town.camera.setPerspective(1.0, 16.0 / 9.0, 0.1, 1500.0);
+    town.camera.setLookAt(Vec3(0, 1.7, 0), Vec3(100, 1.7, 20), Vec3(0, 1, 0));
+    return town;
+}
+
+}  // namespace throng::scenes

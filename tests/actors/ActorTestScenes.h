@@ -1,0 +1,88 @@
+#pragma once
+// Random crowds and draw-list comparison shared by the actor tests.
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "throng/actors/Actor.h"
+#include "throng/actors/ActorGroup.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/ProceduralGait.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/actors/Table3Template.h"
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/Transform.h"
+
+namespace throng::testing {
+
+/// A primitive's identity: node, instance, part, drawable.
+using PrimitiveKey = std::tuple<const void*, std::uint32_t, std::uint32_t, const void*>;
+
+/// The draw list as a sorted list of primitive identities.
+inline std::vector<PrimitiveKey> primitives(const DrawList& list) {
+    std::vector<PrimitiveKey> keys;
+    for (const DrawItem& i : list.items()) keys.emplace_back(i.node, i.instance, i.part, i.drawable);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
+/// A random crowd: humanoids and Table 3 actors, key-framed or walking procedurally, some alone,
+/// some in groups, some under a moving generic Transform (a vehicle), spread over a square.
+struct RandomCrowd {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<Transform> vehicle = std::make_shared<Transform>();
+    std::vector<ActorId> ids;
+};
+
+inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int actors, double extent) {
+    auto scene = std::make_unique<RandomCrowd>();
+    static const auto humanoid = makeSeedHumanoid();
+    static const auto table3 = makeTable3Template();
+    auto keyframes = std::make_shared<KeyframeBehaviour>(std::vector<double>{30.0, 1e9});
+    auto gait = std::make_shared<ProceduralGait>(std::vector<double>{25.0, 1e9});
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    std::vector<ActorId> grouped, onVehicle;
+    for (int i = 0; i < actors; ++i) {
+        const auto tmpl = unit(rng) < 0.5 ? humanoid : table3;
+        const Vec3 where(extent * u(rng), 0.2 * extent * u(rng), extent * u(rng));
+        ActorId id;
+        if (unit(rng) < 0.6) {
+            KeyframeBehaviour::Actor a;
+            a.tmpl = tmpl;
+            a.clip = static_cast<int>(unit(rng) * double(tmpl->clips().size()));
+            a.timeOffset = 10.0 * unit(rng);
+            a.position = where;
+            a.heading = 6.3 * unit(rng);
+            a.pathRadius = unit(rng) < 0.3 ? 4.0 : 0.0;
+            a.pathSpeed = 1.4;
+            id = scene->crowd.add(tmpl, keyframes, keyframes->addActor(a), ActorLook{float(0.5 + unit(rng)), glm::vec4(1)});
+        } else {
+            ProceduralGait::Actor a;
+            a.center = where;
+            a.radius = 6.0 * unit(rng);
+            a.phase = 6.3 * unit(rng);
+            id = scene->crowd.add(tmpl, gait, gait->addActor(a));
+        }
+        scene->ids.push_back(id);
+        const double r = unit(rng);
+        if (r < 0.45) scene->root->addChild(scene->crowd.makeActorNode(id));
+        else if (r < 0.9) grouped.push_back(id);
+        else onVehicle.push_back(id);
+    }
+    for (std::size_t g = 0; g < grouped.size(); g += 50)
+        scene->root->addChild(scene->crowd.makeGroupNode(
+            std::vector<ActorId>(grouped.begin() + long(g), grouped.begin() + long(std::min(g + 50, grouped.size())))));
+    scene->vehicle->setName("vehicle");
+    for (ActorId id : onVehicle) scene->vehicle->addChild(scene->crowd.makeActorNode(id));
+    scene->root->addChild(scene->vehicle);
+    return scene;
+}
+
+}  // namespace throng::testing

@@ -1,0 +1,281 @@
+// The culling cascade against traditional processing: the same primitives on random scenes with
+// random cameras (cameras inside spheres among them), view-independent Reference Points, the Table 2
+// classification, actors culled with a generic group, and held objects.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "ActorTestScenes.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/CostModelScene.h"
+#include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/TraditionalProcessor.h"
+
+using namespace throng;
+using namespace throng::testing;
+
+namespace {
+
+Camera randomCamera(std::mt19937_64& rng, double extent) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    Camera c;
+    c.setPerspective(0.3 + 1.5 * unit(rng), 0.7 + unit(rng), 0.05 + unit(rng), 50.0 + 400.0 * unit(rng));
+    const Vec3 eye(extent * u(rng), 1.0 + 10.0 * unit(rng), extent * u(rng));
+    Vec3 target(extent * u(rng), 0.0, extent * u(rng));
+    if (glm::length(target - eye) < 1.0) target += Vec3(5, 0, 0);
+    c.setLookAt(eye, target, Vec3(0, 1, 0));
+    return c;
+}
+
+// A camera standing at an actor's Reference Point or Skeleton Root, looking anywhere.
+Camera cameraInsideActor(std::mt19937_64& rng, const Vec3& at) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Camera c;
+    c.setPerspective(1.2, 1.5, 0.05, 200.0);
+    c.setLookAt(at, at + Vec3(u(rng), 0.3 * u(rng), u(rng)) + Vec3(1e-3, 0, 0), Vec3(0, 1, 0));
+    return c;
+}
+
+}  // namespace
+
+TEST(Cascade, DrawsExactlyWhatTraditionalProcessingDrawsOnRandomScenes) {
+    std::size_t frames = 0, drawn = 0, rejected = 0, insideCameras = 0;
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        auto scene = makeRandomCrowd(seed, 1200, 120.0);
+        ActorProcessor processor(scene->crowd);
+        processor.setBehaviouralLod(false);  // both methods then pose actors identically
+        std::mt19937_64 rng(seed * 77);
+        for (int f = 0; f < 12; ++f) {
+            const double time = 0.37 * f;
+            TransformDofs vehicle;
+            vehicle.translation = Vec3(30.0 * std::sin(time), 0.0, 20.0 * f - 100.0);
+            scene->vehicle->setDofs(vehicle);
+            Camera camera = randomCamera(rng, 120.0);
+            if (f % 3 == 2) {  // stand inside an actor's spheres: its Reference Point or Skeleton Root
+                const ActorId id = scene->ids[rng() % scene->ids.size()];
+                processor.setProcessing(Processing::Traditional);
+                processor.processFrame(*scene->root, camera, time);  // places every actor at `time`
+                camera = cameraInsideActor(rng, f % 2 ? Vec3(scene->crowd.referencePoint(id)[3])
+                                                      : Vec3(scene->crowd.skeletonRoot(id)[3]));
+                ++insideCameras;
+            }
+            processor.setProcessing(Processing::Traditional);
+            processor.processFrame(*scene->root, camera, time);
+            const auto expected = primitives(processor.drawList());
+            processor.setProcessing(Processing::Actor);
+            const ActorFrameStatistics& s = processor.processFrame(*scene->root, camera, time);
+            const auto got = primitives(processor.drawList());
+            ASSERT_EQ(got.size(), expected.size()) << "seed " << seed << " frame " << f;
+            ASSERT_TRUE(got == expected) << "seed " << seed << " frame " << f;
+            ++frames;
+            drawn += got.size();
+            rejected += s.a + s.c1;
+        }
+    }
+    EXPECT_EQ(insideCameras, 12u);
+    EXPECT_GT(drawn, 5000u) << "the cameras must see actors";
+    EXPECT_GT(rejected, 5000u) << "the cascade must reject actors";
+}
+
+TEST(Cascade, WithBehaviouralLodEveryPartDrawnIsVisibleInItsOwnPose) {
+    // With behavioural LOD the poses differ from traditional processing's, so check actor
+    // processing against a brute-force test of the poses it produced: a part is drawn exactly when
+    // its own sphere is not outside the frustum.
+    auto scene = makeRandomCrowd(11, 1000, 80.0);
+    ActorProcessor processor(scene->crowd);
+    std::mt19937_64 rng(5);
+    const Crowd::State& s = scene->crowd.state();
+    std::size_t checked = 0;
+    for (int f = 0; f < 6; ++f) {
+        const Camera camera = randomCamera(rng, 80.0);
+        processor.processFrame(*scene->root, camera, 0.5 * f);
+        const Frustum frustum = camera.frustum();
+        std::vector<PrimitiveKey> expected;
+        for (ActorId id = 0; id < scene->crowd.size(); ++id) {
+            const ActorClass c = scene->crowd.actorClass(id);
+            if (c == ActorClass::A || c == ActorClass::C1 || c == ActorClass::NotInScene || c == ActorClass::CulledWithGroup) continue;
+            const ActorTemplate& t = *s.tmpl[id];
+            const double d2 = detailDistanceSquared(s.sklsWorld[id], camera.eye(), 1.0, s.priority[id]);
+            std::vector<std::uint8_t> active(t.nodeCount());
+            computeActiveNodes(t, d2, active);
+            std::vector<Affine> model(t.nodeCount());
+            computeModelTransforms(t, scene->crowd.dofs(id), active, model);
+            const std::uint32_t member = s.member[id];
+            const int rootLevel = t.rootGeometry().selectSquared(d2);
+            if (rootLevel >= 0)
+                if (const auto& d = t.rootGeometry().levels()[std::size_t(rootLevel)].drawable)
+                    if (frustum.classify(d->localBound().transformed(s.sklsWorld[id])) != Containment::Outside)
+                        expected.emplace_back(s.owner[id], member, std::uint32_t(t.nodeCount()), d.get());
+            for (std::size_t i = 0; i < t.nodeCount(); ++i) {
+                if (!active[i]) continue;
+                const int level = t.nodes()[i].geometry.selectSquared(d2);
+                if (level < 0) continue;
+                const auto& d = t.nodes()[i].geometry.levels()[std::size_t(level)].drawable;
+                if (d && frustum.classify(partWorldSphere(d->localBound(), model[i], s.sklsWorld[id])) != Containment::Outside)
+                    expected.emplace_back(s.owner[id], member, std::uint32_t(i), d.get());
+            }
+        }
+        std::sort(expected.begin(), expected.end());
+        ASSERT_TRUE(primitives(processor.drawList()) == expected) << "frame " << f;
+        checked += expected.size();
+    }
+    EXPECT_GT(checked, 1000u);
+}
+
+TEST(Cascade, ReferencePointsDoNotDependOnTheCamera) {
+    // Three identical crowds, three cameras: at the crowd, away from it, and moving. The Reference
+    // Point trajectories must be bitwise identical, in both methods.
+    auto trajectories = [](int cameraKind, Processing processing) {
+        auto scene = makeRandomCrowd(21, 300, 60.0);
+        ActorProcessor p(scene->crowd);
+        p.setProcessing(processing);
+        std::vector<Mat4> out;
+        for (int f = 0; f < 40; ++f) {
+            Camera c;
+            c.setPerspective(1.0, 1.5, 0.1, 500);
+            if (cameraKind == 0) c.setLookAt(Vec3(0, 30, 150), Vec3(0.0));
+            if (cameraKind == 1) c.setLookAt(Vec3(0, 30, 150), Vec3(0, 30, 300));
+            if (cameraKind == 2) c.setLookAt(Vec3(100.0 * std::cos(0.2 * f), 20, 100.0 * std::sin(0.2 * f)), Vec3(0.0));
+            p.processFrame(*scene->root, c, f / 30.0);
+            for (ActorId id = 0; id < scene->crowd.size(); ++id) out.push_back(scene->crowd.referencePoint(id));
+        }
+        return out;
+    };
+    const auto looking = trajectories(0, Processing::Actor);
+    const auto away = trajectories(1, Processing::Actor);
+    const auto moving = trajectories(2, Processing::Actor);
+    const auto traditional = trajectories(1, Processing::Traditional);
+    ASSERT_EQ(looking.size(), away.size());
+    EXPECT_EQ(0, std::memcmp(looking.data(), away.data(), looking.size() * sizeof(Mat4)));
+    EXPECT_EQ(0, std::memcmp(looking.data(), moving.data(), looking.size() * sizeof(Mat4)));
+    EXPECT_EQ(0, std::memcmp(looking.data(), traditional.data(), looking.size() * sizeof(Mat4)));
+}
+
+class Table2 : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Table2, TheExampleSceneGivesExactlyTheTable2CountsInThePipelineStatistics) {
+    Crowd crowd;
+    CostModelSceneOptions options;
+    options.group = GetParam();
+    const CostModelScene scene =
+        buildCostModelScene(crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
+    ActorProcessor processor(crowd);
+    const ActorFrameStatistics& s = processor.processFrame(*scene.root, scene.camera, scene.time);
+    EXPECT_EQ(s.actorsInScene, 100u);
+    EXPECT_EQ(s.a, 20u);
+    EXPECT_EQ(s.b, 30u);
+    EXPECT_EQ(s.c1, 20u);
+    EXPECT_EQ(s.c2, 20u);
+    EXPECT_EQ(s.c3_1, 8u);
+    EXPECT_EQ(s.c3_2, 2u);
+    EXPECT_EQ(s.culledWithGroup, 0u);
+    // Skeletal LOD halves the Skeleton nodes of the 60 posed actors (fLODtopo = 0.5).
+    EXPECT_EQ(s.actorsPosed, 60u);
+    EXPECT_EQ(s.skeletonNodesEvaluated, 60u * 20u);
+    // Each actor is in the class it was placed for.
+    const ActorClass classes[6] = {ActorClass::A, ActorClass::B, ActorClass::C1, ActorClass::C2, ActorClass::C3_1, ActorClass::C3_2};
+    for (std::size_t c = 0; c < 6; ++c)
+        for (ActorId id : scene.byClass[c]) EXPECT_EQ(crowd.actorClass(id), classes[c]) << "actor " << id;
+    // And traditional processing draws the same primitives.
+    const auto actorPrimitives = primitives(processor.drawList());
+    processor.setProcessing(Processing::Traditional);
+    processor.processFrame(*scene.root, scene.camera, scene.time);
+    EXPECT_TRUE(primitives(processor.drawList()) == actorPrimitives);
+}
+
+INSTANTIATE_TEST_SUITE_P(ActorNodesAndGroupNode, Table2, ::testing::Bool());
+
+TEST(Cascade, ScaledTable2ProportionsHoldForLargerScenes) {
+    const CascadeCounts counts = CascadeCounts::scaled(1000);
+    EXPECT_EQ(counts.total(), 1000u);
+    EXPECT_EQ(counts.a, 200u);
+    EXPECT_EQ(counts.c3_2, 20u);
+    Crowd crowd;
+    CostModelSceneOptions options;
+    options.counts = counts;
+    options.group = true;
+    const CostModelScene scene = buildCostModelScene(crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
+    ActorProcessor processor(crowd);
+    const ActorFrameStatistics& s = processor.processFrame(*scene.root, scene.camera, scene.time);
+    EXPECT_EQ(s.a, 200u);
+    EXPECT_EQ(s.b, 300u);
+    EXPECT_EQ(s.c1, 200u);
+    EXPECT_EQ(s.c2, 200u);
+    EXPECT_EQ(s.c3_1, 80u);
+    EXPECT_EQ(s.c3_2, 20u);
+}
+
+TEST(Cascade, ActorsBelowAGenericGroupAreCulledWithItFirst) {
+    auto scene = makeRandomCrowd(3, 200, 30.0);
+    // Park the vehicle far behind the camera: its actors are never reached.
+    TransformDofs far;
+    far.translation = Vec3(0, 0, 5000);
+    scene->vehicle->setDofs(far);
+    std::size_t onVehicle = 0;
+    for (ActorId id : scene->ids) onVehicle += scene->crowd.state().owner[id]->parent() == scene->vehicle.get();
+    ASSERT_GT(onVehicle, 5u);
+    Camera camera;
+    camera.setPerspective(1.0, 1.5, 0.1, 300.0);
+    camera.setLookAt(Vec3(0, 10, 60), Vec3(0.0), Vec3(0, 1, 0));
+    ActorProcessor processor(scene->crowd);
+    const ActorFrameStatistics& s = processor.processFrame(*scene->root, camera, 0.0);
+    EXPECT_EQ(s.culledWithGroup, onVehicle);
+    for (ActorId id : scene->ids)
+        if (scene->crowd.state().owner[id]->parent() == scene->vehicle.get()) {
+            EXPECT_EQ(scene->crowd.actorClass(id), ActorClass::CulledWithGroup);
+            // Their Reference Points still follow the vehicle (simulation state is always computed).
+            EXPECT_GT(scene->crowd.referencePoint(id)[3].z, 4000.0);
+        }
+    EXPECT_EQ(s.actorsInScene, s.culledWithGroup + s.a + s.b + s.c1 + s.c2 + s.c3_1 + s.c3_2);
+}
+
+TEST(Cascade, AHeldObjectEnlargesBothSpheresAndIsDrawnWithTheActor) {
+    Crowd crowd;
+    const auto tmpl = makeSeedHumanoid();
+    auto behaviour = std::make_shared<KeyframeBehaviour>();
+    KeyframeBehaviour::Actor a;
+    a.tmpl = tmpl;
+    const ActorId id = crowd.add(tmpl, behaviour, behaviour->addActor(a));
+    const double sklsBefore = crowd.skeletonRootRadius(id);
+    const double refBefore = crowd.state().refSphereLocal[id].radius();
+    // A 3 m pole in the right hand: the spheres must still hold it in every pose.
+    auto pole = std::make_shared<MeshDrawable>(makeBox("pole", glm::vec3(0, -1.5f, 0), glm::vec3(0.02f, 1.5f, 0.02f)));
+    const int hand = tmpl->findNode("rElbow");
+    ASSERT_GE(hand, 0);
+    crowd.hold(id, HeldObject{hand, pole});
+    EXPECT_GT(crowd.skeletonRootRadius(id), sklsBefore + 1.0);
+    EXPECT_NEAR(crowd.state().refSphereLocal[id].radius() - refBefore, crowd.skeletonRootRadius(id) - sklsBefore, 1e-9);
+    EXPECT_THROW(crowd.hold(id, HeldObject{99, pole}), std::invalid_argument);
+    EXPECT_THROW(crowd.hold(id, HeldObject{hand, nullptr}), std::invalid_argument);
+
+    auto root = std::make_shared<Group>();
+    root->addChild(crowd.makeActorNode(id));
+    Camera camera;
+    camera.setPerspective(1.0, 1.0, 0.1, 100.0);
+    camera.setLookAt(Vec3(0, 1, 6), Vec3(0, 1, 0), Vec3(0, 1, 0));
+    ActorProcessor processor(crowd);
+    processor.processFrame(*root, camera, 0.3);
+    bool poleDrawn = false;
+    for (const DrawItem& item : processor.drawList().items()) poleDrawn = poleDrawn || item.drawable == pole.get();
+    EXPECT_TRUE(poleDrawn);
+    const auto actorPrimitives = primitives(processor.drawList());
+    processor.setProcessing(Processing::Traditional);
+    processor.processFrame(*root, camera, 0.3);
+    EXPECT_TRUE(primitives(processor.drawList()) == actorPrimitives);
+    // In every pose of the clip the pole stays inside the Sklsroot Bsphere.
+    const auto& s = crowd.state();
+    for (double t = 0; t < 2.0; t += 0.05) {
+        processor.processFrame(*root, camera, t);
+        for (const DrawItem& item : processor.drawList().items())
+            if (item.drawable == pole.get()) {
+                const BoundingSphere world = pole->localBound().transformed(*item.worldMatrix);
+                EXPECT_TRUE(BoundingSphere(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]).contains(world)) << t;
+            }
+    }
+}
