@@ -22,6 +22,8 @@ Actor::Actor(Crowd& crowd, ActorId id) : crowd_(&crowd), id_(id) {
     setNeedsApp(true);
 }
 
+Actor::~Actor() { crowd_->release(this, std::span<const ActorId>(&id_, 1)); }
+
 void Actor::traverseApp(AppVisitor& visitor) {
     crowd_->beginFrame(visitor.context().frame, visitor.context().time);
     if (actorTraversal(visitor)) return;  // actor processing runs phase 1 over the whole crowd itself

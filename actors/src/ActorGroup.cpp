@@ -19,6 +19,8 @@ ActorGroup::ActorGroup(Crowd& crowd, std::vector<ActorId> ids) : crowd_(&crowd),
     setNeedsApp(true);
 }
 
+ActorGroup::~ActorGroup() { crowd_->release(this, ids_); }
+
 void ActorGroup::traverseApp(AppVisitor& visitor) {
     crowd_->beginFrame(visitor.context().frame, visitor.context().time);
     if (actorTraversal(visitor)) return;  // actor processing runs phase 1 over the whole crowd itself

@@ -103,9 +103,10 @@ BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, Matrix
     OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
     OpTally* sphereOps = tallyFor(c, OpCategory::BsphereRecompute);
     const Mat4& parent = visitor.parentWorld();
+    const bool identity = visitor.parentIsIdentity();
     BoundingSphere group;
     for (ActorId id : ids) {
-        s.refWorld[id] = composeAffine(parent, s.refLocal[id], refOps);
+        s.refWorld[id] = identity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
         s.refSphereWorld[id] = s.refSphereLocal[id].transformed(s.refWorld[id], sphereOps);
         group.expandBy(s.refSphereWorld[id], ids.size() > 1 ? sphereOps : nullptr);
     }
@@ -193,14 +194,11 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     for (std::size_t id = 0; id < crowd_.size(); ++id) {
         s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, refOps);
         s.eyeDistance[id] = std::numeric_limits<double>::infinity();
-        if (Node* owner = s.owner[id]) {
-            s.actorClass[id] = ActorClass::CulledWithGroup;
-            owner->dirtyBound();
-            ++stats_.actorsInScene;
-        } else {
-            s.actorClass[id] = ActorClass::NotInScene;
-        }
+        const bool inScene = s.owner[id] != nullptr;
+        s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;
+        stats_.actorsInScene += inScene;
     }
+    for (Node* node : crowd_.nodes()) node->dirtyBound();  // every actor moved
     stats_.refpointMs = watch.elapsedMs();
 
     // Generic matrices and bounds; actor nodes place their Refpoint Bspheres in the world.

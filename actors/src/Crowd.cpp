@@ -77,6 +77,7 @@ std::shared_ptr<Actor> Crowd::makeActorNode(ActorId id) {
     if (id >= size() || state_.owner[id]) claim(id, nullptr, 0, "Crowd::makeActorNode");  // throws
     auto node = std::make_shared<Actor>(*this, id);
     claim(id, node.get(), 0, "Crowd::makeActorNode");
+    nodes_.push_back(node.get());
     return node;
 }
 
@@ -90,6 +91,7 @@ std::shared_ptr<ActorGroup> Crowd::makeGroupNode(std::vector<ActorId> ids) {
     auto node = std::make_shared<ActorGroup>(*this, std::move(ids));
     std::uint32_t member = 0;
     for (ActorId id : node->ids()) claim(id, node.get(), member++, "Crowd::makeGroupNode");
+    nodes_.push_back(node.get());
     return node;
 }
 
@@ -154,6 +156,12 @@ Crowd::TraditionalWorkspace& Crowd::traditionalWorkspace() {
         w.masks.resize(most);
     }
     return w;
+}
+
+void Crowd::release(Node* node, std::span<const ActorId> ids) {
+    for (ActorId id : ids)
+        if (id < size() && state_.owner[id] == node) state_.owner[id] = nullptr;
+    nodes_.erase(std::remove(nodes_.begin(), nodes_.end(), node), nodes_.end());
 }
 
 void Crowd::beginFrame(std::uint64_t frame, double time) {

@@ -42,13 +42,14 @@ BoundingSphere traditionalBound(Crowd& crowd, std::span<const ActorId> ids, Matr
     OpTally* sphereOps = tallyFor(c, OpCategory::BsphereRecompute);
     MatrixBoundsStatistics& stats = visitor.statistics();
     const Mat4& parent = visitor.parentWorld();
+    const bool identity = visitor.parentIsIdentity();
     BoundingSphere bound;
     for (ActorId id : ids) {
         const ActorTemplate& t = *s.tmpl[id];
         const std::size_t n = t.nodeCount();
         const std::uint32_t base = s.nodeOffset[id];
         // Reference Point and Skeleton Root matrices, on the CPU.
-        s.refWorld[id] = composeAffine(parent, s.refLocal[id], refOps);
+        s.refWorld[id] = identity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
         s.sklsWorld[id] = composeAffine(s.refWorld[id], rootPoseMatrix(s.root[id], rootOps), rootOps);
         countOperations(c, OpCategory::RefpointMatrix);
         countOperations(c, OpCategory::SkeletonRootMatrix);

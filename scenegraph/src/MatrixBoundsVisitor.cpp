@@ -10,6 +10,8 @@ namespace {
 const Mat4 kIdentity(1.0);
 }
 
+bool MatrixBoundsVisitor::parentIsIdentity() const { return parentWorld_ == &kIdentity; }
+
 MatrixBoundsVisitor::MatrixBoundsVisitor(OpCounter* counter, bool fullRecompute)
     : counter_(counter), fullRecompute_(fullRecompute), parentWorld_(&kIdentity) {}
 

@@ -15,6 +15,8 @@ class Actor : public Node {
 public:
     /// Made by Crowd::makeActorNode.
     Actor(Crowd& crowd, ActorId id);
+    /// Hands its actors back to the crowd (they stay, held by no node).
+    ~Actor() override;
 
     /// The crowd holding the actor's state.
     Crowd& crowd() const { return *crowd_; }

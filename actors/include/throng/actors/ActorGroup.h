@@ -18,6 +18,8 @@ class ActorGroup : public Node {
 public:
     /// Made by Crowd::makeGroupNode.
     ActorGroup(Crowd& crowd, std::vector<ActorId> ids);
+    /// Hands its actors back to the crowd (they stay, held by no node).
+    ~ActorGroup() override;
 
     /// The crowd holding the actors' state.
     Crowd& crowd() const { return *crowd_; }

@@ -55,7 +55,7 @@ enum class ActorClass : std::uint8_t {
     C3_2,             ///< Sklsroot crosses, internal spheres need culling
 };
 
-/// All actors of a scene.
+/// All actors of a scene. It must outlive the Actor and ActorGroup nodes made from it.
 class Crowd {
 public:
     /// Per-actor state, one entry per ActorId (for processors and nodes; users read it through
@@ -152,6 +152,10 @@ public:
     /// Starts a frame (identified by its number and time): forgets the previous frame's draw
     /// matrices. Idempotent within a frame, so every node and processor may call it.
     void beginFrame(std::uint64_t frame, double time);
+    /// The nodes standing for this crowd's actors (Actor and ActorGroup), in creation order.
+    std::span<Node* const> nodes() const { return nodes_; }
+    /// Called by a node being destroyed: its actors stay in the crowd, held by no node.
+    void release(Node* node, std::span<const ActorId> ids);
 
 private:
     void claim(ActorId id, Node* owner, std::uint32_t member, const char* who);
@@ -162,6 +166,7 @@ private:
     MatrixArena drawMatrices_;
     std::vector<std::shared_ptr<const ActorTemplate>> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    std::vector<Node*> nodes_;
     std::uint64_t frame_ = ~std::uint64_t{0};
     double frameTime_ = 0.0;
 };

@@ -40,6 +40,8 @@ public:
 
     /// World matrix of the frame the node being visited lives in.
     const Mat4& parentWorld() const { return *parentWorld_; }
+    /// Whether that frame is the world itself (no Transform above), so products with it can be skipped.
+    bool parentIsIdentity() const;
     /// Whether that frame changed since the node was last visited (or everything is recomputed).
     bool frameChanged(const Node& node) const { return parentChanged_ || fullRecompute_ || node.worldStale(); }
     /// Where operations are accounted, or null.
