@@ -373,9 +373,10 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         const double d2 = detail2_[j];
         const int rootLevel = t.rootGeometry().selectSquared(d2);
         if (rootLevel >= 0) {
-            const auto& drawable = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)].drawable;
+            const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
             PlaneMask m = mask;
-            rootVisible[j] = drawable && test(drawable->localBound().transformed(skls, sphereOps), m);
+            // A skinned mesh's sphere is its joints' (the whole internal bound just found crossing).
+            rootVisible[j] = lv.drawable && (lv.skin >= 0 || test(lv.drawable->localBound().transformed(skls, sphereOps), m));
         }
         const auto tnodes = t.nodes();
         for (std::size_t i = 0; i < n; ++i) {
@@ -405,7 +406,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
 
     // Phase 7: the draw list.
     watch.restart();
-    MatrixArena& arena = crowd_.drawMatrices();
+    FrameArena<Mat4>& arena = crowd_.drawMatrices();
     for (std::size_t j = 0; j < survivors_.size(); ++j) {
         if (state[j] == kNoneVisible) continue;
         const Candidate& cand = candidates_[survivors_[j]];
@@ -421,19 +422,31 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         item.node = cand.node;
         item.instance = cand.member;
         item.tint = s.tint[id];
-        auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level) {
+        auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level,
+                        const glm::mat4* palette = nullptr, std::size_t paletteSize = 0) {
             item.drawable = &d;
             item.worldMatrix = world;
             item.part = part;
             item.lodLevel = static_cast<std::uint32_t>(level);
+            item.skinPalette = palette;
+            item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
             drawList_.add(item, d.primitiveCount());
             ++stats_.drawItems;
             stats_.primitives += d.primitiveCount();
         };
         const int rootLevel = t.rootGeometry().selectSquared(d2);
-        if (rootLevel >= 0 && (all || rootVisible[j]))
-            if (const auto& d = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)].drawable)
-                emit(*d, &skls, static_cast<std::uint32_t>(n), rootLevel);
+        if (rootLevel >= 0 && (all || rootVisible[j])) {
+            const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
+            if (lv.drawable && lv.skin >= 0) {
+                const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
+                glm::mat4* palette = crowd_.skinPalettes().allocate(skin.joints.size());
+                computeSkinPalette(t, skin, std::span<const Affine>(model_.data() + base, n), active,
+                                   std::span<glm::mat4>(palette, skin.joints.size()), nodeOps);
+                emit(*lv.drawable, &skls, static_cast<std::uint32_t>(n), rootLevel, palette, skin.joints.size());
+            } else if (lv.drawable) {
+                emit(*lv.drawable, &skls, static_cast<std::uint32_t>(n), rootLevel);
+            }
+        }
         const auto tnodes = t.nodes();
         for (std::size_t i = 0; i < n; ++i) {
             if (!active[i]) {

@@ -117,6 +117,11 @@ int ActorTemplateBuilder::addNode(SkeletonNode node) {
     return static_cast<int>(nodes_.size()) - 1;
 }
 
+int ActorTemplateBuilder::addSkin(Skin skin) {
+    skins_.push_back(std::move(skin));
+    return static_cast<int>(skins_.size()) - 1;
+}
+
 void ActorTemplateBuilder::addClip(std::shared_ptr<const AnimationClip> clip) {
     if (!clip) throw std::invalid_argument("template '" + name_ + "': addClip: argument 'clip' is null");
     clips_.push_back(std::move(clip));
@@ -154,10 +159,39 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
         }
     }
 
+    // Skins: joints must exist, and every skinned level's vertices must name joints of its skin.
+    for (std::size_t k = 0; k < skins_.size(); ++k)
+        for (std::uint32_t j : skins_[k].joints)
+            if (j >= nodes_.size())
+                throw std::invalid_argument(who + ": skin '" + skins_[k].name + "' names node " + std::to_string(j) +
+                                            " of " + std::to_string(nodes_.size()));
+    for (const VaLodLevel& l : rootGeometry_.levels()) {
+        if (l.skin < 0 || !l.drawable) continue;
+        if (static_cast<std::size_t>(l.skin) >= skins_.size())
+            throw std::invalid_argument(who + ": a skinned level uses skin " + std::to_string(l.skin) + " of " +
+                                        std::to_string(skins_.size()));
+        const auto* mesh = dynamic_cast<const MeshDrawable*>(l.drawable.get());
+        if (!mesh || !mesh->mesh().skinned())
+            throw std::invalid_argument(who + ": skinned level '" + l.drawable->name() + "' is not a skinned mesh");
+        const std::size_t joints = skins_[static_cast<std::size_t>(l.skin)].joints.size();
+        for (const auto* set : {&mesh->mesh().joints0, &mesh->mesh().joints1})
+            for (const glm::u16vec4& v : *set)
+                for (int c = 0; c < 4; ++c)
+                    if (v[c] >= joints)
+                        throw std::invalid_argument(who + ": skinned mesh '" + l.drawable->name() + "' refers to joint " +
+                                                    std::to_string(v[c]) + " but its skin has " + std::to_string(joints));
+    }
+    for (const SkeletonNode& n : nodes_)
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(n.inverseBind[c][r]))
+                    throw std::invalid_argument(who + ": Skeleton node '" + n.name + "' has a non-finite inverse bind matrix");
+
     std::shared_ptr<ActorTemplate> t(new ActorTemplate());
     t->name_ = name_;
     t->nodes_ = nodes_;
     t->rootGeometry_ = rootGeometry_;
+    t->skins_ = skins_;
     t->margin_ = margin_;
     const std::size_t n = nodes_.size();
 

@@ -169,6 +169,7 @@ void Crowd::beginFrame(std::uint64_t frame, double time) {
     frame_ = frame;
     frameTime_ = time;
     drawMatrices_.clear();
+    skinPalettes_.clear();
 }
 
 }  // namespace throng

@@ -23,6 +23,22 @@ std::size_t computeActiveNodes(const ActorTemplate& tmpl, double distance2, std:
     return count;
 }
 
+void computeSkinPalette(const ActorTemplate& tmpl, const Skin& skin, std::span<const Affine> model,
+                        std::span<const std::uint8_t> active, std::span<glm::mat4> palette, OpTally* ops) {
+    const auto nodes = tmpl.nodes();
+    for (std::size_t k = 0; k < skin.joints.size(); ++k) {
+        int n = static_cast<int>(skin.joints[k]);
+        while (n >= 0 && !active.empty() && !active[static_cast<std::size_t>(n)]) n = nodes[static_cast<std::size_t>(n)].parent;
+        if (n < 0) {
+            palette[k] = glm::mat4(1.0f);
+            continue;
+        }
+        const auto node = static_cast<std::size_t>(n);
+        palette[k] = model[node].toMat4() * nodes[node].inverseBind;
+        THRONG_TALLY(ops, 64, 48, 0, 0);
+    }
+}
+
 double detailDistanceSquared(const Mat4& skeletonRootWorld, const Vec3& eye, double lodScale2, float priority,
                              OpTally* ops) {
     const Vec3 d = Vec3(skeletonRootWorld[3]) - eye;

@@ -112,11 +112,14 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
         item.node = &node;
         item.instance = member;
         item.tint = s.tint[id];
-        auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level) {
+        auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level,
+                        const glm::mat4* palette = nullptr, std::size_t paletteSize = 0) {
             item.drawable = &d;
             item.worldMatrix = world;
             item.part = part;
             item.lodLevel = static_cast<std::uint32_t>(level);
+            item.skinPalette = palette;
+            item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
             visitor.addDrawItem(item, d.primitiveCount());
         };
         // The actor's own LOD node computes its distance.
@@ -128,11 +131,23 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
             ++stats.lodDistances;
             const int level = t.rootGeometry().selectSquared(d2);
             if (level >= 0) {
-                const auto& drawable = t.rootGeometry().levels()[static_cast<std::size_t>(level)].drawable;
+                const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(level)];
                 PlaneMask leafMask = mask;
-                if (drawable &&
-                    visitor.testSphere(drawable->localBound().transformed(skls, sphereOps), leafMask) != Containment::Outside)
-                    emit(*drawable, &skls, n, level);
+                // A skinned mesh moves with its joints: its sphere is theirs, in the current pose.
+                if (lv.drawable &&
+                    visitor.testSphere(lv.skin >= 0 ? w.whole[id] : lv.drawable->localBound().transformed(skls, sphereOps),
+                                       leafMask) != Containment::Outside) {
+                    if (lv.skin >= 0) {
+                        const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
+                        glm::mat4* palette = crowd.skinPalettes().allocate(skin.joints.size());
+                        computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {},
+                                           std::span<glm::mat4>(palette, skin.joints.size()),
+                                           tallyFor(c, OpCategory::SkeletonMatrix));
+                        emit(*lv.drawable, &skls, n, level, palette, skin.joints.size());
+                    } else {
+                        emit(*lv.drawable, &skls, n, level);
+                    }
+                }
             }
         }
         // Every Skeleton node, depth first; a culled subtree is skipped.

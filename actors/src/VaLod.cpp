@@ -6,7 +6,7 @@
 
 namespace throng {
 
-void VaLod::addLevel(double maxDistance, std::shared_ptr<const Drawable> drawable) {
+void VaLod::addLevel(double maxDistance, std::shared_ptr<const Drawable> drawable, int skin) {
     if (std::isnan(maxDistance) || maxDistance <= 0.0)
         throw std::invalid_argument("VaLod::addLevel: argument 'maxDistance' must be positive, got " +
                                     std::to_string(maxDistance));
@@ -14,7 +14,8 @@ void VaLod::addLevel(double maxDistance, std::shared_ptr<const Drawable> drawabl
         throw std::invalid_argument("VaLod::addLevel: argument 'maxDistance' (" + std::to_string(maxDistance) +
                                     ") must exceed the previous level's (" +
                                     std::to_string(levels_.back().maxDistance) + ")");
-    levels_.push_back({maxDistance, std::move(drawable)});
+    if (skin < -1) throw std::invalid_argument("VaLod::addLevel: argument 'skin' must be -1 or a skin index");
+    levels_.push_back({maxDistance, std::move(drawable), skin});
 }
 
 double VaLod::lastDrawnDistance() const {
@@ -27,7 +28,7 @@ double VaLod::lastDrawnDistance() const {
 BoundingSphere VaLod::bound() const {
     BoundingSphere b;
     for (const VaLodLevel& l : levels_)
-        if (l.drawable) b.expandBy(l.drawable->localBound());
+        if (l.drawable && l.skin < 0) b.expandBy(l.drawable->localBound());
     return b;
 }
 

@@ -11,6 +11,7 @@
 
 #include "throng/actors/AnimationClip.h"
 #include "throng/actors/SkeletonNode.h"
+#include "throng/actors/Skin.h"
 #include "throng/actors/VaLod.h"
 
 namespace throng {
@@ -51,6 +52,8 @@ public:
 
     /// The actor's own vaLod: geometry in the Skeleton Root frame (the seed's actor-level LOD).
     const VaLod& rootGeometry() const { return rootGeometry_; }
+    /// Skins deforming the skinned levels of the actor's vaLod.
+    std::span<const Skin> skins() const { return skins_; }
     /// Clips (key-framing tables) this template plays.
     std::span<const std::shared_ptr<const AnimationClip>> clips() const { return clips_; }
     /// Index of the clip named `name`, or -1.
@@ -90,6 +93,7 @@ private:
     std::uint32_t dofCount_ = 0;
     std::vector<float> restDofs_;
     VaLod rootGeometry_;
+    std::vector<Skin> skins_;
     std::vector<std::shared_ptr<const AnimationClip>> clips_;
     std::vector<double> chainReach_, chainScale_, sampledReach_, sampledScale_;
     double skeletonRootRadius_ = 0.0;
@@ -109,8 +113,11 @@ public:
     /// naming the node on a bad parent, duplicate name, non-finite value, or a DOF with a zero
     /// axis, min > max, or a rest value outside its limits.
     int addNode(SkeletonNode node);
-    /// The actor-level vaLod (geometry in the Skeleton Root frame), to add levels to.
+    /// The actor-level vaLod (geometry in the Skeleton Root frame), to add levels to. Skinned
+    /// meshes are levels of it, with the index of their skin.
     VaLod& rootGeometry() { return rootGeometry_; }
+    /// Adds a skin and returns its index. Checked at build(): joints must exist.
+    int addSkin(Skin skin);
     /// Adds a clip. Throws std::invalid_argument naming the clip and channel if a channel targets a
     /// node or DOF that does not exist or its values do not fit the DOF.
     void addClip(std::shared_ptr<const AnimationClip> clip);
@@ -128,6 +135,7 @@ private:
     std::string name_;
     std::vector<SkeletonNode> nodes_;
     VaLod rootGeometry_;
+    std::vector<Skin> skins_;
     std::vector<std::shared_ptr<const AnimationClip>> clips_;
     double margin_ = 0.05;
     double sampleRate_ = 60.0;

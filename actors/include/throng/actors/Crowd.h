@@ -10,13 +10,14 @@
 #include <span>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
 #include "throng/actors/ActorId.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/Affine.h"
 #include "throng/actors/Behaviour.h"
-#include "throng/actors/MatrixArena.h"
+#include "throng/actors/FrameArena.h"
 #include "throng/actors/RootPose.h"
 #include "throng/scenegraph/BoundingSphere.h"
 #include "throng/scenegraph/Frustum.h"
@@ -148,7 +149,9 @@ public:
     /// Traditional processing's workspace, sized for every actor on first use.
     TraditionalWorkspace& traditionalWorkspace();
     /// Storage for the matrices of this frame's draw items.
-    MatrixArena& drawMatrices() { return drawMatrices_; }
+    FrameArena<Mat4>& drawMatrices() { return drawMatrices_; }
+    /// Storage for the skin palettes of this frame's draw items.
+    FrameArena<glm::mat4>& skinPalettes() { return skinPalettes_; }
     /// Starts a frame (identified by its number and time): forgets the previous frame's draw
     /// matrices. Idempotent within a frame, so every node and processor may call it.
     void beginFrame(std::uint64_t frame, double time);
@@ -163,7 +166,8 @@ private:
 
     State state_;
     TraditionalWorkspace traditional_;
-    MatrixArena drawMatrices_;
+    FrameArena<Mat4> drawMatrices_;
+    FrameArena<glm::mat4> skinPalettes_;
     std::vector<std::shared_ptr<const ActorTemplate>> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     std::vector<Node*> nodes_;

@@ -19,6 +19,13 @@ namespace throng {
 /// flags. Returns the number of active nodes.
 std::size_t computeActiveNodes(const ActorTemplate& tmpl, double distance2, std::span<std::uint8_t> active);
 
+/// Skinning matrices of `skin` (model space, bind to posed): palette[k] = model[n] * inverseBind(n)
+/// for its joint k at node n, or, when n is inactive, for n's nearest active ancestor (a
+/// deactivated joint moves rigidly with it, as bound). Joints with no active ancestor keep the
+/// bind pose. `palette` must hold skin.joints.size() matrices.
+void computeSkinPalette(const ActorTemplate& tmpl, const Skin& skin, std::span<const Affine> model,
+                        std::span<const std::uint8_t> active, std::span<glm::mat4> palette, OpTally* ops = nullptr);
+
 /// Square of the distance that selects an actor's detail: |Skeleton Root - eye|^2 times the LOD
 /// scale squared, divided by the priority squared. Every LOD decision of both processing methods
 /// goes through it, so they agree to the last bit. Costs 8 FMULT (NO_05) plus the scaling.

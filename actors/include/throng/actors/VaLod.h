@@ -14,14 +14,15 @@ namespace throng {
 struct VaLodLevel {
     double maxDistance = 0.0;                  ///< end of this level's range (metres, > previous)
     std::shared_ptr<const Drawable> drawable;  ///< what the level shows, or null for nothing
+    int skin = -1;                             ///< template skin deforming it (a skinned mesh), or -1 (rigid)
 };
 
 /// Levels of detail selected by an actor's eye distance.
 class VaLod {
 public:
-    /// Appends a level. Throws std::invalid_argument if maxDistance is not finite-or-infinite
-    /// positive or not above the previous level's.
-    void addLevel(double maxDistance, std::shared_ptr<const Drawable> drawable);
+    /// Appends a level, deformed by template skin `skin` (-1: rigid). Throws std::invalid_argument
+    /// if maxDistance is not positive (infinity is allowed) or not above the previous level's.
+    void addLevel(double maxDistance, std::shared_ptr<const Drawable> drawable, int skin = -1);
     /// The levels, highest detail first.
     const std::vector<VaLodLevel>& levels() const { return levels_; }
     /// Whether there is no level.
@@ -43,7 +44,8 @@ public:
     double lastDistance() const { return levels_.empty() ? 0.0 : levels_.back().maxDistance; }
     /// Distance beyond which no drawable is shown (levels with a null drawable do not count).
     double lastDrawnDistance() const;
-    /// Sphere holding every level's drawable, in the frame they are drawn in (empty if none).
+    /// Sphere holding every rigid level's drawable, in the frame they are drawn in (empty if none).
+    /// Skinned levels move with their joints and are bounded by the joints' spheres instead.
     BoundingSphere bound() const;
 
 private:

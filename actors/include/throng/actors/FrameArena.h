@@ -1,0 +1,52 @@
+#pragma once
+// Storage for what a frame's draw items point to (model matrices, skin palettes): addresses stay
+// valid until clear(), and memory is reused from frame to frame (no allocation once warmed up).
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+namespace throng {
+
+/// Chunked, address-stable storage of T.
+template <class T>
+class FrameArena {
+public:
+    /// Stores `value` and returns its stable address.
+    const T* push(const T& value) {
+        T* slot = allocate(1);
+        *slot = value;
+        return slot;
+    }
+    /// Room for `n` consecutive values, valid until clear().
+    T* allocate(std::size_t n) {
+        while (current_ < chunks_.size() && chunks_[current_].size - chunks_[current_].used < n) ++current_;
+        if (current_ == chunks_.size()) chunks_.push_back(Chunk{std::make_unique<T[]>(std::max(kChunk, n)), std::max(kChunk, n), 0});
+        Chunk& c = chunks_[current_];
+        T* out = c.data.get() + c.used;
+        c.used += n;
+        size_ += n;
+        return out;
+    }
+    /// Forgets every value (keeps the memory).
+    void clear() {
+        for (Chunk& c : chunks_) c.used = 0;
+        current_ = 0;
+        size_ = 0;
+    }
+    /// Number of values stored.
+    std::size_t size() const { return size_; }
+
+private:
+    static constexpr std::size_t kChunk = 4096;
+    struct Chunk {
+        std::unique_ptr<T[]> data;
+        std::size_t size = 0;
+        std::size_t used = 0;
+    };
+    std::vector<Chunk> chunks_;
+    std::size_t current_ = 0;
+    std::size_t size_ = 0;
+};
+
+}  // namespace throng
