@@ -190,7 +190,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
 
     // Phase 1: the Reference Point of every actor, in the scene or not, whatever the camera.
     watch.restart();
-    OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
+    OpTally* refOps = tallyFor(c, OpCategory::RefpointDofValues);
     for (std::size_t id = 0; id < crowd_.size(); ++id) {
         s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, refOps);
         s.eyeDistance[id] = std::numeric_limits<double>::infinity();
@@ -232,6 +232,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     // Phase 3: Skeleton Roots of the survivors.
     watch.restart();
     OpTally* rootOps = tallyFor(c, OpCategory::SkeletonRootMatrix);
+    OpTally* rootValueOps = tallyFor(c, OpCategory::SkeletonRootDofValues);
     for (std::size_t k : survivors_) {
         const ActorId id = candidates_[k].id;
         Behaviour& b = *s.behaviour[id];
@@ -240,7 +241,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
             const Vec3 d = s.refSphereWorld[id].center() - eye;
             level = b.levelFor(std::sqrt(glm::dot(d, d) * lodScale2) / s.priority[id]);
         }
-        s.root[id] = b.skeletonRoot(s.slot[id], time, level, rootOps);
+        s.root[id] = b.skeletonRoot(s.slot[id], time, level, rootValueOps);
         s.sklsWorld[id] = composeAffine(s.refWorld[id], rootPoseMatrix(s.root[id], rootOps), rootOps);
     }
     countOperations(c, OpCategory::SkeletonRootMatrix, survivors_.size());
@@ -301,11 +302,12 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     // Phase 5: behaviour of the active Skeleton nodes, at each actor's level, and their matrices.
     watch.restart();
     OpTally* nodeOps = tallyFor(c, OpCategory::SkeletonMatrix);
+    OpTally* valueOps = tallyFor(c, OpCategory::SkeletonDofValues);
     for (std::size_t j = 0; j < survivors_.size(); ++j) {
         const ActorId id = candidates_[survivors_[j]].id;
         const ActorTemplate& t = *s.tmpl[id];
         const std::span<const std::uint8_t> active(active_.data() + nodeBase_[j], t.nodeCount());
-        s.behaviour[id]->pose(s.slot[id], time, level_[j], t, active, dofsOf(s, id), nodeOps);
+        s.behaviour[id]->pose(s.slot[id], time, level_[j], t, active, dofsOf(s, id), valueOps);
         const std::size_t evaluated = computeModelTransforms(t, dofsOf(s, id), active,
                                                              std::span<Affine>(model_.data() + nodeBase_[j], t.nodeCount()), nodeOps);
         countOperations(c, OpCategory::SkeletonMatrix, evaluated);

@@ -26,9 +26,9 @@ void traditionalApp(Crowd& crowd, std::span<const ActorId> ids, const FrameConte
         Behaviour& b = *s.behaviour[id];
         const std::uint32_t slot = s.slot[id];
         // Every actor, every DOF, at full precision: behaviour does not know what the camera sees.
-        s.refLocal[id] = b.referencePoint(slot, context, tallyFor(c, OpCategory::RefpointMatrix));
-        s.root[id] = b.skeletonRoot(slot, context.time, 0, tallyFor(c, OpCategory::SkeletonRootMatrix));
-        b.pose(slot, context.time, 0, *s.tmpl[id], {}, dofsOf(s, id), tallyFor(c, OpCategory::SkeletonMatrix));
+        s.refLocal[id] = b.referencePoint(slot, context, tallyFor(c, OpCategory::RefpointDofValues));
+        s.root[id] = b.skeletonRoot(slot, context.time, 0, tallyFor(c, OpCategory::SkeletonRootDofValues));
+        b.pose(slot, context.time, 0, *s.tmpl[id], {}, dofsOf(s, id), tallyFor(c, OpCategory::SkeletonDofValues));
     }
 }
 

@@ -126,17 +126,17 @@ TEST(BehaviouralLod, LevelsAreChosenByDistanceAndLowerLevelsAreCheaper) {
     p.counter().setEnabled(true);
     // Both distances keep all 12 body nodes but the eyes (10 m): compare the behaviour's cost per node.
     p.processFrame(*scene->root, cameraAt(12.0), 0.4);
-    const std::uint64_t precise = p.counter().fmult(OpCategory::SkeletonMatrix);
+    const std::uint64_t precise = p.counter().fmult(OpCategory::SkeletonDofValues);
     const std::uint64_t nodesPrecise = p.counter().operations(OpCategory::SkeletonMatrix);
     p.processFrame(*scene->root, cameraAt(25.0), 0.4);
-    const std::uint64_t cheap = p.counter().fmult(OpCategory::SkeletonMatrix);
+    const std::uint64_t cheap = p.counter().fmult(OpCategory::SkeletonDofValues);
     const std::uint64_t nodesCheap = p.counter().operations(OpCategory::SkeletonMatrix);
     ASSERT_EQ(nodesPrecise, nodesCheap);
     EXPECT_LT(cheap, precise) << "level 1 must cost less than level 0";
     // With behavioural LOD off, level 0 everywhere.
     p.setBehaviouralLod(false);
     p.processFrame(*scene->root, cameraAt(25.0), 0.4);
-    EXPECT_EQ(p.counter().fmult(OpCategory::SkeletonMatrix), precise);
+    EXPECT_EQ(p.counter().fmult(OpCategory::SkeletonDofValues), precise);
 }
 
 TEST(BehaviouralLod, HoldingKeysIsCheaperAndStillAKeyPose) {
