@@ -38,8 +38,13 @@ std::uint32_t KeyframeBehaviour::addActor(const Actor& a) {
     if (a.pathRadius < 0.0) throw std::invalid_argument(std::string(where) + ": argument 'actor.pathRadius' is negative");
 
     // Extent of the Skeleton Root relative to the Reference Point: sample the clip densely (cubic
-    // splines can overshoot their keys), with 1 cm to spare.
+    // splines can overshoot their keys), with 1 cm to spare. It depends on the clip only.
     const AnimationClip& clip = *a.tmpl->clips()[static_cast<std::size_t>(a.clip)];
+    if (const auto cached = clipExtents_.find(&clip); cached != clipExtents_.end()) {
+        actors_.push_back(a);
+        extents_.push_back(cached->second);
+        return static_cast<std::uint32_t>(actors_.size() - 1);
+    }
     BoundingSphere extent(Vec3(0.0), 0.0);
     const auto steps = static_cast<std::size_t>(std::ceil(clip.duration() * 240.0));
     for (std::size_t k = 0; k <= steps; ++k)
@@ -48,6 +53,7 @@ std::uint32_t KeyframeBehaviour::addActor(const Actor& a) {
         if (c.target == ClipChannel::Target::RootTranslation)
             for (float t : c.times) extent.expandBy(Vec3(clip.sampleRoot(t, false).translation));
     extent.inflate(0.01);
+    clipExtents_.emplace(&clip, extent);
 
     actors_.push_back(a);
     extents_.push_back(extent);

@@ -4,6 +4,7 @@
 // travels a circle, in closed form, so trajectories never drift and never depend on the camera.
 
 #include <limits>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -49,6 +50,7 @@ private:
     std::vector<double> levelEnds_;
     std::vector<Actor> actors_;
     std::vector<BoundingSphere> extents_;
+    std::map<const AnimationClip*, BoundingSphere> clipExtents_;  // the Skeleton Root's extent, per clip
 };
 
 }  // namespace throng

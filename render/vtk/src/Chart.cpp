@@ -1,0 +1,102 @@
+#include "throng/vtk/Chart.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include <vtkAxis.h>
+#include <vtkChartLegend.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+namespace throng::vtk {
+
+bool displayAvailable() {
+    const char* d = std::getenv("DISPLAY");
+    return d && *d;
+}
+
+void paletteColour(int i, unsigned char rgb[3]) {
+    static const unsigned char colours[][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
+                                               {148, 103, 189}, {140, 86, 75}, {227, 119, 194}, {127, 127, 127},
+                                               {188, 189, 34},  {23, 190, 207}};
+    const auto& c = colours[static_cast<std::size_t>(i) % (sizeof colours / sizeof colours[0])];
+    rgb[0] = c[0], rgb[1] = c[1], rgb[2] = c[2];
+}
+
+void writeChartPng(const Chart& chart, const std::string& path) {
+    if (!displayAvailable())
+        throw std::runtime_error("writeChartPng: no X display for VTK (DISPLAY is not set); run under xvfb-run -a");
+    if (chart.series.empty()) throw std::runtime_error("writeChartPng: chart '" + chart.title + "' has no series");
+    for (const ChartSeries& s : chart.series)
+        if (s.x.size() != s.y.size() || s.x.empty())
+            throw std::runtime_error("writeChartPng: series '" + s.name + "' of chart '" + chart.title +
+                                     "' has " + std::to_string(s.x.size()) + " x and " + std::to_string(s.y.size()) + " y values");
+
+    vtkNew<vtkContextView> view;
+    view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+    view->GetRenderWindow()->SetSize(chart.width, chart.height);
+    view->GetRenderWindow()->SetOffScreenRendering(1);
+    vtkNew<vtkChartXY> xy;
+    view->GetScene()->AddItem(xy);
+    xy->SetTitle(chart.title);
+    xy->GetTitleProperties()->SetFontSize(20);
+    xy->SetShowLegend(true);
+    xy->GetLegend()->GetLabelProperties()->SetFontSize(14);
+    vtkAxis* bottom = xy->GetAxis(vtkAxis::BOTTOM);
+    vtkAxis* left = xy->GetAxis(vtkAxis::LEFT);
+    bottom->SetTitle(chart.xLabel);
+    left->SetTitle(chart.yLabel);
+    bottom->GetTitleProperties()->SetFontSize(16);
+    left->GetTitleProperties()->SetFontSize(16);
+    bottom->GetLabelProperties()->SetFontSize(13);
+    left->GetLabelProperties()->SetFontSize(13);
+    bottom->SetLogScale(chart.logX);
+    left->SetLogScale(chart.logY);
+
+    std::vector<vtkSmartPointer<vtkTable>> tables;  // the chart keeps references to its inputs
+    for (const ChartSeries& s : chart.series) {
+        auto table = vtkSmartPointer<vtkTable>::New();
+        vtkNew<vtkDoubleArray> xs, ys;
+        xs->SetName("x");
+        ys->SetName(s.name.c_str());
+        for (std::size_t i = 0; i < s.x.size(); ++i) {
+            xs->InsertNextValue(s.x[i]);
+            ys->InsertNextValue(s.y[i]);
+        }
+        table->AddColumn(xs);
+        table->AddColumn(ys);
+        const int type = s.style == ChartSeries::Style::Points ? vtkChart::POINTS : vtkChart::LINE;
+        vtkPlot* plot = xy->AddPlot(type);
+        plot->SetInputData(table, 0, 1);
+        plot->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], 255);
+        plot->SetWidth(s.style == ChartSeries::Style::Points ? 6.0f : 2.5f);
+        if (s.style == ChartSeries::Style::DashedLine) plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+        plot->SetLabel(s.name);
+        tables.push_back(table);
+    }
+    view->GetRenderWindow()->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(view->GetRenderWindow());
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->Write();
+    if (!std::filesystem::exists(path) || std::filesystem::file_size(path) == 0)
+        throw std::runtime_error("writeChartPng: could not write '" + path + "'");
+}
+
+}  // namespace throng::vtk
