@@ -14,6 +14,7 @@
 #include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
+#include <vtkPlotPoints.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
@@ -54,6 +55,9 @@ void writeChartPng(const Chart& chart, const std::string& path) {
     xy->GetTitleProperties()->SetFontSize(20);
     xy->SetShowLegend(true);
     xy->GetLegend()->GetLabelProperties()->SetFontSize(14);
+    xy->GetLegend()->SetVerticalAlignment(chart.legend == Chart::Legend::Top      ? vtkChartLegend::TOP
+                                          : chart.legend == Chart::Legend::Middle ? vtkChartLegend::CENTER
+                                                                                  : vtkChartLegend::BOTTOM);
     vtkAxis* bottom = xy->GetAxis(vtkAxis::BOTTOM);
     vtkAxis* left = xy->GetAxis(vtkAxis::LEFT);
     bottom->SetTitle(chart.xLabel);
@@ -83,6 +87,10 @@ void writeChartPng(const Chart& chart, const std::string& path) {
         plot->SetColor(s.rgb[0], s.rgb[1], s.rgb[2], 255);
         plot->SetWidth(s.style == ChartSeries::Style::Points ? 6.0f : 2.5f);
         if (s.style == ChartSeries::Style::DashedLine) plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+        if (auto* points = vtkPlotPoints::SafeDownCast(plot); points && s.style != ChartSeries::Style::Points) {
+            points->SetMarkerStyle(s.style == ChartSeries::Style::LineAndPoints ? vtkPlotPoints::CIRCLE : vtkPlotPoints::NONE);
+            points->SetMarkerSize(9.0f);
+        }
         plot->SetLabel(s.name);
         tables.push_back(table);
     }

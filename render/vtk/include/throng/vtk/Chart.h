@@ -26,6 +26,8 @@ struct Chart {
     std::vector<ChartSeries> series;   ///< drawn in order; legend in the same order
     bool logX = false;                 ///< logarithmic bottom axis
     bool logY = false;                 ///< logarithmic left axis
+    /// Where the legend goes (inside the plot, on the right).
+    enum class Legend { Top, Middle, Bottom } legend = Legend::Top;
     int width = 1000;                  ///< pixels
     int height = 650;                  ///< pixels
 };
