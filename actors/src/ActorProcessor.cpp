@@ -60,6 +60,16 @@ void ActorProcessor::setCullingFrustum(std::optional<Frustum> frustum) {
     cullingFrustum_ = frustum;
 }
 
+void ActorProcessor::setThreads(unsigned threads) {
+    if (threads == 0) throw std::invalid_argument("ActorProcessor::setThreads: argument 'threads' must be at least 1");
+    pool_ = threads > 1 ? std::make_unique<WorkerPool>(threads) : nullptr;
+}
+
+void ActorProcessor::forRanges(std::size_t n, bool counting, const std::function<void(std::size_t, std::size_t)>& body) {
+    if (pool_ && !counting) pool_->parallelFor(n, body);
+    else if (n) body(0, n);
+}
+
 const DrawList& ActorProcessor::drawList() const {
     return stats_.processing == Processing::Traditional ? traditional_.drawList() : drawList_;
 }
@@ -175,7 +185,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     stats_.processing = Processing::Actor;
     stats_.frame = frame_;
     const FrameContext context{time, frame_ == 0 ? 0.0 : time - lastTime_, frame_, c};
-    crowd_.beginFrame(frame_, time);
+    crowd_.beginFrame(context);
     drawList_.clear();
     candidates_.clear();
     const double lodScale2 = lodScale_ * lodScale_;
@@ -191,8 +201,10 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     // Phase 1: the Reference Point of every actor, in the scene or not, whatever the camera.
     watch.restart();
     OpTally* refOps = tallyFor(c, OpCategory::RefpointDofValues);
+    forRanges(crowd_.size(), c != nullptr, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t id = begin; id < end; ++id) s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, refOps);
+    });
     for (std::size_t id = 0; id < crowd_.size(); ++id) {
-        s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, refOps);
         s.eyeDistance[id] = std::numeric_limits<double>::infinity();
         const bool inScene = s.owner[id] != nullptr;
         s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;
@@ -233,17 +245,19 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     watch.restart();
     OpTally* rootOps = tallyFor(c, OpCategory::SkeletonRootMatrix);
     OpTally* rootValueOps = tallyFor(c, OpCategory::SkeletonRootDofValues);
-    for (std::size_t k : survivors_) {
-        const ActorId id = candidates_[k].id;
-        Behaviour& b = *s.behaviour[id];
-        int level = 0;
-        if (behaviouralLod_) {  // the Skeleton Root is not placed yet: judge by the Reference Point
-            const Vec3 d = s.refSphereWorld[id].center() - eye;
-            level = b.levelFor(std::sqrt(glm::dot(d, d) * lodScale2) / s.priority[id]);
+    forRanges(survivors_.size(), c != nullptr, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const ActorId id = candidates_[survivors_[k]].id;
+            Behaviour& b = *s.behaviour[id];
+            int level = 0;
+            if (behaviouralLod_) {  // the Skeleton Root is not placed yet: judge by the Reference Point
+                const Vec3 d = s.refSphereWorld[id].center() - eye;
+                level = b.levelFor(std::sqrt(glm::dot(d, d) * lodScale2) / s.priority[id]);
+            }
+            s.root[id] = b.skeletonRoot(s.slot[id], time, level, rootValueOps);
+            s.sklsWorld[id] = composeAffine(s.refWorld[id], rootPoseMatrix(s.root[id], rootOps), rootOps);
         }
-        s.root[id] = b.skeletonRoot(s.slot[id], time, level, rootValueOps);
-        s.sklsWorld[id] = composeAffine(s.refWorld[id], rootPoseMatrix(s.root[id], rootOps), rootOps);
-    }
+    });
     countOperations(c, OpCategory::SkeletonRootMatrix, survivors_.size());
     stats_.skeletonRootMs = watch.elapsedMs();
 
@@ -303,13 +317,18 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     watch.restart();
     OpTally* nodeOps = tallyFor(c, OpCategory::SkeletonMatrix);
     OpTally* valueOps = tallyFor(c, OpCategory::SkeletonDofValues);
-    for (std::size_t j = 0; j < survivors_.size(); ++j) {
-        const ActorId id = candidates_[survivors_[j]].id;
-        const ActorTemplate& t = *s.tmpl[id];
-        const std::span<const std::uint8_t> active(active_.data() + nodeBase_[j], t.nodeCount());
-        s.behaviour[id]->pose(s.slot[id], time, level_[j], t, active, dofsOf(s, id), valueOps);
-        const std::size_t evaluated = computeModelTransforms(t, dofsOf(s, id), active,
-                                                             std::span<Affine>(model_.data() + nodeBase_[j], t.nodeCount()), nodeOps);
+    evaluated_.resize(survivors_.size());
+    forRanges(survivors_.size(), c != nullptr, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+            const ActorId id = candidates_[survivors_[j]].id;
+            const ActorTemplate& t = *s.tmpl[id];
+            const std::span<const std::uint8_t> active(active_.data() + nodeBase_[j], t.nodeCount());
+            s.behaviour[id]->pose(s.slot[id], time, level_[j], t, active, dofsOf(s, id), valueOps);
+            evaluated_[j] = static_cast<std::uint32_t>(computeModelTransforms(
+                t, dofsOf(s, id), active, std::span<Affine>(model_.data() + nodeBase_[j], t.nodeCount()), nodeOps));
+        }
+    });
+    for (std::uint32_t evaluated : evaluated_) {
         countOperations(c, OpCategory::SkeletonMatrix, evaluated);
         stats_.skeletonNodesEvaluated += evaluated;
     }

@@ -164,12 +164,13 @@ void Crowd::release(Node* node, std::span<const ActorId> ids) {
     nodes_.erase(std::remove(nodes_.begin(), nodes_.end(), node), nodes_.end());
 }
 
-void Crowd::beginFrame(std::uint64_t frame, double time) {
-    if (frame == frame_ && time == frameTime_) return;
-    frame_ = frame;
-    frameTime_ = time;
+void Crowd::beginFrame(const FrameContext& context) {
+    if (context.frame == frame_ && context.time == frameTime_) return;
+    frame_ = context.frame;
+    frameTime_ = context.time;
     drawMatrices_.clear();
     skinPalettes_.clear();
+    for (const auto& b : behaviours_) b->advance(context);
 }
 
 }  // namespace throng

@@ -10,6 +10,8 @@
 //   7. the draw list, each part at its vaLod level.
 // Generic nodes of the scene are processed as TraditionalProcessor does in both methods.
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "throng/actors/ActorId.h"
 #include "throng/actors/ActorTraversal.h"
 #include "throng/actors/Affine.h"
+#include "throng/actors/WorkerPool.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
@@ -46,6 +49,10 @@ public:
     void setBehaviouralLod(bool on) { behaviouralLod_ = on; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
     void setCullingFrustum(std::optional<Frustum> frustum);
+    /// Runs the per-actor phases (Reference Points, Skeleton Roots, poses) on `threads` threads
+    /// (default 1). Results are bitwise identical whatever the number; with FMULT counting on,
+    /// everything runs on the calling thread.
+    void setThreads(unsigned threads);
     /// Operation counter (disabled until counter().setEnabled(true)); shared by both methods.
     OpCounter& counter() { return traditional_.counter(); }
 
@@ -74,10 +81,12 @@ private:
 
     void processActors(Node& root, const Camera& camera, double time, DrawBackend* backend);
     void cullRefpoints(const Frustum& frustum, const Vec3& eye);  // phase 2 for group members
-    void emitDrawItems(std::size_t survivor);
+    // Calls body(begin, end) over [0, n): on the pool when there is one and nothing is counted.
+    void forRanges(std::size_t n, bool counting, const std::function<void(std::size_t, std::size_t)>& body);
 
     Crowd& crowd_;
     TraditionalProcessor traditional_;
+    std::unique_ptr<WorkerPool> pool_;
     Processing processing_ = Processing::Actor;
     double lodScale_ = 1.0;
     bool skeletalLod_ = true;
@@ -96,6 +105,7 @@ private:
     std::vector<double> detail2_;               // per survivor: squared detail distance
     std::vector<int> level_;                    // per survivor: behavioural level
     std::vector<std::uint32_t> nodeBase_;       // per survivor: first entry in the per-node arrays
+    std::vector<std::uint32_t> evaluated_;      // per survivor: Skeleton nodes evaluated
     std::vector<std::uint8_t> active_;          // per node of each survivor
     std::vector<std::uint8_t> visible_;         // per part of each survivor (nodes, root, held)
     std::vector<Affine> model_;

@@ -3,7 +3,8 @@
 // actor every frame whatever the camera), the Skeleton Root relative to it, and the DOF values of
 // the active Skeleton nodes. A behaviour declares distance-banded levels: lower levels are cheaper
 // and less precise; beyond the last band the actor keeps its rest pose. One behaviour object serves
-// many actors, each with its own slot of state.
+// many actors, each with its own slot of state. referencePoint, skeletonRoot and pose may be called
+// for different slots from several threads at once: they must touch only their slot's state.
 
 #include <cstdint>
 #include <span>
@@ -27,6 +28,9 @@ public:
     /// distance is below levelEnds()[i]. Level 0 is the most precise.
     virtual std::span<const double> levelEnds() const = 0;
 
+    /// Called once per frame, before any referencePoint() of that frame: steps state the
+    /// behaviour's actors share (a navigation crowd, a flock). Default: nothing.
+    virtual void advance(const FrameContext& context) { (void)context; }
     /// Phase 1: the actor's Reference Point in its parent's frame for the frame `context`.
     /// Called exactly once per frame for every actor, before anything depends on the camera.
     virtual Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) = 0;

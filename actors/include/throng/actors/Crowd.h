@@ -20,6 +20,7 @@
 #include "throng/actors/FrameArena.h"
 #include "throng/actors/RootPose.h"
 #include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/FrameContext.h"
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/Math.h"
 
@@ -152,9 +153,10 @@ public:
     FrameArena<Mat4>& drawMatrices() { return drawMatrices_; }
     /// Storage for the skin palettes of this frame's draw items.
     FrameArena<glm::mat4>& skinPalettes() { return skinPalettes_; }
-    /// Starts a frame (identified by its number and time): forgets the previous frame's draw
-    /// matrices. Idempotent within a frame, so every node and processor may call it.
-    void beginFrame(std::uint64_t frame, double time);
+    /// Starts the frame `context` (identified by its number and time): forgets the previous
+    /// frame's draw matrices and advances every behaviour once. Idempotent within a frame, so
+    /// every node and processor may call it.
+    void beginFrame(const FrameContext& context);
     /// The nodes standing for this crowd's actors (Actor and ActorGroup), in creation order.
     std::span<Node* const> nodes() const { return nodes_; }
     /// Called by a node being destroyed: its actors stay in the crowd, held by no node.
