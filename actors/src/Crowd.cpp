@@ -25,7 +25,7 @@ ActorId Crowd::add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Be
     if (!std::isfinite(look.tint.r) || !std::isfinite(look.tint.g) || !std::isfinite(look.tint.b) || !std::isfinite(look.tint.a))
         throw std::invalid_argument("Crowd::add: argument 'look.tint' is not finite");
     const bool clipPoses = behaviour->posesFromTemplateClips();
-    const double radius = clipPoses ? tmpl->skeletonRootRadius() : tmpl->reachRadius();
+    const double radius = (clipPoses ? tmpl->skeletonRootRadius() : tmpl->reachRadius()) + behaviour->poseMargin(slot);
     if (!std::isfinite(radius))
         throw std::invalid_argument("Crowd::add: template '" + tmpl->name() +
                                     "' has unbounded DOFs and the behaviour does not play its clips: no Sklsroot "

@@ -6,6 +6,7 @@
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/RefpointPath.h"
+#include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/Validation.h"
 
 namespace throng {
@@ -80,13 +81,7 @@ void KeyframeBehaviour::pose(std::uint32_t slot, double time, int level, const A
                              std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) {
     const Actor& a = actors_[slot];
     if (level >= static_cast<int>(levelEnds_.size())) {  // beyond the last band: rest pose
-        const auto rest = tmpl.restDofs();
-        for (std::size_t i = 0; i < tmpl.nodeCount(); ++i)
-            if (active.empty() || active[i]) {
-                const std::uint32_t begin = tmpl.dofOffset(i);
-                const std::uint32_t end = i + 1 < tmpl.nodeCount() ? tmpl.dofOffset(i + 1) : tmpl.dofValueCount();
-                std::copy(rest.begin() + begin, rest.begin() + end, dofs.begin() + begin);
-            }
+        writeRestPose(tmpl, active, dofs);
         return;
     }
     clipOf(slot).sample(tmpl, time * a.timeScale + a.timeOffset, true, active, dofs, ops, level >= 1);

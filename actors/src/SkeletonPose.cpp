@@ -59,6 +59,16 @@ BoundingSphere partWorldSphere(const BoundingSphere& local, const Affine& model,
     return local.transformed(model.toDMat4(), ops).transformed(skeletonRootWorld, ops);
 }
 
+void writeRestPose(const ActorTemplate& tmpl, std::span<const std::uint8_t> active, std::span<float> dofs) {
+    const auto rest = tmpl.restDofs();
+    for (std::size_t i = 0; i < tmpl.nodeCount(); ++i) {
+        if (!active.empty() && !active[i]) continue;
+        const std::uint32_t begin = tmpl.dofOffset(i);
+        const std::uint32_t end = i + 1 < tmpl.nodeCount() ? tmpl.dofOffset(i + 1) : tmpl.dofValueCount();
+        std::copy(rest.begin() + begin, rest.begin() + end, dofs.begin() + begin);
+    }
+}
+
 Affine nodeLocalTransform(const SkeletonNode& node, const float* v, OpTally* ops) {
     glm::vec3 t = node.restTranslation;
     glm::quat r = node.restRotation;

@@ -46,6 +46,9 @@ public:
     /// Whether poses come only from the template's clips, so the sampled Sklsroot radius bounds
     /// them; otherwise the actor uses the template's reach radius.
     virtual bool posesFromTemplateClips() const = 0;
+    /// Metres the behaviour's poses may reach beyond those of the template's clips (blends of
+    /// clips, layers turning a head): added to the Sklsroot radius of its actors. Default 0.
+    virtual double poseMargin(std::uint32_t slot) const { (void)slot; return 0.0; }
 
     /// Bytes of state one more actor takes in this behaviour.
     virtual std::size_t bytesPerSlot() const = 0;

@@ -40,6 +40,10 @@ Mat4 rootPoseMatrix(const RootPose& root, OpTally* ops = nullptr);
 BoundingSphere partWorldSphere(const BoundingSphere& local, const Affine& model, const Mat4& skeletonRootWorld,
                                OpTally* ops = nullptr);
 
+/// Writes the rest values of the DOFs of the nodes flagged in `active` (every node when empty)
+/// into `dofs`, leaving other nodes' values untouched.
+void writeRestPose(const ActorTemplate& tmpl, std::span<const std::uint8_t> active, std::span<float> dofs);
+
 /// Local transform of `node` from its DOF values (`values` points at the node's first value),
 /// each clamped to its limits.
 Affine nodeLocalTransform(const SkeletonNode& node, const float* values, OpTally* ops = nullptr);

@@ -1,0 +1,95 @@
+#pragma once
+// People walking a navigation mesh between random destinations, steered by DetourCrowd (with local
+// avoidance only when the scene asks for it). The walk clip plays at the rate the actor's speed
+// calls for (speed matching) and blends into the run clip as the speed rises. Destinations come
+// from each actor's own random stream; the crowd steps once per frame for every actor, whatever
+// the camera, so trajectories are view-independent and deterministic.
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "throng/actors/Behaviour.h"
+#include "throng/sim/EffectCounters.h"
+#include "throng/sim/NavMesh.h"
+
+class dtCrowd;
+
+namespace throng::sim {
+
+/// Navigation-mesh locomotion for many actors.
+class Locomotion : public Behaviour {
+public:
+    /// Shared settings.
+    struct Settings {
+        bool avoidance = false;        ///< local avoidance and separation between agents (an effect of its own)
+        float radius = 0.35f;          ///< agent radius, metres
+        float height = 1.8f;           ///< agent height, metres
+        float maxAcceleration = 6.0f;  ///< m/s^2
+        float turnRate = 5.0f;         ///< radians per second the facing may turn
+        std::uint64_t seed = 1;        ///< destinations' random seed
+    };
+    /// One actor.
+    struct Actor {
+        std::shared_ptr<const ActorTemplate> tmpl;  ///< whose clips are played (required)
+        int walkClip = 0;              ///< clip played at walking speed
+        double walkClipSpeed = 1.4;    ///< speed the walk clip was authored for, m/s
+        int runClip = -1;              ///< clip blended in as speed rises, or -1
+        double runClipSpeed = 3.5;     ///< speed the run clip was authored for, m/s
+        glm::vec3 start{0.0f};         ///< where it starts (moved onto the mesh)
+        double speed = 1.4;            ///< preferred speed, m/s
+        std::uint64_t stream = 0;      ///< its random stream (for example its index in the scene)
+    };
+
+    /// Locomotion on `navMesh`, with the given level bands, counting into `counters` (may be null).
+    Locomotion(std::shared_ptr<const NavMesh> navMesh, Settings settings,
+               std::vector<double> levelEnds = {60.0, std::numeric_limits<double>::infinity()},
+               EffectCounters* counters = nullptr);
+    ~Locomotion() override;
+
+    /// Registers an actor before the first frame; returns its slot. Throws std::invalid_argument
+    /// if the template or a clip is missing, a speed is not positive, the start is nowhere near the
+    /// mesh, or the crowd has already started.
+    std::uint32_t addActor(const Actor& actor);
+    /// Number of actors.
+    std::size_t size() const { return actors_.size(); }
+    /// Current speed of an actor, m/s.
+    double speed(std::uint32_t slot) const { return state_[slot].speed; }
+
+    std::span<const double> levelEnds() const override { return levelEnds_; }
+    void advance(const FrameContext& context) override;
+    Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override;
+    RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override;
+    void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
+              std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
+    BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return state_[slot].extent; }
+    bool posesFromTemplateClips() const override { return true; }
+    double poseMargin(std::uint32_t slot) const override { return state_[slot].blendMargin; }
+    std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(State); }
+
+private:
+    struct State {
+        glm::vec3 position{0.0f};
+        float heading = 0.0f;      // radians about +Y; local +Z faces along it
+        float speed = 0.0f;
+        double phase = 0.0;        // walk cycle, in cycles (the run clip follows in step)
+        float runWeight = 0.0f;
+        std::uint64_t trips = 0;   // destinations drawn so far
+        glm::vec3 target{0.0f};
+        int agent = -1;
+        BoundingSphere extent;
+        double blendMargin = 0.0;
+    };
+    void start();
+    void newDestination(std::uint32_t slot);
+
+    std::shared_ptr<const NavMesh> nav_;
+    Settings settings_;
+    std::vector<double> levelEnds_;
+    EffectCounters* counters_;
+    std::vector<Actor> actors_;
+    std::vector<State> state_;
+    dtCrowd* crowd_ = nullptr;
+};
+
+}  // namespace throng::sim

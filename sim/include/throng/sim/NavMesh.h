@@ -1,0 +1,67 @@
+#pragma once
+// A navigation mesh built with Recast from NavGeometry and queried with Detour: nearest points,
+// deterministic random points, and the Detour objects DetourCrowd needs.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "throng/sim/NavGeometry.h"
+
+class dtNavMesh;
+class dtNavMeshQuery;
+
+namespace throng::sim {
+
+class CounterRng;
+
+/// Recast build parameters (metres and degrees), the usual ones for people.
+struct NavMeshSettings {
+    float cellSize = 0.3f;            ///< voxel size across
+    float cellHeight = 0.2f;          ///< voxel size up
+    float agentHeight = 1.8f;         ///< clearance needed
+    float agentRadius = 0.35f;        ///< kept away from walls
+    float agentMaxClimb = 0.4f;       ///< steps climbed (kerbs)
+    float agentMaxSlope = 45.0f;      ///< degrees
+    float regionMinSize = 8.0f;       ///< cells (squared) below which regions are dropped
+    float regionMergeSize = 20.0f;    ///< cells (squared) below which regions merge
+    float edgeMaxLength = 12.0f;      ///< metres
+    float edgeMaxError = 1.3f;        ///< cells
+    float detailSampleDistance = 6.0f;///< cells
+    float detailSampleMaxError = 1.0f;///< cells
+};
+
+/// A built navigation mesh.
+class NavMesh {
+public:
+    /// Builds from `geometry`. Throws std::runtime_error naming the Recast or Detour step that
+    /// failed (or std::invalid_argument if the geometry is empty or not finite).
+    static std::shared_ptr<NavMesh> build(const NavGeometry& geometry, const NavMeshSettings& settings = {});
+    ~NavMesh();
+    NavMesh(const NavMesh&) = delete;
+    NavMesh& operator=(const NavMesh&) = delete;
+
+    /// The nearest point on the mesh within `halfExtents` of `p`, if any.
+    std::optional<glm::vec3> nearestPoint(const glm::vec3& p, const glm::vec3& halfExtents = glm::vec3(2, 4, 2)) const;
+    /// A random point on the mesh, area-weighted, a pure function of `rng` and `counter`.
+    glm::vec3 randomPoint(const CounterRng& rng, std::uint64_t counter) const;
+    /// Number of polygons.
+    int polygonCount() const;
+    /// The settings it was built with.
+    const NavMeshSettings& settings() const { return settings_; }
+
+    /// Detour's mesh (for DetourCrowd).
+    dtNavMesh* detourMesh() const { return mesh_; }
+    /// A query object for the calling thread's single use (not thread-safe).
+    dtNavMeshQuery* query() const { return query_; }
+
+private:
+    NavMesh() = default;
+    dtNavMesh* mesh_ = nullptr;
+    dtNavMeshQuery* query_ = nullptr;
+    NavMeshSettings settings_;
+};
+
+}  // namespace throng::sim
