@@ -38,6 +38,8 @@ TEST(ContextTest, FactoryGivesHeadlessUnlessAWindowIsAskedForAndPossible) {
     if (!displayAvailable()) {
         EXPECT_TRUE(chosen->headless());
         EXPECT_NE(reason.find("no display"), std::string::npos) << reason;
+    } else {
+        EXPECT_TRUE(!chosen->headless() || !reason.empty()) << "a window was asked for, with a display";
     }
     options.width = 0;
     EXPECT_THROW(createContext(options), std::invalid_argument);
@@ -76,6 +78,9 @@ TEST(ContextTest, WindowRendersLikeHeadless) {
     // Another driver may sit behind the window: compare loosely.
     const ImageDifference d = compareImages(a, b, 16);
     EXPECT_LE(d.fractionOverThreshold, 0.02) << window->description();
+    EXPECT_GT(test::coveredPixels(a), 1000u);
+    RecordProperty("window", window->description());
+    RecordProperty("max_channel_difference", d.maxChannelDifference);
 }
 
 }  // namespace
