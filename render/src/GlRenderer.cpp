@@ -219,11 +219,14 @@ struct GlRenderer::Impl {
                                 byteOffset(base + offsetof(InstanceData, paletteBase)));
     }
 
-    // Replaces a stream buffer's contents, growing it geometrically; orphaning lets draws already
-    // queued keep reading the old storage.
-    void streamUpload(GLenum target, GLuint buffer, std::size_t& capacity, std::size_t bytes) {
+    // Makes a stream buffer hold at least `bytes`, growing it geometrically. Storage is reallocated
+    // only when it grows: re-specifying it every frame (orphaning) makes llvmpipe allocate and
+    // page in megabytes per frame, which cost more than the drawing; BufferSubData on the existing
+    // storage is synchronised by GL either way.
+    void reserveStream(GLenum target, GLuint buffer, std::size_t& capacity, std::size_t bytes) {
         gl.BindBuffer(target, buffer);
-        if (bytes > capacity) capacity = std::max(bytes, capacity * 2);
+        if (bytes <= capacity) return;
+        capacity = std::max(bytes, capacity * 2);
         gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
     }
 
@@ -439,17 +442,17 @@ void GlRenderer::draw(const DrawList& list) {
 
     // 3. One upload per stream: instances, palettes, CPU-skinned vertices.
     if (slots > 0) {
-        r.streamUpload(GL_ARRAY_BUFFER, r.instanceBuffer, r.instanceCapacity, slots * sizeof(InstanceData));
+        r.reserveStream(GL_ARRAY_BUFFER, r.instanceBuffer, r.instanceCapacity, slots * sizeof(InstanceData));
         gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(slots * sizeof(InstanceData)), r.instances.data());
     }
     if (paletteMatrices > 0) {
         const std::size_t bytes = paletteMatrices * sizeof(glm::mat4);
-        r.streamUpload(GL_TEXTURE_BUFFER, r.paletteBuffer, r.paletteCapacity, bytes);
+        r.reserveStream(GL_TEXTURE_BUFFER, r.paletteBuffer, r.paletteCapacity, bytes);
         gl.BufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), r.palette.data());
     }
     const std::size_t cpuBlock = cpuVertices * sizeof(glm::vec3);
     if (cpuVertices > 0) {
-        r.streamUpload(GL_ARRAY_BUFFER, r.streamBuffer, r.streamCapacity, 2 * cpuBlock);
+        r.reserveStream(GL_ARRAY_BUFFER, r.streamBuffer, r.streamCapacity, 2 * cpuBlock);
         gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(cpuBlock), r.cpuPositions.data());
         gl.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(cpuBlock), static_cast<GLsizeiptr>(cpuBlock),
                          r.cpuNormals.data());
