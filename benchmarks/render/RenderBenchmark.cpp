@@ -1,18 +1,23 @@
 // Skinning and frame cost of throng::render, headless (OSMesa, llvmpipe: the "GPU" runs on the CPU).
 //
 //   BM_CpuSkinningKernel/N      skinMesh() alone on N instances: the CPU path's arithmetic
-//   BM_SkinnedFrame/<path>/N    whole frames (palette or vertex upload, draw, glFinish) of N skinned
+//   BM_SkinnedFrame/path:P/N    whole frames (palette or vertex upload, draw, glFinish) of N skinned
 //                               instances at 160x120, so rasterisation costs little: skinned
-//                               vertices per second through each path
-//   BM_Frame1280x720/<path>/N   the same scenes at 1280x720: headless frame time
+//                               vertices per second through each path. P = 0: GPU skinning,
+//                               1: CPU skinning, 2: no skinning at all (the same mesh drawn rigid,
+//                               instanced: the baseline the skinning cost adds to)
+//   BM_Frame1280x720/path:P/N   the same scenes at 1280x720: headless frame time
 //
 // The mesh is a CesiumMan-sized skinned tube (3264 vertices, 4608 triangles, 19 joints); every
 // instance has its own pose. Run from a release build:
 //   ./build/release/benchmarks/render/bench_render
+// With THRONG_BENCH_FRAMES=<folder>, each frame benchmark also writes its first frame there as PNG.
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -21,6 +26,7 @@
 
 #include "throng/render/CpuSkinning.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/ImageIO.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/render/ProceduralMeshes.h"
 #include "throng/scenegraph/Camera.h"
@@ -40,7 +46,7 @@ struct Crowd {
     DrawList list;
     Camera camera;
 
-    Crowd(int n, double aspect) {
+    Crowd(int n, double aspect, bool skinned = true) {
         const int columns = static_cast<int>(std::ceil(std::sqrt(double(n))));
         palettes.resize(static_cast<std::size_t>(n));
         matrices.reserve(static_cast<std::size_t>(n));
@@ -53,8 +59,10 @@ struct Crowd {
             DrawItem item;
             item.drawable = drawable.get();
             item.worldMatrix = &matrices[std::size_t(i)];
-            item.skinPalette = palettes[std::size_t(i)].data();
-            item.skinPaletteSize = static_cast<std::uint32_t>(palettes[std::size_t(i)].size());
+            if (skinned) {
+                item.skinPalette = palettes[std::size_t(i)].data();
+                item.skinPaletteSize = static_cast<std::uint32_t>(palettes[std::size_t(i)].size());
+            }
             list.add(item, drawable->primitiveCount());
         }
         const double width = 0.6 * columns + 1.0;
@@ -87,7 +95,7 @@ void BM_CpuSkinningKernel(benchmark::State& state) {
 }
 
 void runFrames(benchmark::State& state, int width, int height) {
-    const bool cpu = state.range(0) != 0;
+    const bool cpu = state.range(0) == 1, rigid = state.range(0) == 2;
     const int n = static_cast<int>(state.range(1));
     auto context = sharedContext();
     RendererOptions options;
@@ -95,9 +103,12 @@ void runFrames(benchmark::State& state, int width, int height) {
     options.height = height;
     options.forceCpuSkinning = cpu;
     GlRenderer renderer(context, options);
-    const Crowd crowd(n, double(width) / height);
+    const Crowd crowd(n, double(width) / height, !rigid);
     renderer.beginFrame(crowd.camera);  // warm-up: uploads the mesh, compiles the shader variant
     renderer.draw(crowd.list);
+    if (const char* folder = std::getenv("THRONG_BENCH_FRAMES"))
+        writePng(renderer.readFrame(), std::string(folder) + "/" + std::to_string(width) + "x" + std::to_string(height) +
+                                           (rigid ? "-rigid-" : cpu ? "-cpu-" : "-gpu-") + std::to_string(n) + ".png");
     renderer.endFrame();
     for (auto _ : state) {
         renderer.beginFrame(crowd.camera);
@@ -105,12 +116,15 @@ void runFrames(benchmark::State& state, int width, int height) {
         renderer.endFrame();  // waits for llvmpipe to finish the frame
     }
     const RenderStatistics& s = renderer.statistics();
-    const double skinned = double(cpu ? s.cpuSkinnedVertices : s.gpuSkinnedVertices);
+    // Skinned vertices; for the rigid baseline, the vertices drawn.
+    const double skinned = rigid ? double(s.instances * crowd.mesh->vertexCount())
+                                 : double(cpu ? s.cpuSkinnedVertices : s.gpuSkinnedVertices);
     state.counters["vertices/s"] = benchmark::Counter(skinned, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["triangles"] = double(s.triangles);
     state.counters["draw_calls"] = double(s.drawCalls);
     state.counters["draw_cpu_ms"] = s.drawMs;
-    state.SetLabel(cpu ? "cpu-skinning" : "gpu-skinning");
+    state.counters["instances_drawn"] = double(s.instances);
+    state.SetLabel(rigid ? "no-skinning" : cpu ? "cpu-skinning" : "gpu-skinning");
 }
 
 void BM_SkinnedFrame(benchmark::State& state) { runFrames(state, 160, 120); }
@@ -118,13 +132,13 @@ void BM_Frame1280x720(benchmark::State& state) { runFrames(state, 1280, 720); }
 
 BENCHMARK(BM_CpuSkinningKernel)->Arg(1)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SkinnedFrame)
-    ->ArgNames({"cpu", "instances"})
-    ->ArgsProduct({{0, 1}, {1, 10, 100, 1000}})
+    ->ArgNames({"path", "instances"})
+    ->ArgsProduct({{0, 1, 2}, {1, 10, 100, 1000}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_Frame1280x720)
-    ->ArgNames({"cpu", "instances"})
-    ->ArgsProduct({{0, 1}, {1, 10, 100, 1000}})
+    ->ArgNames({"path", "instances"})
+    ->ArgsProduct({{0, 1, 2}, {1, 10, 100, 1000}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
