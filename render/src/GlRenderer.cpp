@@ -10,6 +10,7 @@
 
 #include <glad/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 
 #include "GlMesh.h"
 #include "Shaders.h"
@@ -41,8 +42,8 @@ struct MeshEntry {
     GLuint cpuVao = 0;    // CPU-skinned drawing: positions and normals from the stream buffer
     GLuint texture = 0;   // owned by the texture cache
     glm::vec4 baseColor{1.0f};
-    std::uint64_t stamp = 0;                   // draw() call that set `group`
-    std::uint32_t group[2] = {kNone, kNone};   // this draw's rigid and GPU-skinned groups
+    std::uint64_t stamp = 0;  // draw() call that set `group`
+    std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [skinned * 2 + mirrored]
 };
 
 struct TextureEntry {
@@ -56,6 +57,7 @@ enum class Path : std::uint8_t { Rigid, GpuSkinned, CpuSkinned };
 struct Group {
     MeshEntry* mesh = nullptr;
     Path path = Path::Rigid;
+    bool mirrored = false;            // negative determinant: triangles wind the other way on screen
     std::uint32_t count = 0;          // items
     std::uint32_t first = 0;          // first slot in the instance buffer
     std::uint32_t filled = 0;         // slots written so far
@@ -330,10 +332,10 @@ void GlRenderer::beginFrame(const Camera& camera) {
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
     gl.Disable(GL_BLEND);
+    gl.FrontFace(GL_CCW);
     if (r.options.cullBackFaces) {
         gl.Enable(GL_CULL_FACE);
         gl.CullFace(GL_BACK);
-        gl.FrontFace(GL_CCW);
     } else {
         gl.Disable(GL_CULL_FACE);
     }
@@ -375,21 +377,24 @@ void GlRenderer::draw(const DrawList& list) {
                                         std::to_string(item.skinPaletteSize) + " matrices but its joint indices need " +
                                         std::to_string(e.gpu.requiredPalette));
         const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
+        // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
+        // apart with the front face flipped, so culling and two-sided lighting stay right.
+        const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
         if (path == Path::CpuSkinned) {
             r.itemGroup[i] = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
+            r.groups.push_back(Group{&e, path, mirrored, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
             cpuVertices += e.gpu.vertexCount;
             continue;
         }
         if (path == Path::GpuSkinned) paletteMatrices += e.gpu.requiredPalette;
         if (e.stamp != r.drawStamp) {
             e.stamp = r.drawStamp;
-            e.group[0] = e.group[1] = kNone;
+            e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
         }
-        std::uint32_t& g = e.group[path == Path::GpuSkinned ? 1 : 0];
+        std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
         if (g == kNone || !r.options.instancing) {
             g = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path});
+            r.groups.push_back(Group{&e, path, mirrored});
         }
         ++r.groups[g].count;
         r.itemGroup[i] = g;
@@ -463,6 +468,7 @@ void GlRenderer::draw(const DrawList& list) {
     gl.BindTexture(GL_TEXTURE_BUFFER, r.paletteTexture);
     gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
     GLuint current = 0;
+    bool clockwise = false;  // beginFrame set GL_CCW
     for (Group& g : r.groups) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;
@@ -476,6 +482,10 @@ void GlRenderer::draw(const DrawList& list) {
         gl.Uniform1i(p.hasTexture, e.texture != 0);
         gl.Uniform1i(p.hasNormals, m.hasNormals);
         gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
+        if (g.mirrored != clockwise) {
+            clockwise = g.mirrored;
+            gl.FrontFace(clockwise ? GL_CW : GL_CCW);
+        }
         if (g.path == Path::CpuSkinned) {
             gl.BindVertexArray(r.cpuVaoFor(e));
             gl.BindBuffer(GL_ARRAY_BUFFER, r.streamBuffer);
@@ -502,6 +512,7 @@ void GlRenderer::draw(const DrawList& list) {
         ++r.stats.drawCalls;
     }
     gl.BindVertexArray(0);
+    if (clockwise) gl.FrontFace(GL_CCW);
     r.stats.drawMs += watch.elapsedMs();
 }
 

@@ -1,5 +1,6 @@
 #include "throng/render/ImageIO.h"
 
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,7 @@ void writePng(const Image& image, const std::filesystem::path& path) {
         throw std::invalid_argument("writePng: image '" + image.name + "' is not valid (" + std::to_string(image.width) +
                                     " x " + std::to_string(image.height) + ", " + std::to_string(image.rgba.size()) +
                                     " bytes) for '" + path.string() + "'");
+    errno = 0;
     if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4))
         throw std::runtime_error("writePng: cannot write '" + path.string() + "'" +
                                  (errno ? std::string(": ") + std::strerror(errno) : std::string()));

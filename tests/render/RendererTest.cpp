@@ -98,6 +98,29 @@ TEST_F(RendererTest, CameraRelativeRenderingFarFromTheOrigin) {
     EXPECT_GT(test::coveredPixels(b), 1500u);
 }
 
+// A mirroring world matrix (negative determinant) turns the mesh's winding around on screen: the
+// renderer must flip the front face for it, or back-face culling shows the box inside out. Seen
+// from the x = 0 plane, a box mirrored in x looks exactly like the box.
+TEST_F(RendererTest, MirroredItemsAreNotDrawnInsideOut) {
+    GlRenderer renderer(context);
+    const auto box = test::drawable(makeBox(glm::vec3(0.5f, 0.4f, 0.3f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f)));
+    const Mat4 tilt = glm::rotate(Mat4(1.0), 0.4, Vec3(1, 0, 0));
+    test::Scene plain, mirrored, both;
+    plain.add(box, tilt);
+    mirrored.add(box, glm::scale(Mat4(1.0), Vec3(-1, 1, 1)) * tilt);
+    const Camera camera = test::makeCamera(Vec3(0, 1, 3), Vec3(0.0));
+    const Image a = test::renderFrame(renderer, camera, plain);
+    const Image b = test::renderFrame(renderer, camera, mirrored);
+    EXPECT_GT(test::coveredPixels(a), 1500u);
+    EXPECT_EQ(test::coveredPixels(a), test::coveredPixels(b));
+    EXPECT_LE(compareImages(a, b, 8).fractionOverThreshold, 0.001);
+    // Mixed in one list, with instancing: mirrored items get their own draw call.
+    both.add(box, glm::translate(Mat4(1.0), Vec3(-0.7, 0, 0)) * tilt);
+    both.add(box, glm::translate(Mat4(1.0), Vec3(0.7, 0, 0)) * glm::scale(Mat4(1.0), Vec3(-1, 1, 1)) * tilt);
+    test::renderFrame(renderer, camera, both);
+    EXPECT_EQ(renderer.statistics().drawCalls, 2u);
+}
+
 TEST_F(RendererTest, MeshesAndTexturesAreUploadedOnceAndReleasedWhenGone) {
     GlRenderer renderer(context);
     const Camera camera = test::makeCamera(Vec3(0, 0, 3), Vec3(0.0));
