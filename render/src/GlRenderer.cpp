@@ -400,7 +400,7 @@ void GlRenderer::draw(const DrawList& list) {
         r.itemGroup[i] = g;
     }
     if (paletteMatrices * 4 > static_cast<std::size_t>(r.maxTextureBufferTexels))
-        throw std::runtime_error("GlRenderer::draw: the frame's skin palettes need " + std::to_string(paletteMatrices * 4) +
+        throw std::runtime_error("GlRenderer::draw: the list's skin palettes need " + std::to_string(paletteMatrices * 4) +
                                  " texels, more than this GL's texture buffer limit of " +
                                  std::to_string(r.maxTextureBufferTexels));
 
