@@ -1,0 +1,21 @@
+#pragma once
+// What GlRenderer did in one frame: the figures benchmarks and the town example print.
+
+#include <cstdint>
+
+namespace throng {
+
+/// Work of one frame, reset by beginFrame().
+struct RenderStatistics {
+    std::uint64_t drawCalls = 0;           ///< glDraw* calls issued
+    std::uint64_t triangles = 0;           ///< triangles sent (all instances)
+    std::uint64_t instances = 0;           ///< mesh items drawn
+    std::uint64_t gpuSkinnedVertices = 0;  ///< vertices skinned in the vertex shader
+    std::uint64_t cpuSkinnedVertices = 0;  ///< vertices skinned on the CPU
+    std::uint64_t skippedItems = 0;        ///< items whose drawable is not a MeshDrawable
+    std::uint64_t meshUploads = 0;         ///< meshes uploaded to the GPU this frame
+    std::uint64_t textureUploads = 0;      ///< textures uploaded to the GPU this frame
+    double drawMs = 0;                     ///< CPU time spent in draw() (GL work may run later)
+};
+
+}  // namespace throng

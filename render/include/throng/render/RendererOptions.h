@@ -1,0 +1,24 @@
+#pragma once
+// Settings of a GlRenderer, chosen at construction (most can be changed later with setOptions).
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace throng {
+
+/// How GlRenderer draws.
+struct RendererOptions {
+    int width = 0;                    ///< viewport width in pixels (0: keep the context's size)
+    int height = 0;                   ///< viewport height in pixels (0: keep the context's size)
+    glm::vec4 clearColor{0.55f, 0.66f, 0.80f, 1.0f};  ///< background, as written to the image (sRGB)
+    bool instancing = true;           ///< draw items sharing a mesh in one instanced call
+    bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
+    bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
+    bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
+    glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
+    glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
+    glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)
+    glm::vec3 groundColor{0.18f, 0.16f, 0.14f};     ///< hemisphere light from below (linear)
+};
+
+}  // namespace throng

@@ -1,0 +1,109 @@
+#include "GlMesh.h"
+
+#include <cstring>
+#include <vector>
+
+#include "Shaders.h"
+#include "SkinWeights.h"
+#include "throng/render/CpuSkinning.h"
+
+namespace throng::detail {
+namespace {
+
+const void* offset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
+
+}  // namespace
+
+GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
+    GlMesh g;
+    const std::size_t n = mesh.vertexCount();
+    g.vertexCount = static_cast<std::uint32_t>(n);
+    g.triangleCount = static_cast<std::uint32_t>(mesh.triangleCount());
+    g.indexCount = static_cast<GLsizei>(g.triangleCount * 3);
+    g.influences = mesh.influenceCount();
+    g.requiredPalette = requiredPaletteSize(mesh);  // also rejects non-finite weights
+    g.hasNormals = !mesh.normals.empty();
+    g.hasTexcoords = !mesh.texcoords.empty();
+    const bool eight = g.influences == 8;
+
+    // Block layout: positions, normals, texcoords, joints0, weights0, joints1, weights1.
+    const std::size_t posBytes = n * sizeof(glm::vec3);
+    const std::size_t nrmBytes = g.hasNormals ? n * sizeof(glm::vec3) : 0;
+    const std::size_t uvBytes = g.hasTexcoords ? n * sizeof(glm::vec2) : 0;
+    const std::size_t jBytes = g.influences > 0 ? n * sizeof(glm::u16vec4) : 0;
+    const std::size_t wBytes = g.influences > 0 ? n * sizeof(glm::vec4) : 0;
+    const std::size_t j1Bytes = eight ? jBytes : 0, w1Bytes = eight ? wBytes : 0;
+    const std::size_t oNrm = posBytes, oUv = oNrm + nrmBytes, oJ0 = oUv + uvBytes, oW0 = oJ0 + jBytes,
+                      oJ1 = oW0 + wBytes, oW1 = oJ1 + j1Bytes, total = oW1 + w1Bytes;
+
+    g.texcoordOffset = oUv;
+    std::vector<unsigned char> data(total);
+    std::memcpy(data.data(), mesh.positions.data(), posBytes);
+    if (nrmBytes) std::memcpy(data.data() + oNrm, mesh.normals.data(), nrmBytes);
+    if (uvBytes) std::memcpy(data.data() + oUv, mesh.texcoords.data(), uvBytes);
+    if (g.influences > 0) {
+        auto* j0 = reinterpret_cast<glm::u16vec4*>(data.data() + oJ0);
+        auto* w0 = reinterpret_cast<glm::vec4*>(data.data() + oW0);
+        auto* j1 = eight ? reinterpret_cast<glm::u16vec4*>(data.data() + oJ1) : nullptr;
+        auto* w1 = eight ? reinterpret_cast<glm::vec4*>(data.data() + oW1) : nullptr;
+        for (std::size_t v = 0; v < n; ++v) {
+            glm::vec4 a, b;
+            normalisedWeights(mesh, v, eight, a, b);
+            glm::u16vec4 ja = mesh.joints0[v];
+            for (int k = 0; k < 4; ++k)
+                if (a[k] == 0.0f) ja[k] = 0;
+            std::memcpy(&j0[v], &ja, sizeof ja);
+            std::memcpy(&w0[v], &a, sizeof a);
+            if (eight) {
+                glm::u16vec4 jb = mesh.joints1[v];
+                for (int k = 0; k < 4; ++k)
+                    if (b[k] == 0.0f) jb[k] = 0;
+                std::memcpy(&j1[v], &jb, sizeof jb);
+                std::memcpy(&w1[v], &b, sizeof b);
+            }
+        }
+    }
+
+    gl.GenVertexArrays(1, &g.vao);
+    gl.GenBuffers(1, &g.vbo);
+    gl.GenBuffers(1, &g.ibo);
+    gl.BindVertexArray(g.vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, g.vbo);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total), data.data(), GL_STATIC_DRAW);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);  // recorded in the vertex array
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                  mesh.indices.empty() ? nullptr : mesh.indices.data(), GL_STATIC_DRAW);
+    gl.EnableVertexAttribArray(kPosition);
+    gl.VertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, offset(0));
+    if (g.hasNormals) {
+        gl.EnableVertexAttribArray(kNormal);
+        gl.VertexAttribPointer(kNormal, 3, GL_FLOAT, GL_FALSE, 0, offset(oNrm));
+    }
+    if (g.hasTexcoords) {
+        gl.EnableVertexAttribArray(kTexcoord);
+        gl.VertexAttribPointer(kTexcoord, 2, GL_FLOAT, GL_FALSE, 0, offset(oUv));
+    }
+    if (g.influences > 0) {
+        gl.EnableVertexAttribArray(kJoints0);
+        gl.VertexAttribIPointer(kJoints0, 4, GL_UNSIGNED_SHORT, 0, offset(oJ0));
+        gl.EnableVertexAttribArray(kWeights0);
+        gl.VertexAttribPointer(kWeights0, 4, GL_FLOAT, GL_FALSE, 0, offset(oW0));
+    }
+    if (eight) {
+        gl.EnableVertexAttribArray(kJoints1);
+        gl.VertexAttribIPointer(kJoints1, 4, GL_UNSIGNED_SHORT, 0, offset(oJ1));
+        gl.EnableVertexAttribArray(kWeights1);
+        gl.VertexAttribPointer(kWeights1, 4, GL_FLOAT, GL_FALSE, 0, offset(oW1));
+    }
+    gl.BindVertexArray(0);
+    return g;
+}
+
+void destroyMesh(const GladGLContext& gl, GlMesh& mesh) {
+    if (mesh.vao) gl.DeleteVertexArrays(1, &mesh.vao);
+    if (mesh.vbo) gl.DeleteBuffers(1, &mesh.vbo);
+    if (mesh.ibo) gl.DeleteBuffers(1, &mesh.ibo);
+    mesh = GlMesh{};
+}
+
+}  // namespace throng::detail

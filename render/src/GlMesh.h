@@ -1,0 +1,35 @@
+#pragma once
+// Private: a MeshData's GPU copy (one vertex buffer holding each attribute in its own block, an
+// index buffer, a vertex array with the static attributes) shared by the renderer and the
+// transform-feedback skinner.
+
+#include <cstdint>
+
+#include <glad/gl.h>
+
+#include "throng/scenegraph/MeshData.h"
+
+namespace throng::detail {
+
+/// GPU buffers of one mesh and what the draw code needs to know about it.
+struct GlMesh {
+    GLuint vbo = 0, ibo = 0, vao = 0;
+    GLsizei indexCount = 0;
+    std::uint32_t vertexCount = 0;
+    std::uint32_t triangleCount = 0;
+    int influences = 0;                ///< 0, 4 or 8
+    std::uint32_t requiredPalette = 0; ///< palette size the joint indices need
+    bool hasNormals = false;
+    bool hasTexcoords = false;
+    std::size_t texcoordOffset = 0;    ///< byte offset of the texture coordinates in `vbo`
+};
+
+/// Uploads `mesh` (weights normalised as skinMesh() does; joints of zero-weight influences set to 0
+/// so that no fetch can leave the palette) and records vertex array state for the attributes it
+/// has. Throws std::invalid_argument naming the mesh if a skin weight is not finite.
+GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh);
+
+/// Deletes the buffers and the vertex array (context current).
+void destroyMesh(const GladGLContext& gl, GlMesh& mesh);
+
+}  // namespace throng::detail

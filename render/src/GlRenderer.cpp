@@ -1,0 +1,605 @@
+#include "throng/render/GlRenderer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glad/gl.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+
+#include "GlMesh.h"
+#include "Shaders.h"
+#include "throng/render/CpuSkinning.h"
+#include "throng/render/GlContext.h"
+#include "throng/render/ShaderProgram.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/Stopwatch.h"
+
+namespace throng {
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+// Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix.
+struct InstanceData {
+    float model[16];
+    float tint[4];
+    std::int32_t paletteBase;
+    std::int32_t pad[3];
+};
+static_assert(sizeof(InstanceData) == 96, "instance attributes assume a 96-byte stride");
+
+struct MeshEntry {
+    std::weak_ptr<const MeshData> source;  // to notice when the mesh is gone (and its address reused)
+    detail::GlMesh gpu;
+    GLuint cpuVao = 0;    // CPU-skinned drawing: positions and normals from the stream buffer
+    GLuint texture = 0;   // owned by the texture cache
+    glm::vec4 baseColor{1.0f};
+    std::uint64_t stamp = 0;  // draw() call that set `group`
+    std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [skinned * 2 + mirrored]
+};
+
+struct TextureEntry {
+    std::weak_ptr<const Image> source;
+    GLuint name = 0;
+};
+
+enum class Path : std::uint8_t { Rigid, GpuSkinned, CpuSkinned };
+
+// Items drawn with one mesh and one path: one instanced draw call (CPU-skinned: one item each).
+struct Group {
+    MeshEntry* mesh = nullptr;
+    Path path = Path::Rigid;
+    bool mirrored = false;            // negative determinant: triangles wind the other way on screen
+    std::uint32_t count = 0;          // items
+    std::uint32_t first = 0;          // first slot in the instance buffer
+    std::uint32_t filled = 0;         // slots written so far
+    std::uint32_t cpuVertexBase = 0;  // CPU-skinned: first vertex in the stream buffer
+};
+
+struct ProgramState {
+    std::unique_ptr<ShaderProgram> program;
+    GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1;
+    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
+    std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
+};
+
+const void* byteOffset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
+
+std::string itemName(std::size_t index, const Drawable& drawable) {
+    return "item " + std::to_string(index) + " (drawable '" + drawable.name() + "')";
+}
+
+void checkPositive(int width, int height, const char* where) {
+    if (width <= 0) throw std::invalid_argument(std::string(where) + ": width " + std::to_string(width) + " must be positive");
+    if (height <= 0) throw std::invalid_argument(std::string(where) + ": height " + std::to_string(height) + " must be positive");
+}
+
+void checkOptions(const RendererOptions& o, const char* where) {
+    if (o.width < 0 || o.height < 0)
+        throw std::invalid_argument(std::string(where) + ": viewport size " + std::to_string(o.width) + " x " +
+                                    std::to_string(o.height) + " must not be negative (0 keeps the context's size)");
+}
+
+}  // namespace
+
+struct GlRenderer::Impl {
+    std::shared_ptr<GlContext> context;  // first member: destroyed last
+    const GladGLContext& gl;
+    RendererOptions options;
+    RenderStatistics stats;
+    Image lastFrame;
+    ProgramState programs[3];  // 0, 4 and 8 influences
+    GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
+    std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
+    GLint maxTextureBufferTexels = 0;
+    std::unordered_map<const MeshData*, std::unique_ptr<MeshEntry>> meshes;
+    std::unordered_map<const Image*, TextureEntry> textures;
+
+    bool inFrame = false;
+    std::uint64_t frameStamp = 0, drawStamp = 0;
+    glm::mat4 viewRotation{1.0f}, projection{1.0f};
+    Vec3 eye{0.0};
+
+    // Scratch reused by every draw(): no allocation once the crowd's size has been seen.
+    std::vector<std::uint32_t> itemGroup;
+    std::vector<Group> groups;
+    std::vector<InstanceData> instances;
+    std::vector<glm::mat4> palette;
+    std::vector<glm::vec3> cpuPositions, cpuNormals;
+    const MeshData* lastMesh = nullptr;  // shortcut for runs of clones sharing a mesh
+    MeshEntry* lastEntry = nullptr;
+
+    explicit Impl(std::shared_ptr<GlContext> c) : context(std::move(c)), gl(context->gl()) {}
+
+    ProgramState& programFor(int influences) { return programs[influences == 0 ? 0 : influences == 4 ? 1 : 2]; }
+
+    GLuint textureFor(const std::shared_ptr<const Image>& image) {
+        if (!image) return 0;
+        auto it = textures.find(image.get());
+        if (it != textures.end() && it->second.source.expired()) {  // a new image at a freed one's address
+            gl.DeleteTextures(1, &it->second.name);
+            textures.erase(it);
+            it = textures.end();
+        }
+        if (it != textures.end()) return it->second.name;
+        if (!image->valid())
+            throw std::invalid_argument("GlRenderer: texture '" + image->name + "' is not a valid RGBA8 image");
+        TextureEntry entry{image, 0};
+        gl.GenTextures(1, &entry.name);
+        gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
+        gl.BindTexture(GL_TEXTURE_2D, entry.name);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        // Rows go up top row first, so texture coordinate v = 0 is the image's top, as in glTF.
+        // Base colour is sRGB-encoded: the sampler returns linear values.
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, image->width, image->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                      image->rgba.data());
+        gl.GenerateMipmap(GL_TEXTURE_2D);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        ++stats.textureUploads;
+        textures.emplace(image.get(), entry);
+        return entry.name;
+    }
+
+    void destroyEntry(MeshEntry& e) {
+        detail::destroyMesh(gl, e.gpu);
+        if (e.cpuVao) gl.DeleteVertexArrays(1, &e.cpuVao);
+        e.cpuVao = 0;
+    }
+
+    // Instance attributes come from the shared instance buffer; their offsets are set per draw.
+    void enableInstanceAttributes() {
+        for (unsigned c = 0; c < 4; ++c) {
+            gl.EnableVertexAttribArray(detail::kModel + c);
+            gl.VertexAttribDivisor(detail::kModel + c, 1);
+        }
+        gl.EnableVertexAttribArray(detail::kTint);
+        gl.VertexAttribDivisor(detail::kTint, 1);
+        gl.EnableVertexAttribArray(detail::kPaletteBase);
+        gl.VertexAttribDivisor(detail::kPaletteBase, 1);
+    }
+
+    MeshEntry& entryFor(const std::shared_ptr<const MeshData>& mesh) {
+        const MeshData* key = mesh.get();
+        if (key == lastMesh) return *lastEntry;
+        auto it = meshes.find(key);
+        if (it != meshes.end() && it->second->source.expired()) {  // a new mesh at a freed one's address
+            destroyEntry(*it->second);
+            meshes.erase(it);
+            it = meshes.end();
+        }
+        if (it == meshes.end()) {
+            auto entry = std::make_unique<MeshEntry>();
+            entry->source = mesh;
+            entry->texture = textureFor(mesh->baseColorTexture);
+            entry->baseColor = mesh->baseColor;
+            entry->gpu = detail::uploadMesh(gl, *mesh);
+            gl.BindVertexArray(entry->gpu.vao);
+            enableInstanceAttributes();
+            gl.BindVertexArray(0);
+            ++stats.meshUploads;
+            it = meshes.emplace(key, std::move(entry)).first;
+        }
+        lastMesh = key;
+        lastEntry = it->second.get();
+        return *lastEntry;
+    }
+
+    GLuint cpuVaoFor(MeshEntry& e) {
+        if (e.cpuVao) return e.cpuVao;
+        gl.GenVertexArrays(1, &e.cpuVao);
+        gl.BindVertexArray(e.cpuVao);
+        gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, e.gpu.ibo);
+        gl.EnableVertexAttribArray(detail::kPosition);
+        if (e.gpu.hasNormals) gl.EnableVertexAttribArray(detail::kNormal);
+        if (e.gpu.hasTexcoords) {
+            gl.BindBuffer(GL_ARRAY_BUFFER, e.gpu.vbo);
+            gl.EnableVertexAttribArray(detail::kTexcoord);
+            gl.VertexAttribPointer(detail::kTexcoord, 2, GL_FLOAT, GL_FALSE, 0, byteOffset(e.gpu.texcoordOffset));
+        }
+        enableInstanceAttributes();
+        return e.cpuVao;
+    }
+
+    void pointInstanceAttributes(std::uint32_t slot) {
+        constexpr GLsizei stride = sizeof(InstanceData);
+        const std::size_t base = static_cast<std::size_t>(slot) * stride;
+        for (unsigned c = 0; c < 4; ++c)
+            gl.VertexAttribPointer(detail::kModel + c, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + 16 * c));
+        gl.VertexAttribPointer(detail::kTint, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + offsetof(InstanceData, tint)));
+        gl.VertexAttribIPointer(detail::kPaletteBase, 1, GL_INT, stride,
+                                byteOffset(base + offsetof(InstanceData, paletteBase)));
+    }
+
+    // Makes a stream buffer hold at least `bytes`, growing it geometrically. Storage is reallocated
+    // only when it grows: re-specifying it every frame (orphaning) makes llvmpipe allocate and
+    // page in megabytes per frame, which cost more than the drawing; BufferSubData on the existing
+    // storage is synchronised by GL either way.
+    void reserveStream(GLenum target, GLuint buffer, std::size_t& capacity, std::size_t bytes) {
+        gl.BindBuffer(target, buffer);
+        if (bytes <= capacity) return;
+        capacity = std::max(bytes, capacity * 2);
+        gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
+    }
+
+    void loadFrameUniforms(ProgramState& p) {
+        const glm::vec3 light = glm::length(options.lightDirection) > 0.0f ? glm::normalize(options.lightDirection)
+                                                                            : glm::vec3(0.0f, 1.0f, 0.0f);
+        gl.UniformMatrix4fv(p.viewRotation, 1, GL_FALSE, &viewRotation[0][0]);
+        gl.UniformMatrix4fv(p.projection, 1, GL_FALSE, &projection[0][0]);
+        gl.Uniform3fv(p.lightDirection, 1, &light[0]);
+        gl.Uniform3fv(p.lightColor, 1, &options.lightColor[0]);
+        gl.Uniform3fv(p.skyColor, 1, &options.skyColor[0]);
+        gl.Uniform3fv(p.groundColor, 1, &options.groundColor[0]);
+        p.frameStamp = frameStamp;
+    }
+};
+
+GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions& options) {
+    if (!context) throw std::invalid_argument("GlRenderer: argument 'context' is null");
+    checkOptions(options, "GlRenderer");
+    impl_ = std::make_unique<Impl>(std::move(context));
+    Impl& r = *impl_;
+    r.options = options;
+    r.context->makeCurrent();
+    const GladGLContext& gl = r.gl;
+    const int influences[3] = {0, 4, 8};
+    for (int k = 0; k < 3; ++k) {
+        ProgramState& p = r.programs[k];
+        p.program = std::make_unique<ShaderProgram>(
+            *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
+            detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
+        const ShaderProgram& s = *p.program;
+        p.baseColor = s.uniformLocation("uBaseColor");
+        p.hasTexture = s.uniformLocation("uHasTexture");
+        p.hasNormals = s.uniformLocation("uHasNormals");
+        p.viewRotation = s.uniformLocation("uViewRotation");
+        p.projection = s.uniformLocation("uProjection");
+        p.lightDirection = s.uniformLocation("uLightDirection");
+        p.lightColor = s.uniformLocation("uLightColor");
+        p.skyColor = s.uniformLocation("uSkyColor");
+        p.groundColor = s.uniformLocation("uGroundColor");
+        gl.UseProgram(s.id());
+        gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
+        gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
+    }
+    gl.UseProgram(0);
+    gl.GenBuffers(1, &r.instanceBuffer);
+    gl.GenBuffers(1, &r.streamBuffer);
+    gl.GenBuffers(1, &r.paletteBuffer);
+    gl.BindBuffer(GL_TEXTURE_BUFFER, r.paletteBuffer);
+    r.paletteCapacity = 64 * sizeof(glm::mat4);
+    gl.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(r.paletteCapacity), nullptr, GL_STREAM_DRAW);
+    gl.GenTextures(1, &r.paletteTexture);
+    gl.BindTexture(GL_TEXTURE_BUFFER, r.paletteTexture);
+    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, r.paletteBuffer);
+    gl.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &r.maxTextureBufferTexels);
+    // A white texel stands in for meshes without a texture, so unit 0 never samples nothing.
+    const unsigned char white[4] = {255, 255, 255, 255};
+    gl.GenTextures(1, &r.whiteTexture);
+    gl.BindTexture(GL_TEXTURE_2D, r.whiteTexture);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (options.width > 0 || options.height > 0)
+        setViewportSize(options.width > 0 ? options.width : width(), options.height > 0 ? options.height : height());
+}
+
+GlRenderer::~GlRenderer() {
+    Impl& r = *impl_;
+    try {
+        r.context->makeCurrent();
+    } catch (...) {
+        return;  // the context is unusable; destroying it frees everything
+    }
+    const GladGLContext& gl = r.gl;
+    for (auto& [key, entry] : r.meshes) r.destroyEntry(*entry);
+    for (auto& [key, texture] : r.textures) gl.DeleteTextures(1, &texture.name);
+    const GLuint buffers[] = {r.instanceBuffer, r.streamBuffer, r.paletteBuffer};
+    gl.DeleteBuffers(3, buffers);
+    const GLuint textures[] = {r.paletteTexture, r.whiteTexture};
+    gl.DeleteTextures(2, textures);
+}
+
+void GlRenderer::beginFrame(const Camera& camera) {
+    Impl& r = *impl_;
+    r.context->makeCurrent();
+    const GladGLContext& gl = r.gl;
+    r.stats = RenderStatistics{};
+    ++r.frameStamp;
+    r.inFrame = true;
+    // Camera-relative rendering: view = R * T(-eye), so view * T(eye) is the rotation alone, and
+    // model matrices get T(-eye) in double precision before they are rounded to float.
+    r.eye = camera.eye();
+    Mat4 rotation = camera.view() * glm::translate(Mat4(1.0), r.eye);
+    rotation[3] = Vec4(0.0, 0.0, 0.0, 1.0);
+    r.viewRotation = glm::mat4(rotation);
+    r.projection = glm::mat4(camera.projection());
+
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r.context->framebuffer());
+    gl.Viewport(0, 0, r.context->width(), r.context->height());
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_BLEND);
+    gl.FrontFace(GL_CCW);
+    if (r.options.cullBackFaces) {
+        gl.Enable(GL_CULL_FACE);
+        gl.CullFace(GL_BACK);
+    } else {
+        gl.Disable(GL_CULL_FACE);
+    }
+    const glm::vec4& c = r.options.clearColor;
+    gl.ClearColor(c.r, c.g, c.b, c.a);
+    gl.ClearDepth(1.0);
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void GlRenderer::draw(const DrawList& list) {
+    Impl& r = *impl_;
+    if (!r.inFrame) throw std::logic_error("GlRenderer::draw: called outside beginFrame() / endFrame()");
+    Stopwatch watch;
+    r.context->makeCurrent();
+    const GladGLContext& gl = r.gl;
+    const std::vector<DrawItem>& items = list.items();
+    ++r.drawStamp;
+    r.lastMesh = nullptr;
+    r.itemGroup.resize(items.size());
+    r.groups.clear();
+
+    // 1. Check every item and sort it into a group (first appearance order), before any drawing.
+    std::size_t paletteMatrices = 0, cpuVertices = 0;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const DrawItem& item = items[i];
+        if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
+        const auto* meshDrawable = dynamic_cast<const MeshDrawable*>(item.drawable);
+        if (!meshDrawable) {
+            r.itemGroup[i] = kNone;
+            ++r.stats.skippedItems;
+            continue;
+        }
+        if (!item.worldMatrix)
+            throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + " has no world matrix");
+        MeshEntry& e = r.entryFor(meshDrawable->meshPtr());
+        const bool skinned = e.gpu.influences > 0 && item.skinPalette != nullptr;
+        if (skinned && item.skinPaletteSize < e.gpu.requiredPalette)
+            throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + ": its skin palette has " +
+                                        std::to_string(item.skinPaletteSize) + " matrices but its joint indices need " +
+                                        std::to_string(e.gpu.requiredPalette));
+        const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
+        // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
+        // apart with the front face flipped, so culling and two-sided lighting stay right.
+        const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
+        if (path == Path::CpuSkinned) {
+            r.itemGroup[i] = static_cast<std::uint32_t>(r.groups.size());
+            r.groups.push_back(Group{&e, path, mirrored, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
+            cpuVertices += e.gpu.vertexCount;
+            continue;
+        }
+        if (path == Path::GpuSkinned) paletteMatrices += e.gpu.requiredPalette;
+        if (e.stamp != r.drawStamp) {
+            e.stamp = r.drawStamp;
+            e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
+        }
+        std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
+        if (g == kNone || !r.options.instancing) {
+            g = static_cast<std::uint32_t>(r.groups.size());
+            r.groups.push_back(Group{&e, path, mirrored});
+        }
+        ++r.groups[g].count;
+        r.itemGroup[i] = g;
+    }
+    if (paletteMatrices * 4 > static_cast<std::size_t>(r.maxTextureBufferTexels))
+        throw std::runtime_error("GlRenderer::draw: the list's skin palettes need " + std::to_string(paletteMatrices * 4) +
+                                 " texels, more than this GL's texture buffer limit of " +
+                                 std::to_string(r.maxTextureBufferTexels));
+
+    // 2. Lay the groups out in the instance buffer, then fill it in item order.
+    std::uint32_t slots = 0;
+    for (Group& g : r.groups) {
+        g.first = slots;
+        slots += g.count;
+    }
+    r.instances.resize(slots);
+    r.palette.resize(paletteMatrices);
+    r.cpuPositions.resize(cpuVertices);
+    r.cpuNormals.resize(cpuVertices);
+    std::size_t paletteCursor = 0;
+    const Vec3 eye = r.eye;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (r.itemGroup[i] == kNone) continue;
+        const DrawItem& item = items[i];
+        Group& g = r.groups[r.itemGroup[i]];
+        InstanceData& d = r.instances[g.first + g.filled++];
+        const Mat4& w = *item.worldMatrix;
+        for (int c = 0; c < 4; ++c) {  // T(-eye) * world, in double, then rounded
+            const Vec4& col = w[c];
+            d.model[4 * c + 0] = static_cast<float>(col.x - eye.x * col.w);
+            d.model[4 * c + 1] = static_cast<float>(col.y - eye.y * col.w);
+            d.model[4 * c + 2] = static_cast<float>(col.z - eye.z * col.w);
+            d.model[4 * c + 3] = static_cast<float>(col.w);
+        }
+        std::memcpy(d.tint, &item.tint[0], sizeof d.tint);
+        d.paletteBase = 0;
+        if (g.path == Path::GpuSkinned) {
+            d.paletteBase = static_cast<std::int32_t>(paletteCursor);
+            std::copy_n(item.skinPalette, g.mesh->gpu.requiredPalette, r.palette.data() + paletteCursor);
+            paletteCursor += g.mesh->gpu.requiredPalette;
+        } else if (g.path == Path::CpuSkinned) {
+            const MeshData& mesh = static_cast<const MeshDrawable*>(item.drawable)->mesh();
+            const std::size_t n = mesh.vertexCount();
+            skinMesh(mesh, std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize),
+                     std::span<glm::vec3>(r.cpuPositions).subspan(g.cpuVertexBase, n),
+                     mesh.normals.empty() ? std::span<glm::vec3>()
+                                          : std::span<glm::vec3>(r.cpuNormals).subspan(g.cpuVertexBase, n));
+        }
+    }
+
+    // 3. One upload per stream: instances, palettes, CPU-skinned vertices.
+    if (slots > 0) {
+        r.reserveStream(GL_ARRAY_BUFFER, r.instanceBuffer, r.instanceCapacity, slots * sizeof(InstanceData));
+        gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(slots * sizeof(InstanceData)), r.instances.data());
+    }
+    if (paletteMatrices > 0) {
+        const std::size_t bytes = paletteMatrices * sizeof(glm::mat4);
+        r.reserveStream(GL_TEXTURE_BUFFER, r.paletteBuffer, r.paletteCapacity, bytes);
+        gl.BufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), r.palette.data());
+    }
+    const std::size_t cpuBlock = cpuVertices * sizeof(glm::vec3);
+    if (cpuVertices > 0) {
+        r.reserveStream(GL_ARRAY_BUFFER, r.streamBuffer, r.streamCapacity, 2 * cpuBlock);
+        gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(cpuBlock), r.cpuPositions.data());
+        gl.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(cpuBlock), static_cast<GLsizeiptr>(cpuBlock),
+                         r.cpuNormals.data());
+    }
+
+    // 4. Draw the groups.
+    gl.ActiveTexture(GL_TEXTURE0 + detail::kPaletteUnit);
+    gl.BindTexture(GL_TEXTURE_BUFFER, r.paletteTexture);
+    gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
+    GLuint current = 0;
+    bool clockwise = false;  // beginFrame set GL_CCW
+    for (Group& g : r.groups) {
+        MeshEntry& e = *g.mesh;
+        const detail::GlMesh& m = e.gpu;
+        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
+        if (p.program->id() != current) {
+            current = p.program->id();
+            gl.UseProgram(current);
+            if (p.frameStamp != r.frameStamp) r.loadFrameUniforms(p);
+        }
+        gl.Uniform4fv(p.baseColor, 1, &e.baseColor[0]);
+        gl.Uniform1i(p.hasTexture, e.texture != 0);
+        gl.Uniform1i(p.hasNormals, m.hasNormals);
+        gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
+        if (g.mirrored != clockwise) {
+            clockwise = g.mirrored;
+            gl.FrontFace(clockwise ? GL_CW : GL_CCW);
+        }
+        if (g.path == Path::CpuSkinned) {
+            gl.BindVertexArray(r.cpuVaoFor(e));
+            gl.BindBuffer(GL_ARRAY_BUFFER, r.streamBuffer);
+            const std::size_t base = static_cast<std::size_t>(g.cpuVertexBase) * sizeof(glm::vec3);
+            gl.VertexAttribPointer(detail::kPosition, 3, GL_FLOAT, GL_FALSE, 0, byteOffset(base));
+            if (m.hasNormals)
+                gl.VertexAttribPointer(detail::kNormal, 3, GL_FLOAT, GL_FALSE, 0, byteOffset(cpuBlock + base));
+            r.stats.cpuSkinnedVertices += m.vertexCount;
+        } else {
+            gl.BindVertexArray(m.vao);
+            if (g.path == Path::GpuSkinned) r.stats.gpuSkinnedVertices += std::uint64_t(m.vertexCount) * g.count;
+        }
+        r.stats.instances += g.count;
+        r.stats.triangles += std::uint64_t(m.triangleCount) * g.count;
+        if (m.indexCount == 0) continue;
+        gl.BindBuffer(GL_ARRAY_BUFFER, r.instanceBuffer);
+        r.pointInstanceAttributes(g.first);
+        if (g.count == 1) {
+            gl.DrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        } else {
+            gl.DrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
+                                     static_cast<GLsizei>(g.count));
+        }
+        ++r.stats.drawCalls;
+    }
+    gl.BindVertexArray(0);
+    if (clockwise) gl.FrontFace(GL_CCW);
+    r.stats.drawMs += watch.elapsedMs();
+}
+
+void GlRenderer::endFrame() {
+    Impl& r = *impl_;
+    if (!r.inFrame) throw std::logic_error("GlRenderer::endFrame: no frame was begun");
+    if (r.options.captureFrames) r.lastFrame = readFrame();
+    r.context->present();
+    r.inFrame = false;
+}
+
+void GlRenderer::setOptions(const RendererOptions& options) {
+    checkOptions(options, "GlRenderer::setOptions");
+    const int w = options.width > 0 ? options.width : width();
+    const int h = options.height > 0 ? options.height : height();
+    if (w != width() || h != height()) setViewportSize(w, h);
+    impl_->options = options;
+}
+
+const RendererOptions& GlRenderer::options() const { return impl_->options; }
+
+void GlRenderer::setViewportSize(int width, int height) {
+    checkPositive(width, height, "GlRenderer::setViewportSize");
+    impl_->context->resize(width, height);
+}
+
+int GlRenderer::width() const { return impl_->context->width(); }
+
+int GlRenderer::height() const { return impl_->context->height(); }
+
+const RenderStatistics& GlRenderer::statistics() const { return impl_->stats; }
+
+Image GlRenderer::readFrame() {
+    Impl& r = *impl_;
+    r.context->makeCurrent();
+    const GladGLContext& gl = r.gl;
+    Image image;
+    image.name = "frame";
+    image.width = r.context->width();
+    image.height = r.context->height();
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+    image.rgba.resize(row * static_cast<std::size_t>(image.height));
+    const GLuint fbo = r.context->framebuffer();
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    gl.ReadBuffer(fbo ? GL_COLOR_ATTACHMENT0 : GL_BACK);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    // GL returns the bottom row first; Image keeps the top row first.
+    std::vector<std::uint8_t> swap(row);
+    for (int y = 0; y < image.height / 2; ++y) {
+        std::uint8_t* a = image.rgba.data() + static_cast<std::size_t>(y) * row;
+        std::uint8_t* b = image.rgba.data() + static_cast<std::size_t>(image.height - 1 - y) * row;
+        std::memcpy(swap.data(), a, row);
+        std::memcpy(a, b, row);
+        std::memcpy(b, swap.data(), row);
+    }
+    return image;
+}
+
+const Image& GlRenderer::lastFrame() const { return impl_->lastFrame; }
+
+void GlRenderer::releaseUnusedResources() {
+    Impl& r = *impl_;
+    r.context->makeCurrent();
+    r.lastMesh = nullptr;
+    for (auto it = r.meshes.begin(); it != r.meshes.end();) {
+        if (it->second->source.expired()) {
+            r.destroyEntry(*it->second);
+            it = r.meshes.erase(it);
+        } else {
+            ++it;
+        }
+    }
+    for (auto it = r.textures.begin(); it != r.textures.end();) {
+        if (it->second.source.expired()) {
+            r.gl.DeleteTextures(1, &it->second.name);
+            it = r.textures.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+std::size_t GlRenderer::cachedMeshCount() const { return impl_->meshes.size(); }
+
+std::size_t GlRenderer::cachedTextureCount() const { return impl_->textures.size(); }
+
+GlContext& GlRenderer::context() const { return *impl_->context; }
+
+}  // namespace throng

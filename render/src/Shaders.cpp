@@ -1,0 +1,136 @@
+#include "Shaders.h"
+
+namespace throng::detail {
+namespace {
+
+// The palette is a texture buffer (RGBA32F, one matrix = 4 texels, columns in order): on llvmpipe a
+// texel fetch is cheaper than indexing a large uniform block, and its size is not limited to 64 KiB.
+constexpr const char* kVertexBody = R"GLSL(
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aTexcoord;
+layout(location = 3) in uvec4 aJoints0;
+layout(location = 4) in vec4 aWeights0;
+layout(location = 5) in uvec4 aJoints1;
+layout(location = 6) in vec4 aWeights1;
+layout(location = 7) in mat4 iModel;      // model matrix relative to the eye
+layout(location = 11) in vec4 iTint;
+layout(location = 12) in int iPaletteBase; // first matrix of this instance's palette
+
+uniform samplerBuffer uPalette;
+uniform mat4 uViewRotation;  // the view without its translation: the eye is the origin
+uniform mat4 uProjection;
+
+#if FEEDBACK
+out vec3 tfPosition;
+out vec3 tfNormal;
+#else
+out vec3 vRelPosition;
+out vec3 vNormal;
+out vec2 vTexcoord;
+out vec4 vTint;
+#endif
+
+mat4 joint(int base, uint j) {
+    int t = 4 * (base + int(j));
+    return mat4(texelFetch(uPalette, t), texelFetch(uPalette, t + 1), texelFetch(uPalette, t + 2),
+                texelFetch(uPalette, t + 3));
+}
+
+#if INFLUENCES > 0
+// Weights arrive normalised (all zero when they summed to zero: the vertex stays in bind pose).
+mat4 skinMatrix(int base) {
+#if INFLUENCES == 8
+    if (aWeights0 == vec4(0.0) && aWeights1 == vec4(0.0)) return mat4(1.0);
+#else
+    if (aWeights0 == vec4(0.0)) return mat4(1.0);
+#endif
+    mat4 s = joint(base, aJoints0.x) * aWeights0.x + joint(base, aJoints0.y) * aWeights0.y
+           + joint(base, aJoints0.z) * aWeights0.z + joint(base, aJoints0.w) * aWeights0.w;
+#if INFLUENCES == 8
+    s = s + joint(base, aJoints1.x) * aWeights1.x + joint(base, aJoints1.y) * aWeights1.y
+          + joint(base, aJoints1.z) * aWeights1.z + joint(base, aJoints1.w) * aWeights1.w;
+#endif
+    return s;
+}
+#endif
+
+void main() {
+    vec3 p = aPosition;
+    vec3 n = aNormal;
+#if INFLUENCES > 0
+#if FEEDBACK
+    mat4 s = skinMatrix(0);
+#else
+    mat4 s = skinMatrix(iPaletteBase);
+#endif
+    p = (s * vec4(p, 1.0)).xyz;  // palettes are affine: the bottom row is ignored
+    n = mat3(s) * n;
+#endif
+#if FEEDBACK
+    tfPosition = p;
+    float len = length(n);
+    tfNormal = len > 0.0 ? n / len : n;
+#else
+    vec4 rel = iModel * vec4(p, 1.0);
+    vRelPosition = rel.xyz;
+    // Normals by the cofactor matrix (det * inverse transpose): right under non-uniform scale,
+    // three cross products instead of an inverse per vertex; the sign of det undoes mirroring.
+    mat3 m = mat3(iModel);
+    mat3 cof = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
+    vNormal = sign(dot(m[0], cof[0])) * (cof * n);
+    vTexcoord = aTexcoord;
+    vTint = iTint;
+    gl_Position = uProjection * (uViewRotation * rel);
+#endif
+}
+)GLSL";
+
+constexpr const char* kFragment = R"GLSL(#version 330 core
+in vec3 vRelPosition;
+in vec3 vNormal;
+in vec2 vTexcoord;
+in vec4 vTint;
+
+uniform vec4 uBaseColor;
+uniform sampler2D uTexture;
+uniform bool uHasTexture;
+uniform bool uHasNormals;
+uniform vec3 uLightDirection;  // normalised, towards the light
+uniform vec3 uLightColor;
+uniform vec3 uSkyColor;
+uniform vec3 uGroundColor;
+
+out vec4 fragColor;
+
+vec3 linearToSrgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+void main() {
+    vec4 base = uBaseColor * vTint;
+    if (uHasTexture) base *= texture(uTexture, vTexcoord);
+    vec3 n;
+    if (uHasNormals) {
+        n = normalize(vNormal);
+        if (!gl_FrontFacing) n = -n;  // two-sided lighting when back faces are drawn
+    } else {
+        n = normalize(cross(dFdx(vRelPosition), dFdy(vRelPosition)));  // flat: faces the eye
+    }
+    float sun = max(dot(n, uLightDirection), 0.0);
+    vec3 ambient = mix(uGroundColor, uSkyColor, 0.5 + 0.5 * n.y);
+    fragColor = vec4(linearToSrgb(base.rgb * (ambient + uLightColor * sun)), base.a);
+}
+)GLSL";
+
+}  // namespace
+
+std::string vertexShaderSource(int influences, bool feedback) {
+    return "#version 330 core\n#define INFLUENCES " + std::to_string(influences) + "\n#define FEEDBACK " +
+           (feedback ? "1" : "0") + "\n" + kVertexBody;
+}
+
+std::string fragmentShaderSource() { return kFragment; }
+
+}  // namespace throng::detail

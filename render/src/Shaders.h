@@ -1,0 +1,26 @@
+#pragma once
+// Private: GLSL sources of the renderer and of the transform-feedback skinner. One vertex shader
+// text serves both, so that the skinning the tests read back is the skinning the renderer draws.
+
+#include <string>
+
+namespace throng::detail {
+
+/// Attribute locations shared by the shaders, the mesh upload and the renderer.
+enum AttributeLocation : unsigned {
+    kPosition = 0, kNormal = 1, kTexcoord = 2, kJoints0 = 3, kWeights0 = 4, kJoints1 = 5, kWeights1 = 6,
+    kModel = 7,  // a mat4: locations 7-10
+    kTint = 11, kPaletteBase = 12
+};
+
+/// Texture units.
+enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1 };
+
+/// The vertex shader for `influences` (0, 4 or 8) joint influences. With `feedback`, it outputs
+/// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing.
+std::string vertexShaderSource(int influences, bool feedback);
+
+/// The shading fragment shader: base colour x texture x tint, hemisphere + sun light, sRGB output.
+std::string fragmentShaderSource();
+
+}  // namespace throng::detail

@@ -1,0 +1,87 @@
+// Context creation: headless by default, a window only with a display (the window test skips
+// otherwise), and clear errors when a context cannot be made.
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "RenderTestSupport.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/GlfwWindowContext.h"
+#include "throng/render/OsMesaContext.h"
+#include "throng/render/ProceduralMeshes.h"
+
+namespace throng {
+namespace {
+
+TEST(ContextTest, HeadlessContextIsCoreProfileOnOsMesa) {
+    OsMesaContext context(test::kWidth, test::kHeight);
+    EXPECT_TRUE(context.headless());
+    EXPECT_NE(context.framebuffer(), 0u);
+    EXPECT_NE(context.description().find("OSMesa"), std::string::npos) << context.description();
+    EXPECT_NE(context.description().find("Core Profile"), std::string::npos) << context.description();
+}
+
+TEST(ContextTest, FactoryGivesHeadlessUnlessAWindowIsAskedForAndPossible) {
+    ContextOptions options;
+    options.width = 96;
+    options.height = 64;
+    auto headless = createContext(options);
+    EXPECT_TRUE(headless->headless());
+    EXPECT_EQ(headless->width(), 96);
+    options.window = true;
+    std::string reason;
+    auto chosen = createContext(options, &reason);
+    if (!displayAvailable()) {
+        EXPECT_TRUE(chosen->headless());
+        EXPECT_NE(reason.find("no display"), std::string::npos) << reason;
+    } else {
+        EXPECT_TRUE(!chosen->headless() || !reason.empty()) << "a window was asked for, with a display";
+    }
+    options.width = 0;
+    EXPECT_THROW(createContext(options), std::invalid_argument);
+}
+
+TEST(ContextTest, WindowWithoutDisplayIsAClearError) {
+    if (displayAvailable()) GTEST_SKIP() << "a display exists: this checks the error without one";
+    try {
+        GlfwWindowContext window(64, 48, "no display");
+        ADD_FAILURE() << "a window opened without a display";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("GlfwWindowContext"), std::string::npos) << e.what();
+    }
+}
+
+// With a display (e.g. under xvfb-run), a hidden window renders what the headless context renders.
+TEST(ContextTest, WindowRendersLikeHeadless) {
+    if (!displayAvailable()) GTEST_SKIP() << "no display (DISPLAY/WAYLAND_DISPLAY unset): window test skipped";
+    std::shared_ptr<GlfwWindowContext> window;
+    try {
+        window = std::make_shared<GlfwWindowContext>(test::kWidth, test::kHeight, "Throng test", false);
+    } catch (const std::runtime_error& e) {
+        GTEST_SKIP() << "a display is set but no window could be opened: " << e.what();
+    }
+    EXPECT_FALSE(window->headless());
+    test::Scene scene;
+    scene.add(test::drawable(makeBox(glm::vec3(0.5f), glm::vec4(0.2f, 0.6f, 0.9f, 1.0f))),
+              glm::rotate(Mat4(1.0), 0.7, Vec3(0.3, 1, 0)));
+    const Camera camera = test::makeCamera(Vec3(0, 0.5, 3), Vec3(0.0));
+    GlRenderer onScreen(window);
+    const Image a = test::renderFrame(onScreen, camera, scene);
+    GlRenderer offScreen(std::make_shared<OsMesaContext>(test::kWidth, test::kHeight));
+    const Image b = test::renderFrame(offScreen, camera, scene);
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    // Another driver may sit behind the window: compare loosely.
+    const ImageDifference d = compareImages(a, b, 16);
+    EXPECT_LE(d.fractionOverThreshold, 0.02) << window->description();
+    EXPECT_GT(test::coveredPixels(a), 1000u);
+    RecordProperty("window", window->description());
+    RecordProperty("max_channel_difference", d.maxChannelDifference);
+}
+
+}  // namespace
+}  // namespace throng
