@@ -1,0 +1,102 @@
+#pragma once
+// What a scene file declares (JSON; see SceneParser): the town, actor templates, groups of actors
+// with their behaviour and its levels of detail, effects, representation distances and the camera
+// path. Only what is declared here is ever constructed.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace throng::sim {
+
+/// The town the actors walk in.
+struct TownDescription {
+    int blocksX = 5;            ///< city blocks across
+    int blocksZ = 5;            ///< city blocks deep
+    int blockTiles = 3;         ///< tiles per block side (between roads)
+    double tileSize = 8.0;      ///< metres per tile
+    std::uint64_t seed = 1;     ///< layout
+    std::string tiles;          ///< folder of the tile models (relative to the scene file)
+};
+
+/// An actor template: a glTF file, or a procedural one ("seed-humanoid", "table3", "bird").
+struct TemplateDescription {
+    std::string gltf;           ///< path (relative to the scene file), or empty
+    std::string procedural;     ///< name, or empty
+    std::string walkClip;       ///< clip to walk with (default: the first)
+    std::string runClip;        ///< clip to run with, or empty
+    std::string idleClip;       ///< clip to stand with, or empty (walk clip held)
+    double walkClipSpeed = 1.4; ///< speed the walk clip was authored for, m/s
+    double runClipSpeed = 3.5;  ///< speed the run clip was authored for, m/s
+};
+
+/// Where a group of actors starts: a rectangle on the ground (centre and size, metres).
+struct AreaDescription {
+    glm::dvec2 center{0.0};
+    glm::dvec2 size{100.0};
+};
+
+/// A group of actors sharing a template and a behaviour.
+struct ActorGroupDescription {
+    std::string name;                    ///< for statistics ("group 0" if not given)
+    std::string templateName;            ///< key into SceneDescription::templates
+    std::int64_t count = 0;              ///< how many
+    std::string behaviour;               ///< "walk", "idle" or "flight"
+    AreaDescription area;                ///< where they start
+    glm::dvec2 speed{1.2, 1.6};          ///< walk: preferred speed range, m/s; flight: airspeed
+    glm::dvec2 altitude{25.0, 40.0};     ///< flight: height range, m
+    glm::ivec2 groupSize{3, 5};          ///< idle: people per group
+    std::vector<double> levels;          ///< behavioural LOD bands (ends, metres); empty: defaults
+    double priority = 1.0;               ///< detail priority
+};
+
+/// Effects that exist only when declared.
+struct EffectsDescription {
+    bool avoidance = false;                ///< local avoidance between walkers
+    bool gaze = false;                     ///< heads and necks turn to look at things
+    std::vector<double> gazeLevels{12.0, 40.0};  ///< gaze bands: eyes-and-neck precise, then neck only
+    double gazeRange = 10.0;               ///< how far people notice others, m
+};
+
+/// A key of the camera path.
+struct CameraKey {
+    double time = 0.0;                     ///< seconds
+    glm::dvec3 eye{0.0, 30.0, 60.0};       ///< position
+    glm::dvec3 target{0.0};                ///< looked-at point
+};
+
+/// The camera.
+struct CameraDescription {
+    double fovDegrees = 60.0;
+    double nearDistance = 0.1;
+    double farDistance = 1500.0;
+    std::vector<CameraKey> path;           ///< keys in time order (linear between them; held after the last)
+};
+
+/// Distances choosing how actors are drawn.
+struct RepresentationDescription {
+    double impostorDistance = 0.0;         ///< beyond it, impostors (0: never)
+    double hysteresis = 0.1;               ///< fraction of the distance kept before switching back
+    double lodScale = 1.0;                 ///< multiplies every LOD distance
+};
+
+/// A whole scene.
+struct SceneDescription {
+    std::string name;
+    std::uint64_t seed = 1;
+    double step = 1.0 / 60.0;                              ///< simulation step, seconds
+    std::optional<TownDescription> town;                   ///< none: a flat ground
+    std::map<std::string, TemplateDescription> templates;
+    std::vector<ActorGroupDescription> actors;
+    EffectsDescription effects;
+    RepresentationDescription representation;
+    CameraDescription camera;
+    std::string baseDirectory;                             ///< paths in the file are relative to it
+};
+
+}  // namespace throng::sim

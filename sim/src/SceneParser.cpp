@@ -1,0 +1,296 @@
+#include "throng/sim/SceneParser.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "throng/sim/SceneError.h"
+
+namespace throng::sim {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Reads values at a JSON path, turning every problem into a SceneError naming the path.
+class Reader {
+public:
+    Reader(const json& value, std::string path, const std::string& file) : v_(value), path_(std::move(path)), file_(file) {}
+
+    [[noreturn]] void fail(const std::string& reason) const { throw SceneError(file_, path_, reason); }
+    const std::string& path() const { return path_; }
+    const json& value() const { return v_; }
+    bool has(const char* key) const { return v_.contains(key); }
+
+    Reader at(const char* key) const {
+        if (!v_.contains(key)) Reader(v_, path_ + "/" + key, file_).fail("is missing");
+        return Reader(v_.at(key), path_ + "/" + key, file_);
+    }
+    Reader at(std::size_t i) const { return Reader(v_.at(i), path_ + "/" + std::to_string(i), file_); }
+
+    // Must be an object (of any keys).
+    void anyObject() const {
+        if (!v_.is_object()) fail("must be an object, got " + typeName());
+    }
+    // Must be an object whose keys are all in `allowed`.
+    void object(std::initializer_list<const char*> allowed) const {
+        anyObject();
+        const std::set<std::string> keys(allowed.begin(), allowed.end());
+        for (auto it = v_.begin(); it != v_.end(); ++it)
+            if (!keys.count(it.key())) Reader(it.value(), path_ + "/" + it.key(), file_).fail("is not a known field");
+    }
+    std::size_t array() const {
+        if (!v_.is_array()) fail("must be an array, got " + typeName());
+        return v_.size();
+    }
+    double number() const {
+        if (!v_.is_number()) fail("must be a number, got " + typeName());
+        const double d = v_.get<double>();
+        if (!std::isfinite(d)) fail("must be finite");
+        return d;
+    }
+    double positive() const {
+        const double d = number();
+        if (!(d > 0.0)) fail("must be positive, got " + fmt(d));
+        return d;
+    }
+    std::int64_t integer() const {
+        if (!v_.is_number_integer()) fail("must be an integer, got " + typeName());
+        return v_.get<std::int64_t>();
+    }
+    std::int64_t atLeast(std::int64_t lo) const {
+        const std::int64_t i = integer();
+        if (i < lo) fail("must be at least " + std::to_string(lo) + ", got " + std::to_string(i));
+        return i;
+    }
+    bool boolean() const {
+        if (!v_.is_boolean()) fail("must be true or false, got " + typeName());
+        return v_.get<bool>();
+    }
+    std::string string() const {
+        if (!v_.is_string()) fail("must be a string, got " + typeName());
+        return v_.get<std::string>();
+    }
+    template <int N>
+    glm::vec<N, double> vec() const {
+        if (array() != N) fail("must be an array of " + std::to_string(N) + " numbers");
+        glm::vec<N, double> out;
+        for (int i = 0; i < N; ++i) out[i] = at(std::size_t(i)).number();
+        return out;
+    }
+    // A [min, max] range with 0 < min <= max.
+    glm::dvec2 range() const {
+        const glm::dvec2 r = vec<2>();
+        if (!(r.x > 0.0) || r.y < r.x) fail("must be [min, max] with 0 < min <= max");
+        return r;
+    }
+
+private:
+    std::string typeName() const { return v_.is_null() ? "null" : v_.type_name(); }
+    static std::string fmt(double d) {
+        std::ostringstream s;
+        s << d;
+        return s.str();
+    }
+    const json& v_;
+    std::string path_;
+    const std::string& file_;
+};
+
+std::vector<double> levelEnds(const Reader& r) {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < r.array(); ++i) {
+        out.push_back(r.at(i).positive());
+        if (i > 0 && out[i] <= out[i - 1]) r.at(i).fail("level ends must increase");
+    }
+    return out;
+}
+
+std::string existingFile(const Reader& r, const std::string& base, bool directory) {
+    const std::string p = r.string();
+    if (p.empty()) r.fail("must not be empty");
+    const fs::path full = fs::path(base) / p;
+    std::error_code ec;
+    if (directory ? !fs::is_directory(full, ec) : !fs::is_regular_file(full, ec))
+        r.fail(std::string(directory ? "folder" : "file") + " '" + full.lexically_normal().string() + "' does not exist");
+    return full.lexically_normal().string();
+}
+
+const char* kProcedural[] = {"seed-humanoid", "table3", "bird"};
+
+}  // namespace
+
+SceneDescription parseScene(const std::string& text, const std::string& baseDirectory, const std::string& file) {
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // Say where, as a line and column, not just a byte offset.
+        std::size_t line = 1, column = 1;
+        for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+            if (text[i] == '\n') ++line, column = 1;
+            else ++column;
+        }
+        throw SceneError(file, "", "is not valid JSON (line " + std::to_string(line) + ", column " + std::to_string(column) + ")");
+    }
+    const Reader root(doc, "", file);
+    root.object({"name", "seed", "step", "town", "templates", "actors", "effects", "representation", "camera"});
+    SceneDescription s;
+    s.baseDirectory = baseDirectory;
+    if (root.has("name")) s.name = root.at("name").string();
+    if (root.has("seed")) s.seed = static_cast<std::uint64_t>(root.at("seed").atLeast(0));
+    if (root.has("step")) {
+        s.step = root.at("step").positive();
+        if (s.step > 0.5) root.at("step").fail("must be at most 0.5 s");
+    }
+
+    if (root.has("town")) {
+        const Reader t = root.at("town");
+        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles"});
+        TownDescription town;
+        if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
+        if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
+        if (t.has("blockTiles")) town.blockTiles = int(t.at("blockTiles").atLeast(1));
+        if (t.has("tileSize")) town.tileSize = t.at("tileSize").positive();
+        if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
+        town.tiles = existingFile(t.at("tiles"), baseDirectory, true);
+        for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
+            if (!fs::is_regular_file(fs::path(town.tiles) / needed))
+                t.at("tiles").fail("has no '" + std::string(needed) + "'");
+        if (town.blocksX * town.blocksZ * (town.blockTiles + 1) * (town.blockTiles + 1) > 250000)
+            t.fail("is too large (more than 250,000 tiles)");
+        s.town = town;
+    }
+
+    const Reader templates = root.at("templates");
+    templates.anyObject();  // its keys are template names
+    for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
+        const Reader t(it.value(), "/templates/" + it.key(), file);
+        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed"});
+        TemplateDescription d;
+        if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
+        if (t.has("gltf")) d.gltf = existingFile(t.at("gltf"), baseDirectory, false);
+        if (t.has("procedural")) {
+            d.procedural = t.at("procedural").string();
+            if (std::find(std::begin(kProcedural), std::end(kProcedural), d.procedural) == std::end(kProcedural))
+                t.at("procedural").fail("'" + d.procedural + "' is not a procedural template (seed-humanoid, table3, bird)");
+        }
+        if (t.has("walkClip")) d.walkClip = t.at("walkClip").string();
+        if (t.has("runClip")) d.runClip = t.at("runClip").string();
+        if (t.has("idleClip")) d.idleClip = t.at("idleClip").string();
+        if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").positive();
+        if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").positive();
+        if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
+        s.templates[it.key()] = d;
+    }
+    if (s.templates.empty()) templates.fail("must declare at least one template");
+
+    const Reader actors = root.at("actors");
+    for (std::size_t i = 0; i < actors.array(); ++i) {
+        const Reader a = actors.at(i);
+        a.object({"name", "template", "count", "behaviour", "area", "speed", "altitude", "groupSize", "levels", "priority"});
+        ActorGroupDescription g;
+        g.name = a.has("name") ? a.at("name").string() : "group " + std::to_string(i);
+        g.templateName = a.at("template").string();
+        if (!s.templates.count(g.templateName)) a.at("template").fail("names no declared template ('" + g.templateName + "')");
+        g.count = a.at("count").atLeast(0);
+        if (g.count > 2'000'000) a.at("count").fail("is more than 2,000,000");
+        g.behaviour = a.at("behaviour").string();
+        if (g.behaviour != "walk" && g.behaviour != "idle" && g.behaviour != "flight")
+            a.at("behaviour").fail("'" + g.behaviour + "' is not a behaviour (walk, idle, flight)");
+        if (a.has("area")) {
+            const Reader area = a.at("area");
+            area.object({"center", "size"});
+            if (area.has("center")) g.area.center = area.at("center").vec<2>();
+            if (area.has("size")) {
+                g.area.size = area.at("size").vec<2>();
+                if (!(g.area.size.x > 0 && g.area.size.y > 0)) area.at("size").fail("must be positive");
+            }
+        }
+        if (a.has("speed")) g.speed = a.at("speed").range();
+        if (a.has("altitude")) g.altitude = a.at("altitude").range();
+        if (a.has("groupSize")) {
+            const glm::dvec2 gs = a.at("groupSize").range();
+            if (gs.x != std::floor(gs.x) || gs.y != std::floor(gs.y)) a.at("groupSize").fail("must be whole numbers");
+            g.groupSize = glm::ivec2(gs);
+        }
+        if (a.has("levels")) g.levels = levelEnds(a.at("levels"));
+        if (a.has("priority")) g.priority = a.at("priority").positive();
+        if (g.behaviour == "walk" && !s.town) a.at("behaviour").fail("'walk' needs a town to walk in");
+        s.actors.push_back(g);
+    }
+
+    if (root.has("effects")) {
+        const Reader e = root.at("effects");
+        e.object({"avoidance", "gaze"});
+        if (e.has("avoidance")) s.effects.avoidance = e.at("avoidance").boolean();
+        if (e.has("gaze")) {
+            const Reader g = e.at("gaze");
+            if (g.value().is_boolean()) {
+                s.effects.gaze = g.boolean();
+            } else {
+                g.object({"levels", "range"});
+                s.effects.gaze = true;
+                if (g.has("levels")) s.effects.gazeLevels = levelEnds(g.at("levels"));
+                if (g.has("range")) s.effects.gazeRange = g.at("range").positive();
+            }
+        }
+    }
+
+    if (root.has("representation")) {
+        const Reader r = root.at("representation");
+        r.object({"impostorDistance", "hysteresis", "lodScale"});
+        if (r.has("impostorDistance")) {
+            s.representation.impostorDistance = r.at("impostorDistance").number();
+            if (s.representation.impostorDistance < 0) r.at("impostorDistance").fail("must not be negative");
+        }
+        if (r.has("hysteresis")) {
+            s.representation.hysteresis = r.at("hysteresis").number();
+            if (s.representation.hysteresis < 0 || s.representation.hysteresis > 0.5) r.at("hysteresis").fail("must be in [0, 0.5]");
+        }
+        if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").positive();
+    }
+
+    if (root.has("camera")) {
+        const Reader c = root.at("camera");
+        c.object({"fov", "near", "far", "path"});
+        if (c.has("fov")) {
+            s.camera.fovDegrees = c.at("fov").positive();
+            if (s.camera.fovDegrees >= 180.0) c.at("fov").fail("must be below 180 degrees");
+        }
+        if (c.has("near")) s.camera.nearDistance = c.at("near").positive();
+        if (c.has("far")) s.camera.farDistance = c.at("far").positive();
+        if (s.camera.farDistance <= s.camera.nearDistance) c.fail("far must exceed near");
+        if (c.has("path")) {
+            const Reader path = c.at("path");
+            for (std::size_t i = 0; i < path.array(); ++i) {
+                const Reader k = path.at(i);
+                k.object({"time", "eye", "target"});
+                CameraKey key;
+                key.time = k.at("time").number();
+                key.eye = k.at("eye").vec<3>();
+                key.target = k.at("target").vec<3>();
+                if (glm::length(key.target - key.eye) < 1e-6) k.at("target").fail("must differ from eye");
+                if (i > 0 && key.time <= s.camera.path.back().time) k.at("time").fail("times must increase");
+                s.camera.path.push_back(key);
+            }
+        }
+    }
+    return s;
+}
+
+SceneDescription parseSceneFile(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw SceneError(path, "", "cannot be read");
+    std::stringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), fs::path(path).parent_path().string(), path);
+}
+
+}  // namespace throng::sim

@@ -1,0 +1,142 @@
+// Scene files: a valid one parses into what it says; every malformed one (wrong types, missing
+// fields, unknown keys and behaviours, negative counts, missing assets) gives a SceneError with
+// the JSON path of the problem.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "throng/sim/SceneError.h"
+#include "throng/sim/SceneParser.h"
+
+using namespace throng::sim;
+
+namespace {
+
+const std::string kAssets = THRONG_SHARED_ASSETS;
+
+// A valid scene; `patch` replaces one piece of it to break it.
+std::string scene(const std::string& actors, const std::string& extra = "") {
+    return R"({
+  "name": "test",
+  "seed": 3,
+  "town": {"blocksX": 2, "blocksZ": 2, "tiles": "town/kenney_city_builder"},
+  "templates": {
+    "cesium": {"gltf": "characters/CesiumMan.glb", "walkClipSpeed": 1.3},
+    "person": {"procedural": "seed-humanoid", "walkClip": "walk"}
+  },
+  "actors": )" + actors + extra + R"(
+})";
+}
+
+const std::string kActors = R"([
+    {"template": "cesium", "count": 100, "behaviour": "walk", "speed": [1.1, 1.5]},
+    {"template": "person", "count": 12, "behaviour": "idle", "groupSize": [3, 4], "levels": [20, 60]}
+  ])";
+
+}  // namespace
+
+TEST(SceneParser, AValidSceneSaysWhatItDeclares) {
+    const SceneDescription s = parseScene(scene(kActors, R"(,
+  "effects": {"avoidance": true, "gaze": {"levels": [10, 30], "range": 6}},
+  "representation": {"impostorDistance": 90, "hysteresis": 0.2},
+  "camera": {"fov": 50, "path": [{"time": 0, "eye": [0, 20, 40], "target": [0, 0, 0]}, {"time": 10, "eye": [40, 20, 0], "target": [0, 0, 0]}]})"),
+                                          kAssets);
+    EXPECT_EQ(s.name, "test");
+    EXPECT_EQ(s.seed, 3u);
+    ASSERT_TRUE(s.town.has_value());
+    EXPECT_EQ(s.town->blocksX, 2);
+    EXPECT_EQ(s.templates.size(), 2u);
+    EXPECT_NE(s.templates.at("cesium").gltf.find("CesiumMan.glb"), std::string::npos);
+    EXPECT_DOUBLE_EQ(s.templates.at("cesium").walkClipSpeed, 1.3);
+    ASSERT_EQ(s.actors.size(), 2u);
+    EXPECT_EQ(s.actors[0].count, 100);
+    EXPECT_EQ(s.actors[1].behaviour, "idle");
+    EXPECT_EQ(s.actors[1].groupSize.y, 4);
+    EXPECT_EQ(s.actors[1].levels, (std::vector<double>{20, 60}));
+    EXPECT_TRUE(s.effects.avoidance);
+    EXPECT_TRUE(s.effects.gaze);
+    EXPECT_DOUBLE_EQ(s.effects.gazeRange, 6.0);
+    EXPECT_DOUBLE_EQ(s.representation.impostorDistance, 90.0);
+    ASSERT_EQ(s.camera.path.size(), 2u);
+    EXPECT_DOUBLE_EQ(s.camera.path[1].eye.x, 40.0);
+    // Effects not declared stay off.
+    const SceneDescription plain = parseScene(scene(kActors), kAssets);
+    EXPECT_FALSE(plain.effects.avoidance);
+    EXPECT_FALSE(plain.effects.gaze);
+}
+
+struct BadScene {
+    const char* what;
+    std::string text;
+    const char* path;
+    const char* reason;
+};
+
+class SceneParserErrors : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneParserErrors, NamesThePathAndTheReason) {
+    const BadScene& b = GetParam();
+    try {
+        parseScene(b.text, kAssets, "scene.json");
+        FAIL() << b.what << ": accepted";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.path(), b.path) << b.what << ": " << e.what();
+        EXPECT_NE(e.reason().find(b.reason), std::string::npos) << b.what << ": " << e.what();
+        EXPECT_NE(std::string(e.what()).find("scene.json"), std::string::npos);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MalformedScenes, SceneParserErrors,
+    ::testing::Values(
+        BadScene{"not JSON", "{\"actors\": [1, 2,,]}", "", "line 1"},
+        BadScene{"count of the wrong type", scene(R"([{"template": "cesium", "count": "many", "behaviour": "walk"}])"),
+                 "/actors/0/count", "must be an integer"},
+        BadScene{"negative count", scene(R"([{"template": "cesium", "count": -5, "behaviour": "walk"}])"), "/actors/0/count",
+                 "at least 0"},
+        BadScene{"missing behaviour", scene(R"([{"template": "cesium", "count": 5}])"), "/actors/0/behaviour", "missing"},
+        BadScene{"unknown behaviour", scene(R"([{"template": "cesium", "count": 5, "behaviour": "dance"}])"),
+                 "/actors/0/behaviour", "'dance' is not a behaviour"},
+        BadScene{"unknown template", scene(R"([{"template": "robot", "count": 5, "behaviour": "walk"}])"),
+                 "/actors/0/template", "no declared template"},
+        BadScene{"unknown field", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "colour": 3}])"),
+                 "/actors/0/colour", "not a known field"},
+        BadScene{"actors not an array", scene(R"({"template": "cesium"})"), "/actors", "must be an array"},
+        BadScene{"bad speed range", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "speed": [2, 1]}])"),
+                 "/actors/0/speed", "0 < min <= max"},
+        BadScene{"levels not increasing", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "levels": [30, 20]}])"),
+                 "/actors/0/levels/1", "must increase"},
+        BadScene{"missing asset",
+                 R"({"templates": {"x": {"gltf": "characters/NoSuchMan.glb"}}, "actors": []})", "/templates/x/gltf",
+                 "does not exist"},
+        BadScene{"missing tiles folder",
+                 R"({"town": {"tiles": "town/nowhere"}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/tiles", "does not exist"},
+        BadScene{"unknown procedural template", R"({"templates": {"x": {"procedural": "dragon"}}, "actors": []})",
+                 "/templates/x/procedural", "not a procedural template"},
+        BadScene{"template with both sources",
+                 R"({"templates": {"x": {"procedural": "bird", "gltf": "characters/Fox.glb"}}, "actors": []})", "/templates/x",
+                 "exactly one"},
+        BadScene{"no templates", R"({"templates": {}, "actors": []})", "/templates", "at least one"},
+        BadScene{"missing actors", R"({"templates": {"x": {"procedural": "bird"}}})", "/actors", "missing"},
+        BadScene{"unknown top-level key", R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "weather": 1})",
+                 "/weather", "not a known field"},
+        BadScene{"walkers without a town",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [{"template": "x", "count": 1, "behaviour": "walk"}]})",
+                 "/actors/0/behaviour", "needs a town"},
+        BadScene{"bad gaze type", scene(kActors, R"(, "effects": {"gaze": 3})"), "/effects/gaze", "must be an object"},
+        BadScene{"camera times not increasing",
+                 scene(kActors, R"(, "camera": {"path": [{"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}, {"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
+                 "/camera/path/1/time", "must increase"},
+        BadScene{"hysteresis out of range", scene(kActors, R"(, "representation": {"hysteresis": 0.9})"),
+                 "/representation/hysteresis", "[0, 0.5]"}),
+    [](const auto& param) {
+        std::string name = param.param.what;
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return name;
+    });
+
+TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }
