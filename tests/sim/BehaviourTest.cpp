@@ -1,0 +1,194 @@
+// Flock, gaze and idle groups: birds stay over their area and band; gazing people turn neck and
+// head towards someone within limits, only as near as their bands allow; and everything is
+// deterministic and counted as the effect it is.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <numbers>
+
+#include "throng/actors/Actor.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/ProceduralBird.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/sim/Flock.h"
+#include "throng/sim/GazeLayer.h"
+#include "throng/sim/IdleGroups.h"
+#include "throng/sim/SimulationClock.h"
+
+using namespace throng;
+using namespace throng::sim;
+
+namespace {
+
+Camera overview() {
+    Camera c;
+    c.setPerspective(1.2, 1.5, 0.1, 1000.0);
+    c.setLookAt(Vec3(0, 60, 120), Vec3(0.0), Vec3(0, 1, 0));
+    return c;
+}
+
+struct Birds {
+    EffectCounters counters;
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<Flock> flock;
+};
+
+std::unique_ptr<Birds> birds(int n) {
+    auto b = std::make_unique<Birds>();
+    Flock::Settings s;
+    s.size = glm::dvec2(120.0);
+    b->flock = std::make_shared<Flock>(s, std::vector<double>{60.0, 1e9}, &b->counters);
+    static const auto bird = makeProceduralBird();
+    for (int i = 0; i < n; ++i)
+        b->root->addChild(b->crowd.makeActorNode(
+            b->crowd.add(bird, b->flock, b->flock->addBird({bird, 0, std::uint64_t(i)}))));
+    return b;
+}
+
+}  // namespace
+
+TEST(Flock, BirdsStayOverTheirAreaAndBandAndAreDeterministic) {
+    auto one = birds(150), two = birds(150);
+    ActorProcessor p1(one->crowd), p2(two->crowd);
+    p2.setThreads(2);
+    SimulationClock clock;
+    for (int f = 0; f < 1200; ++f, clock.advance()) {
+        p1.processFrame(*one->root, overview(), clock.time());
+        p2.processFrame(*two->root, overview(), clock.time());
+    }
+    for (std::uint32_t i = 0; i < 150; ++i) {
+        const glm::dvec3 p = one->flock->position(i);
+        EXPECT_LT(std::abs(p.x), 60.0 + 25.0) << i;
+        EXPECT_LT(std::abs(p.z), 60.0 + 25.0) << i;
+        EXPECT_GT(p.y, 25.0 - 10.0) << i;
+        EXPECT_LT(p.y, 40.0 + 10.0) << i;
+        EXPECT_EQ(p, two->flock->position(i)) << "threads change nothing";
+    }
+    EXPECT_EQ(one->counters.of("flight").constructed, 1u);
+    EXPECT_EQ(one->counters.of("flight").ticks, 150u * 1199u);
+    EXPECT_THROW(one->flock->addBird({makeProceduralBird(), 0, 999}), std::invalid_argument) << "after the start";
+}
+
+namespace {
+
+// Four seed humanoids standing in a square, facing its centre, posed by `behaviour`.
+struct Group4 {
+    EffectCounters counters;
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<IdleGroups> idle;
+    std::shared_ptr<GazeLayer> gaze;
+    std::vector<ActorId> ids;
+};
+
+std::unique_ptr<Group4> standingGroup(bool gaze, Vec3 where = Vec3(0.0)) {
+    auto g = std::make_unique<Group4>();
+    static const auto humanoid = makeSeedHumanoid();
+    g->idle = std::make_shared<IdleGroups>(std::vector<double>{60.0, 1e9}, &g->counters);
+    if (gaze) {
+        GazeLayer::Settings s;
+        s.levels = {15.0, 40.0};
+        g->gaze = std::make_shared<GazeLayer>(g->idle, s, &g->counters);
+    }
+    for (int k = 0; k < 4; ++k) {
+        const double a = k * std::numbers::pi / 2.0;
+        KeyframeBehaviour::Actor a0;
+        a0.tmpl = humanoid;
+        a0.clip = humanoid->findClip("walk");
+        a0.timeScale = 0.0;  // a held pose: standing
+        a0.position = where + Vec3(1.2 * std::sin(a), 0.0, 1.2 * std::cos(a));
+        a0.heading = a + std::numbers::pi;  // facing the centre
+        std::uint32_t slot = g->idle->addPerson(a0);
+        std::shared_ptr<Behaviour> b = g->idle;
+        if (gaze) {
+            slot = g->gaze->wrap(slot, humanoid, std::uint64_t(k));
+            b = g->gaze;
+        }
+        g->ids.push_back(g->crowd.add(humanoid, b, slot));
+        g->root->addChild(g->crowd.makeActorNode(g->ids.back()));
+    }
+    return g;
+}
+
+Camera at(double distance) {
+    Camera c;
+    c.setPerspective(0.9, 1.5, 0.1, 1000.0);
+    c.setLookAt(Vec3(0, 1.6, distance), Vec3(0, 1.2, 0), Vec3(0, 1, 0));
+    return c;
+}
+
+}  // namespace
+
+TEST(Gaze, PeopleTurnTowardsSomeoneWithinLimitsAndOnlyAsNearAsTheBandsAllow) {
+    auto plain = standingGroup(false), looking = standingGroup(true);
+    ActorProcessor pp(plain->crowd), pl(looking->crowd);
+    const auto humanoid = makeSeedHumanoid();
+    const int neck = humanoid->findNode("neck");
+    std::size_t turned = 0;
+    SimulationClock clock;
+    for (int f = 0; f < 300; ++f, clock.advance()) {
+        pp.processFrame(*plain->root, at(8.0), clock.time());
+        pl.processFrame(*looking->root, at(8.0), clock.time());
+        if (f < 10) continue;
+        for (std::uint32_t k = 0; k < 4; ++k) {
+            const int target = looking->gaze->lookingAt(k);
+            ASSERT_GE(target, 0) << "the others stand within range";
+            ASSERT_NE(target, int(k));
+            const auto a = plain->crowd.dofs(plain->ids[k]), b = looking->crowd.dofs(looking->ids[k]);
+            const std::uint32_t yaw = humanoid->dofValueOffset(std::size_t(neck), 1);  // the neck's vertical axis
+            EXPECT_LE(std::abs(b[yaw]), 1.2f + 1e-6f) << "within the joint limit";
+            turned += std::abs(b[yaw] - a[yaw]) > 0.05f;
+        }
+    }
+    EXPECT_GT(turned, 500u) << "heads turn";
+    EXPECT_EQ(looking->counters.of("gaze").constructed, 1u);
+    EXPECT_EQ(looking->counters.of("gaze").ticks, 4u * 300u);
+    EXPECT_EQ(plain->counters.of("gaze").constructed, 0u) << "not declared, never made";
+    EXPECT_EQ(plain->counters.of("gaze").ticks, 0u);
+    EXPECT_EQ(looking->counters.of("idle").ticks, 4u * 300u);
+    // Beyond the gaze's last band (40 m), nothing turns: every node posed this frame has the
+    // base's values (deactivated nodes keep whatever they last had, and are not drawn).
+    pp.processFrame(*plain->root, at(50.0), clock.time());
+    pl.processFrame(*looking->root, at(50.0), clock.time());
+    for (std::uint32_t k = 0; k < 4; ++k) {
+        const ActorId id = looking->ids[k];
+        std::vector<std::uint8_t> active(humanoid->nodeCount());
+        computeActiveNodes(*humanoid, detailDistanceSquared(looking->crowd.skeletonRoot(id), at(50.0).eye(), 1.0, 1.0f), active);
+        EXPECT_EQ(active[std::size_t(neck)], 0) << "the neck is off at 50 m";
+        const auto a = plain->crowd.dofs(plain->ids[k]), b = looking->crowd.dofs(id);
+        for (std::size_t i = 0; i < humanoid->nodeCount(); ++i) {
+            if (!active[i]) continue;
+            const std::uint32_t end = i + 1 < humanoid->nodeCount() ? humanoid->dofOffset(i + 1) : humanoid->dofValueCount();
+            for (std::uint32_t v = humanoid->dofOffset(i); v < end; ++v)
+                EXPECT_EQ(a[v], b[v]) << "actor " << k << " node " << humanoid->nodes()[i].name;
+        }
+    }
+}
+
+TEST(Gaze, TheSklsrootBsphereGrowsToHoldATurnedHead) {
+    auto plain = standingGroup(false), looking = standingGroup(true);
+    EXPECT_GT(looking->crowd.skeletonRootRadius(0), plain->crowd.skeletonRootRadius(0));
+    // The head stays inside the grown sphere whatever it looks at.
+    ActorProcessor p(looking->crowd);
+    SimulationClock clock;
+    for (int f = 0; f < 400; ++f, clock.advance()) {
+        p.processFrame(*looking->root, at(6.0), clock.time());
+        for (ActorId id : looking->ids) {
+            const ActorTemplate& t = looking->crowd.templateOf(id);
+            std::vector<Affine> model(t.nodeCount());
+            std::vector<BoundingSphere> g(t.nodeCount()), sub(t.nodeCount());
+            computeModelTransforms(t, looking->crowd.dofs(id), {}, model);
+            computeInternalSpheres(t, model, {}, g, sub);
+            for (const BoundingSphere& s : g)
+                if (s.valid()) {
+                    ASSERT_LE(glm::length(s.center()) + s.radius(), looking->crowd.skeletonRootRadius(id));
+                }
+        }
+    }
+}
