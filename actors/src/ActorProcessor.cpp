@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ActorDrawItem.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/AppVisitor.h"
@@ -439,19 +440,10 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         const Mat4& skls = s.sklsWorld[id];
         const double d2 = detail2_[j];
         const bool all = state[j] == kAllVisible;
-        DrawItem item;
-        item.node = cand.node;
-        item.instance = cand.member;
-        item.tint = s.tint[id];
         auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level,
                         const glm::mat4* palette = nullptr, std::size_t paletteSize = 0) {
-            item.drawable = &d;
-            item.worldMatrix = world;
-            item.part = part;
-            item.lodLevel = static_cast<std::uint32_t>(level);
-            item.skinPalette = palette;
-            item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
-            drawList_.add(item, d.primitiveCount());
+            drawList_.add(detail::actorPartItem(cand.node, cand.member, s.tint[id], d, world, part, level, palette, paletteSize),
+                          d.primitiveCount());
             ++stats_.drawItems;
             stats_.primitives += d.primitiveCount();
         };
@@ -460,10 +452,9 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
             const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
             if (lv.drawable && lv.skin >= 0) {
                 const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-                glm::mat4* palette = crowd_.skinPalettes().allocate(skin.joints.size());
-                computeSkinPalette(t, skin, std::span<const Affine>(model_.data() + base, n), active,
-                                   std::span<glm::mat4>(palette, skin.joints.size()), nodeOps);
-                emit(*lv.drawable, &skls, static_cast<std::uint32_t>(n), rootLevel, palette, skin.joints.size());
+                emit(*lv.drawable, &skls, static_cast<std::uint32_t>(n), rootLevel,
+                     detail::skinPaletteOf(crowd_, t, skin, std::span<const Affine>(model_.data() + base, n), active, nodeOps),
+                     skin.joints.size());
             } else if (lv.drawable) {
                 emit(*lv.drawable, &skls, static_cast<std::uint32_t>(n), rootLevel);
             }

@@ -1,5 +1,6 @@
 #include "throng/actors/TraditionalActorProcessing.h"
 
+#include "ActorDrawItem.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/CullVisitor.h"
@@ -108,19 +109,10 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
         if (testEach && visitor.testSphere(w.whole[id], mask) == Containment::Outside) continue;
         if (visitor.testSphere(w.whole[id], mask) == Containment::Outside) continue;
         const Mat4& skls = s.sklsWorld[id];
-        DrawItem item;
-        item.node = &node;
-        item.instance = member;
-        item.tint = s.tint[id];
         auto emit = [&](const Drawable& d, const Mat4* world, std::uint32_t part, int level,
                         const glm::mat4* palette = nullptr, std::size_t paletteSize = 0) {
-            item.drawable = &d;
-            item.worldMatrix = world;
-            item.part = part;
-            item.lodLevel = static_cast<std::uint32_t>(level);
-            item.skinPalette = palette;
-            item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
-            visitor.addDrawItem(item, d.primitiveCount());
+            visitor.addDrawItem(detail::actorPartItem(&node, member, s.tint[id], d, world, part, level, palette, paletteSize),
+                                d.primitiveCount());
         };
         // The actor's own LOD node computes its distance.
         const auto nodes = t.nodes();
@@ -139,11 +131,10 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
                                        leafMask) != Containment::Outside) {
                     if (lv.skin >= 0) {
                         const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-                        glm::mat4* palette = crowd.skinPalettes().allocate(skin.joints.size());
-                        computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {},
-                                           std::span<glm::mat4>(palette, skin.joints.size()),
-                                           tallyFor(c, OpCategory::SkeletonMatrix));
-                        emit(*lv.drawable, &skls, n, level, palette, skin.joints.size());
+                        emit(*lv.drawable, &skls, n, level,
+                             detail::skinPaletteOf(crowd, t, skin, std::span<const Affine>(w.model.data() + base, n), {},
+                                                   tallyFor(c, OpCategory::SkeletonMatrix)),
+                             skin.joints.size());
                     } else {
                         emit(*lv.drawable, &skls, n, level);
                     }

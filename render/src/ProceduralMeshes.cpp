@@ -16,31 +16,6 @@ namespace {
 
 }  // namespace
 
-std::shared_ptr<MeshData> makeBox(const glm::vec3& halfExtents, const glm::vec4& color) {
-    if (!(halfExtents.x > 0 && halfExtents.y > 0 && halfExtents.z > 0))
-        throw std::invalid_argument("makeBox: half extents must be positive and finite");
-    auto mesh = std::make_shared<MeshData>();
-    mesh->name = "box";
-    mesh->baseColor = color;
-    struct Face {
-        glm::vec3 n, u, v;  // u x v = n: corners in u, v order are counter-clockwise from outside
-    };
-    const Face faces[6] = {{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-                           {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-                           {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
-    const glm::vec2 corner[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (const Face& f : faces) {
-        const auto base = static_cast<std::uint32_t>(mesh->positions.size());
-        for (const glm::vec2& c : corner) {
-            mesh->positions.push_back((f.n + c.x * f.u + c.y * f.v) * halfExtents);
-            mesh->normals.push_back(f.n);
-            mesh->texcoords.emplace_back(0.5f * (c.x + 1.0f), 0.5f * (1.0f - c.y));
-        }
-        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) mesh->indices.push_back(base + i);
-    }
-    return mesh;
-}
-
 std::shared_ptr<MeshData> makeQuad(float width, float height, std::shared_ptr<const Image> texture, const glm::vec4& color) {
     if (!(width > 0 && height > 0)) throw std::invalid_argument("makeQuad: width and height must be positive and finite");
     auto mesh = std::make_shared<MeshData>();

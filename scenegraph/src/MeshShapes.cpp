@@ -43,24 +43,23 @@ std::shared_ptr<MeshData> makeBox(std::string name, const glm::vec3& c, const gl
     auto m = std::make_shared<MeshData>();
     m->name = std::move(name);
     m->baseColor = color;
-    for (int axis = 0; axis < 3; ++axis)
-        for (float sign : {-1.0f, 1.0f}) {
-            glm::vec3 n(0.0f);
-            n[axis] = sign;
-            const glm::vec3 u = axis == 0 ? glm::vec3(0, 0, sign) : axis == 1 ? glm::vec3(sign, 0, 0) : glm::vec3(-sign, 0, 0);
-            const glm::vec3 v = axis == 1 ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-            const auto first = static_cast<std::uint32_t>(m->positions.size());
-            for (int k = 0; k < 4; ++k) {
-                const float su = (k == 1 || k == 2) ? 1.0f : -1.0f, sv = k >= 2 ? 1.0f : -1.0f;
-                m->positions.push_back(c + h * (n + su * u + sv * v));
-                m->normals.push_back(n);
-                m->texcoords.emplace_back(0.5f + 0.5f * su, 0.5f + 0.5f * sv);
-            }
-            // Wind counter-clockwise seen from outside.
-            const bool flip = glm::dot(glm::cross(u, v), n) < 0.0f;
-            if (!flip) m->indices.insert(m->indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
-            else m->indices.insert(m->indices.end(), {first, first + 2, first + 1, first, first + 3, first + 2});
+    struct Face {
+        glm::vec3 n, u, v;  // u x v = n: corners in u, v order are counter-clockwise from outside
+    };
+    const Face faces[6] = {{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                           {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+                           {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}}};
+    const glm::vec2 corner[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const Face& f : faces) {
+        const auto base = static_cast<std::uint32_t>(m->positions.size());
+        for (const glm::vec2& k : corner) {
+            m->positions.push_back(c + (f.n + k.x * f.u + k.y * f.v) * h);
+            m->normals.push_back(f.n);
+            // The image's top row at the top of each side face.
+            m->texcoords.emplace_back(0.5f * (k.x + 1.0f), 0.5f * (1.0f - k.y));
         }
+        for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m->indices.push_back(base + i);
+    }
     return m;
 }
 

@@ -66,7 +66,7 @@ TEST(ContextTest, WindowRendersLikeHeadless) {
     }
     EXPECT_FALSE(window->headless());
     test::Scene scene;
-    scene.add(test::drawable(makeBox(glm::vec3(0.5f), glm::vec4(0.2f, 0.6f, 0.9f, 1.0f))),
+    scene.add(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.5f), glm::vec4(0.2f, 0.6f, 0.9f, 1.0f))),
               glm::rotate(Mat4(1.0), 0.7, Vec3(0.3, 1, 0)));
     const Camera camera = test::makeCamera(Vec3(0, 0.5, 3), Vec3(0.0));
     GlRenderer onScreen(window);

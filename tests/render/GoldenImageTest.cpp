@@ -54,7 +54,7 @@ TEST_F(GoldenImageTest, LitCube) {
     test::Scene scene;
     Mat4 world = glm::rotate(Mat4(1.0), 0.6, Vec3(0, 1, 0));
     world = glm::rotate(world, 0.35, Vec3(1, 0, 0));
-    scene.add(test::drawable(makeBox(glm::vec3(0.6f), glm::vec4(0.9f, 0.45f, 0.15f, 1.0f))), world);
+    scene.add(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.6f), glm::vec4(0.9f, 0.45f, 0.15f, 1.0f))), world);
     const Image image = test::renderFrame(renderer, test::makeCamera(Vec3(0, 0.6, 3.0), Vec3(0.0)), scene);
     EXPECT_EQ(renderer.statistics().drawCalls, 1u);
     EXPECT_EQ(renderer.statistics().triangles, 12u);
@@ -134,7 +134,7 @@ TEST_F(GoldenImageTest, EightInfluenceTube) {
 
 TEST_F(GoldenImageTest, InstancedClonesInOneDrawCall) {
     GlRenderer renderer(context);
-    auto box = test::drawable(makeBox(glm::vec3(0.3f)));
+    auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.3f)));
     test::Scene scene;
     for (int i = 0; i < 9; ++i) {
         const int gx = i % 3 - 1, gy = i / 3 - 1;

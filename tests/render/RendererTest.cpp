@@ -39,8 +39,8 @@ std::string errorOf(F&& f) {
 
 // Boxes and skinned tubes of two meshes, interleaved in the list, placed around `origin`.
 void buildMixedScene(test::Scene& scene, const Vec3& origin) {
-    static const auto box = test::drawable(makeBox(glm::vec3(0.25f), glm::vec4(0.8f, 0.7f, 0.3f, 1.0f)));
-    static const auto cube = test::drawable(makeBox(glm::vec3(0.15f), glm::vec4(0.3f, 0.7f, 0.8f, 1.0f)));
+    static const auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.25f), glm::vec4(0.8f, 0.7f, 0.3f, 1.0f)));
+    static const auto cube = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.15f), glm::vec4(0.3f, 0.7f, 0.8f, 1.0f)));
     SkinnedTubeOptions options;
     options.joints = 3;
     options.height = 1.2f;
@@ -103,7 +103,7 @@ TEST_F(RendererTest, CameraRelativeRenderingFarFromTheOrigin) {
 // from the x = 0 plane, a box mirrored in x looks exactly like the box.
 TEST_F(RendererTest, MirroredItemsAreNotDrawnInsideOut) {
     GlRenderer renderer(context);
-    const auto box = test::drawable(makeBox(glm::vec3(0.5f, 0.4f, 0.3f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f)));
+    const auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.5f, 0.4f, 0.3f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f)));
     const Mat4 tilt = glm::rotate(Mat4(1.0), 0.4, Vec3(1, 0, 0));
     test::Scene plain, mirrored, both;
     plain.add(box, tilt);
@@ -151,7 +151,7 @@ TEST_F(RendererTest, OtherDrawablesAreSkippedAndCounted) {
     GlRenderer renderer(context);
     test::Scene scene;
     scene.add(std::make_shared<Drawable>("bare", BoundingSphere(Vec3(0.0), 1.0), 12), Mat4(1.0));
-    scene.add(test::drawable(makeBox(glm::vec3(0.5f))), Mat4(1.0));
+    scene.add(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.5f))), Mat4(1.0));
     test::renderFrame(renderer, test::makeCamera(Vec3(0, 0, 3), Vec3(0.0)), scene);
     EXPECT_EQ(renderer.statistics().skippedItems, 1u);
     EXPECT_EQ(renderer.statistics().instances, 1u);
@@ -208,7 +208,7 @@ TEST_F(RendererTest, DrawsAFrameOfTraditionalProcessing) {
         TransformDofs dofs;
         dofs.translation = Vec3(-1.2 + 1.2 * i, 0, 0);
         t->setDofs(dofs);
-        t->addChild(std::make_shared<Geometry>(test::drawable(makeBox(glm::vec3(0.4f)))));
+        t->addChild(std::make_shared<Geometry>(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.4f)))));
         root->addChild(t);
     }
     GlRenderer renderer(context);
@@ -223,7 +223,7 @@ TEST_F(RendererTest, TwoContextsInOneProcess) {
     auto other = std::make_shared<OsMesaContext>(kWidth, kHeight);
     GlRenderer first(context), second(other);
     test::Scene scene;
-    scene.add(test::drawable(makeBox(glm::vec3(0.5f))), glm::rotate(Mat4(1.0), 0.5, Vec3(0, 1, 0)));
+    scene.add(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.5f))), glm::rotate(Mat4(1.0), 0.5, Vec3(0, 1, 0)));
     const Camera camera = test::makeCamera(Vec3(0, 1, 3), Vec3(0.0));
     const Image a = test::renderFrame(first, camera, scene);
     const Image b = test::renderFrame(second, camera, scene);
@@ -241,7 +241,7 @@ TEST_F(RendererTest, ShortPaletteIsRejectedBeforeDrawing) {
     mesh->name = "four-joint tube";
     const std::vector<glm::mat4> palette(3, glm::mat4(1.0f));
     test::Scene scene;
-    scene.add(test::drawable(makeBox(glm::vec3(0.5f))), Mat4(1.0));
+    scene.add(test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.5f))), Mat4(1.0));
     scene.add(test::drawable(mesh), Mat4(1.0), glm::vec4(1.0f), &palette);
     renderer.beginFrame(test::makeCamera(Vec3(0, 0, 3), Vec3(0.0)));
     const std::string what = errorOf([&] { renderer.draw(scene.list()); });
@@ -277,7 +277,7 @@ TEST_F(RendererTest, MisuseIsAClearError) {
     EXPECT_NE(errorOf([&] { renderer.draw(scene.list()); }).find("outside beginFrame"), std::string::npos);
     EXPECT_THROW(renderer.endFrame(), std::logic_error);
     DrawList list;
-    auto box = test::drawable(makeBox(glm::vec3(1.0f)));
+    auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(1.0f)));
     DrawItem item;
     item.drawable = box.get();  // but no world matrix
     list.add(item, 12);

@@ -189,7 +189,7 @@ TEST_F(SkinningTest, ShortPaletteIsAnErrorOnBothPaths) {
 }
 
 TEST_F(SkinningTest, BadOutputsAndUnskinnedMeshesAreErrors) {
-    const auto box = makeBox(glm::vec3(1.0f));
+    const auto box = makeBox("box", glm::vec3(0.0f), glm::vec3(1.0f));
     std::vector<glm::vec3> out(box->vertexCount());
     const std::vector<glm::mat4> palette(1, glm::mat4(1.0f));
     EXPECT_THROW(skinMesh(*box, palette, out, {}), std::invalid_argument);

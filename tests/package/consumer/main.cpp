@@ -19,7 +19,7 @@ int main() {
     TransformDofs dofs;
     dofs.translation = Vec3(0, 0, -10);
     root->setDofs(dofs);
-    root->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(makeBox(glm::vec3(1.0f)))));
+    root->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(makeBox("box", glm::vec3(0.0f), glm::vec3(1.0f)))));
     Camera camera;
     TraditionalProcessor processor;
     processor.processFrame(*root, camera, 0.0);

@@ -1,6 +1,6 @@
 #pragma once
-// Procedural test and debug geometry: boxes, quads, checker textures and skinned tubes with a
-// bending pose, so tests and benchmarks need no asset files.
+// Procedural test and debug geometry: quads, checker textures and skinned tubes with a bending pose,
+// so tests and benchmarks need no asset files (boxes, capsules and spheres: scenegraph/MeshShapes.h).
 
 #include <memory>
 #include <vector>
@@ -12,12 +12,9 @@
 
 #include "throng/scenegraph/Image.h"
 #include "throng/scenegraph/MeshData.h"
+#include "throng/scenegraph/MeshShapes.h"
 
 namespace throng {
-
-/// A box centred on the origin: 24 vertices with face normals and per-face texture coordinates
-/// (the image's top row at the top of each side face), counter-clockwise from outside.
-std::shared_ptr<MeshData> makeBox(const glm::vec3& halfExtents, const glm::vec4& color = glm::vec4(1.0f));
 
 /// A `width` x `height` quad in the XY plane facing +Z, centred on the origin; texture coordinate
 /// (0,0) is its top-left corner, so the image appears upright.

@@ -12,7 +12,9 @@
 
 namespace throng {
 
-/// An axis-aligned box centred on `center` with half sizes `halfExtents` (12 triangles).
+/// An axis-aligned box centred on `center` with half sizes `halfExtents`: 24 vertices with face
+/// normals and per-face texture coordinates (the image's top row at the top of each side face),
+/// counter-clockwise from outside (12 triangles).
 std::shared_ptr<MeshData> makeBox(std::string name, const glm::vec3& center, const glm::vec3& halfExtents,
                                   const glm::vec4& color = glm::vec4(1.0f));
 /// A capsule along +Y from `base` (a cylinder of `radius` and `length` with hemispherical caps),
