@@ -48,7 +48,7 @@ struct ActorGroupDescription {
     std::int64_t count = 0;              ///< how many
     std::string behaviour;               ///< "walk", "idle" or "flight"
     AreaDescription area;                ///< where they start
-    glm::dvec2 speed{1.2, 1.6};          ///< walk: preferred speed range, m/s; flight: airspeed
+    std::optional<glm::dvec2> speed;     ///< walk: preferred speed range (default 1.2-1.6 m/s); flight: airspeed (6-11)
     glm::dvec2 altitude{25.0, 40.0};     ///< flight: height range, m
     glm::ivec2 groupSize{3, 5};          ///< idle: people per group
     std::vector<double> levels;          ///< behavioural LOD bands (ends, metres); empty: defaults

@@ -1,0 +1,81 @@
+#pragma once
+// A scene file's world, built and ready to step: the town and its navigation mesh, the actor
+// templates, the actors with their behaviours, and the effects the file declares — only those.
+// Problems found while building (a clip that does not exist, a glTF file that does not load)
+// are SceneErrors naming the JSON path they come from.
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "throng/actors/Crowd.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/sim/CameraPath.h"
+#include "throng/sim/EffectCounters.h"
+#include "throng/sim/NavMesh.h"
+#include "throng/sim/SceneDescription.h"
+#include "throng/sim/TownLayout.h"
+
+namespace throng::sim {
+
+/// Reports a long build's progress: the stage and how far it is, in [0, 1].
+using BuildProgress = std::function<void(const std::string& stage, double fraction)>;
+
+/// Everything a scene file asked for.
+class Simulation {
+public:
+    /// One group of actors the file declared.
+    struct ActorGroupInfo {
+        std::string name;              ///< as declared
+        std::string behaviour;         ///< walk, idle or flight
+        std::vector<ActorId> actors;   ///< its actors in the crowd
+    };
+
+    /// Builds the world of `description`. Throws SceneError (with the JSON path) or
+    /// std::runtime_error (a navigation mesh that cannot be built).
+    static std::unique_ptr<Simulation> build(SceneDescription description, const BuildProgress& progress = {});
+    ~Simulation();
+    Simulation(const Simulation&) = delete;
+    Simulation& operator=(const Simulation&) = delete;
+
+    /// The scene graph: the town's tiles and one node per actor group.
+    Group& root() { return *root_; }
+    /// The actors.
+    Crowd& crowd() { return crowd_; }
+    /// Construction and tick counts of every effect.
+    const EffectCounters& effects() const { return effects_; }
+    /// What was built.
+    const SceneDescription& description() const { return description_; }
+    /// The camera path.
+    const CameraPath& camera() const { return *camera_; }
+    /// The navigation mesh, or null when nothing walks.
+    const NavMesh* navMesh() const { return nav_.get(); }
+    /// The town's layout, or null when there is none.
+    const TownLayout* town() const { return town_ ? &*town_ : nullptr; }
+    /// The actor groups, in file order.
+    std::span<const ActorGroupInfo> groups() const { return groups_; }
+    /// Triangles of the town's tiles.
+    std::uint64_t townTriangles() const { return townTriangles_; }
+
+private:
+    Simulation() = default;
+    void buildTown(const BuildProgress& progress);
+    void buildActors(const BuildProgress& progress);
+
+    SceneDescription description_;
+    EffectCounters effects_;
+    Crowd crowd_;  // before the nodes: they hand their actors back when destroyed
+    std::shared_ptr<Group> root_;
+    std::optional<TownLayout> town_;
+    std::shared_ptr<const NavMesh> nav_;
+    std::unique_ptr<CameraPath> camera_;
+    std::vector<ActorGroupInfo> groups_;
+    std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    NavGeometry navGeometry_;
+    std::uint64_t townTriangles_ = 0;
+};
+
+}  // namespace throng::sim

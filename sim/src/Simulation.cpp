@@ -1,0 +1,283 @@
+#include "throng/sim/Simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "throng/actors/ActorGroup.h"
+#include "throng/actors/GltfLoader.h"
+#include "throng/actors/ProceduralBird.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/actors/Table3Template.h"
+#include "throng/scenegraph/Geometry.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/Transform.h"
+#include "throng/sim/CounterRng.h"
+#include "throng/sim/Flock.h"
+#include "throng/sim/GazeLayer.h"
+#include "throng/sim/IdleGroups.h"
+#include "throng/sim/Locomotion.h"
+#include "throng/sim/SceneError.h"
+
+namespace throng::sim {
+namespace {
+
+// A template and its clips, resolved from a TemplateDescription.
+struct ResolvedTemplate {
+    std::shared_ptr<const ActorTemplate> tmpl;
+    int walkClip = -1, runClip = -1, idleClip = -1;
+    double walkClipSpeed = 1.4, runClipSpeed = 3.5;
+};
+
+int clipIndex(const ActorTemplate& t, const std::string& name, const std::string& file, const std::string& path) {
+    if (name.empty()) return -1;
+    const int i = t.findClip(name);
+    if (i < 0) {
+        std::string known;
+        for (const auto& c : t.clips()) known += (known.empty() ? "" : ", ") + c->name();
+        throw SceneError(file, path, "template '" + t.name() + "' has no clip named '" + name + "' (its clips: " +
+                                         (known.empty() ? "none" : known) + ")");
+    }
+    return i;
+}
+
+ResolvedTemplate resolve(const std::string& key, const TemplateDescription& d, const std::string& file) {
+    const std::string path = "/templates/" + key;
+    ResolvedTemplate r;
+    if (!d.gltf.empty()) {
+        try {
+            r.tmpl = loadCharacter(d.gltf).primaryTemplate();
+        } catch (const std::exception& e) {
+            throw SceneError(file, path + "/gltf", e.what());
+        }
+        if (!r.tmpl) throw SceneError(file, path + "/gltf", "'" + d.gltf + "' holds no character");
+    } else if (d.procedural == "seed-humanoid") {
+        r.tmpl = makeSeedHumanoid();
+    } else if (d.procedural == "table3") {
+        r.tmpl = makeTable3Template();
+    } else {
+        r.tmpl = makeProceduralBird();
+    }
+    if (r.tmpl->clips().empty()) throw SceneError(file, path, "template '" + r.tmpl->name() + "' has no clip to play");
+    r.walkClip = d.walkClip.empty() ? 0 : clipIndex(*r.tmpl, d.walkClip, file, path + "/walkClip");
+    r.runClip = clipIndex(*r.tmpl, d.runClip, file, path + "/runClip");
+    r.idleClip = clipIndex(*r.tmpl, d.idleClip, file, path + "/idleClip");
+    r.walkClipSpeed = d.walkClipSpeed;
+    r.runClipSpeed = d.runClipSpeed;
+    return r;
+}
+
+// Turns about +Y by `quarterTurns` quarters: +Z goes to +X.
+Mat4 tileTransform(const TownLayout& t, const TilePlacement& p) {
+    const double a = p.quarterTurns * 0.5 * std::numbers::pi;
+    Mat4 m(1.0);
+    const double s = t.tileSize;
+    m[0] = Vec4(std::cos(a) * s, 0.0, -std::sin(a) * s, 0.0);
+    m[1] = Vec4(0.0, s, 0.0, 0.0);
+    m[2] = Vec4(std::sin(a) * s, 0.0, std::cos(a) * s, 0.0);
+    m[3] = Vec4(t.centre(p.x, p.z), 1.0);
+    return m;
+}
+
+}  // namespace
+
+Simulation::~Simulation() = default;
+
+std::unique_ptr<Simulation> Simulation::build(SceneDescription description, const BuildProgress& progress) {
+    std::unique_ptr<Simulation> sim(new Simulation());
+    sim->description_ = std::move(description);
+    sim->root_ = std::make_shared<Group>();
+    sim->root_->setName(sim->description_.name.empty() ? "scene" : sim->description_.name);
+    const BuildProgress report = progress ? progress : [](const std::string&, double) {};
+    sim->buildTown(report);
+    sim->buildActors(report);
+    double extent = 100.0;
+    if (sim->town_) extent = std::max(sim->town_->extent().x, sim->town_->extent().y);
+    sim->camera_ = std::make_unique<CameraPath>(sim->description_.camera, extent);
+    report("ready", 1.0);
+    return sim;
+}
+
+void Simulation::buildTown(const BuildProgress& progress) {
+    const SceneDescription& d = description_;
+    const std::string file = d.baseDirectory.empty() ? "scene" : d.baseDirectory + "/scene";
+    if (!d.town) {
+        // A plain ground to stand and fly over.
+        auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
+        root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(ground)));
+        navGeometry_.addBox(glm::vec3(-250.0f, -0.5f, -250.0f), glm::vec3(250.0f, 0.0f, 250.0f), true);
+        return;
+    }
+    progress("laying out the town", 0.0);
+    town_ = layoutTown(*d.town);
+    // One model per kind of tile, shared by every tile of that kind.
+    std::map<TileKind, std::vector<std::shared_ptr<const MeshDrawable>>> models;
+    for (const TilePlacement& t : town_->tiles) {
+        if (models.count(t.kind)) continue;
+        const std::string path = d.town->tiles + "/" + tileFile(t.kind);
+        CharacterAsset asset;
+        try {
+            asset = loadCharacter(path);
+        } catch (const std::exception& e) {
+            throw SceneError(file, "/town/tiles", e.what());
+        }
+        auto& list = models[t.kind];
+        for (const auto& p : asset.primitives) list.push_back(std::make_shared<MeshDrawable>(p.data));
+        progress("loading town tiles", double(models.size()) / kTileKindCount * 0.5);
+    }
+    // Tiles grouped by chunks of 4 x 4 so that CULL rejects whole chunks.
+    auto town = std::make_shared<Group>();
+    town->setName("town");
+    std::map<std::pair<int, int>, std::shared_ptr<Group>> chunks;
+    for (const TilePlacement& t : town_->tiles) {
+        auto& chunk = chunks[{t.x / 4, t.z / 4}];
+        if (!chunk) {
+            chunk = std::make_shared<Group>();
+            chunk->setName("chunk");
+        }
+        auto node = std::make_shared<Transform>();
+        const Mat4 m = tileTransform(*town_, t);
+        node->setMatrix(m);
+        for (const auto& model : models[t.kind]) {
+            node->addChild(std::make_shared<Geometry>(model));
+            navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
+            townTriangles_ += model->primitiveCount();
+        }
+        // Recast sees surfaces: block the inside of what stands on the tile.
+        const glm::vec3 c(town_->centre(t.x, t.z));
+        const float h = float(0.5 * town_->tileSize);
+        if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
+        if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
+        chunk->addChild(node);
+    }
+    for (auto& [key, chunk] : chunks) town->addChild(chunk);
+    root_->addChild(town);
+    progress("town laid out", 0.5);
+}
+
+void Simulation::buildActors(const BuildProgress& progress) {
+    const SceneDescription& d = description_;
+    const std::string file = d.baseDirectory.empty() ? "scene" : d.baseDirectory + "/scene";
+    std::map<std::string, ResolvedTemplate> templates;
+    for (const ActorGroupDescription& g : d.actors)
+        if (g.count > 0 && !templates.count(g.templateName))
+            templates[g.templateName] = resolve(g.templateName, d.templates.at(g.templateName), file);
+
+    const bool anyWalk = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "walk" && g.count > 0; });
+    const bool anyIdle = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "idle" && g.count > 0; });
+    if (anyWalk || anyIdle) {
+        progress("building the navigation mesh", 0.55);
+        NavMeshSettings settings;
+        settings.agentMaxClimb = 0.45f;  // kerbs of the tiles at 8 m are 0.4 m
+        nav_ = NavMesh::build(navGeometry_, settings);
+    }
+    navGeometry_ = NavGeometry{};
+
+    // One behaviour object per kind (one DetourCrowd for every walker), made only when declared.
+    std::shared_ptr<Locomotion> walkers;
+    std::shared_ptr<IdleGroups> idlers;
+    std::shared_ptr<GazeLayer> walkGaze, idleGaze;
+    GazeLayer::Settings gazeSettings;
+    gazeSettings.levels = d.effects.gazeLevels;
+    gazeSettings.range = d.effects.gazeRange;
+    gazeSettings.seed = d.seed;
+    std::uint64_t stream = 0;
+    const CounterRng rng(d.seed, 0x5ce7e);
+
+    // A random point of the navigation mesh inside `area` (or the nearest one found).
+    auto pointIn = [&](const AreaDescription& area, std::uint64_t s) {
+        const CounterRng r(d.seed, s);
+        for (std::uint64_t k = 0; k < 64; ++k) {
+            const glm::vec3 p = nav_->randomPoint(r, k);
+            if (std::abs(p.x - area.center.x) <= 0.5 * area.size.x && std::abs(p.z - area.center.y) <= 0.5 * area.size.y) return p;
+        }
+        return nav_->randomPoint(r, 64);
+    };
+
+    for (std::size_t gi = 0; gi < d.actors.size(); ++gi) {
+        const ActorGroupDescription& g = d.actors[gi];
+        ActorGroupInfo info{g.name, g.behaviour, {}};
+        if (g.count == 0) {
+            groups_.push_back(info);
+            continue;
+        }
+        const ResolvedTemplate& t = templates.at(g.templateName);
+        const ActorLook look{float(g.priority), glm::vec4(1.0f)};
+        const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
+        if (g.behaviour == "walk") {
+            if (!walkers) {
+                Locomotion::Settings s;
+                s.avoidance = d.effects.avoidance;
+                s.seed = d.seed;
+                walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
+                if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects_);
+            }
+            const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
+            for (std::int64_t i = 0; i < g.count; ++i, ++stream) {
+                Locomotion::Actor a;
+                a.tmpl = t.tmpl;
+                a.walkClip = t.walkClip;
+                a.walkClipSpeed = t.walkClipSpeed;
+                a.runClip = t.runClip;
+                a.runClipSpeed = t.runClipSpeed;
+                a.start = pointIn(g.area, stream);
+                a.speed = rng.uniform(stream, speed.x, speed.y);
+                a.stream = stream;
+                std::uint32_t slot = walkers->addActor(a);
+                if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
+                info.actors.push_back(crowd_.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, look));
+            }
+        } else if (g.behaviour == "idle") {
+            if (!idlers) {
+                idlers = std::make_shared<IdleGroups>(levels, &effects_);
+                if (d.effects.gaze) idleGaze = std::make_shared<GazeLayer>(idlers, gazeSettings, &effects_);
+            }
+            const int clip = t.idleClip >= 0 ? t.idleClip : t.walkClip;
+            std::int64_t placed = 0;
+            while (placed < g.count) {
+                const std::uint64_t groupStream = stream;
+                const int size = int(std::min<std::int64_t>(g.count - placed,
+                    g.groupSize.x + std::int64_t(rng.below(groupStream * 7 + 1, std::uint64_t(g.groupSize.y - g.groupSize.x + 1)))));
+                const glm::vec3 centre = pointIn(g.area, groupStream);
+                const double radius = 0.6 + 0.45 * std::sqrt(double(size));
+                for (int k = 0; k < size; ++k, ++placed, ++stream) {
+                    const double angle = 2.0 * std::numbers::pi * k / size + rng.uniform(stream * 3 + 2, -0.2, 0.2);
+                    KeyframeBehaviour::Actor a;
+                    a.tmpl = t.tmpl;
+                    a.clip = clip;
+                    a.position = Vec3(centre) + Vec3(radius * std::sin(angle), 0.0, radius * std::cos(angle));
+                    a.heading = angle + std::numbers::pi;  // facing the middle of the group
+                    // An idle clip plays; a walk clip is held at some instant (standing still).
+                    a.timeScale = t.idleClip >= 0 ? 1.0 : 0.0;
+                    a.timeOffset = rng.uniform(stream * 3 + 1, 0.0, t.tmpl->clips()[std::size_t(clip)]->duration());
+                    std::uint32_t slot = idlers->addPerson(a);
+                    if (idleGaze) slot = idleGaze->wrap(slot, t.tmpl, stream);
+                    info.actors.push_back(crowd_.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, look));
+                }
+            }
+        } else {  // flight
+            Flock::Settings s;
+            s.center = g.area.center;
+            s.size = g.area.size;
+            s.altitude = g.altitude;
+            s.speed = g.speed.value_or(glm::dvec2(6.0, 11.0));
+            s.seed = d.seed + gi;
+            auto flock = std::make_shared<Flock>(s, levels, &effects_);
+            for (std::int64_t i = 0; i < g.count; ++i, ++stream)
+                info.actors.push_back(crowd_.add(t.tmpl, flock, flock->addBird({t.tmpl, t.walkClip, stream}), look));
+            behaviours_.push_back(flock);
+        }
+        auto node = crowd_.makeGroupNode(info.actors);
+        node->setName(g.name);
+        root_->addChild(node);
+        groups_.push_back(std::move(info));
+        progress("placing actors", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
+    }
+    for (const auto& b : {std::shared_ptr<Behaviour>(walkers), std::shared_ptr<Behaviour>(idlers), std::shared_ptr<Behaviour>(walkGaze),
+                          std::shared_ptr<Behaviour>(idleGaze)})
+        if (b) behaviours_.push_back(b);
+}
+
+}  // namespace throng::sim
