@@ -1,0 +1,31 @@
+#include "ProgressBar.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+
+namespace throng::town {
+
+ProgressBar::ProgressBar(std::string label, std::size_t total)
+    : label_(std::move(label)), total_(std::max<std::size_t>(total, 1)), terminal_(isatty(fileno(stderr)) != 0) {}
+
+void ProgressBar::update(std::size_t done, const std::string& detail) {
+    const double f = std::min(1.0, double(done) / double(total_));
+    if (terminal_) {
+        constexpr int kWidth = 30;
+        const int filled = int(f * kWidth);
+        std::fprintf(stderr, "\r%s [%s%s] %3d%% %s\033[K", label_.c_str(), std::string(std::size_t(filled), '#').c_str(),
+                     std::string(std::size_t(kWidth - filled), ' ').c_str(), int(f * 100.0), detail.c_str());
+        std::fflush(stderr);
+    } else if (int tenth = int(f * 10.0); tenth > lastTenth_) {
+        lastTenth_ = tenth;
+        std::fprintf(stderr, "%s: %3d%% %s\n", label_.c_str(), tenth * 10, detail.c_str());
+    }
+}
+
+void ProgressBar::finish(const std::string& detail) {
+    update(total_, detail);
+    if (terminal_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace throng::town

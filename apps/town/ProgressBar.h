@@ -1,0 +1,27 @@
+#pragma once
+// A progress bar on the terminal for long runs: redrawn in place on a terminal, a line every ten
+// per cent otherwise (logs, CI).
+
+#include <cstdio>
+#include <string>
+
+namespace throng::town {
+
+/// Progress of `total` steps, written to stderr.
+class ProgressBar {
+public:
+    /// A bar for `total` steps labelled `label`.
+    ProgressBar(std::string label, std::size_t total);
+    /// Shows that `done` steps are done, with `detail` after the bar.
+    void update(std::size_t done, const std::string& detail = {});
+    /// Ends the bar (a final newline on a terminal).
+    void finish(const std::string& detail = {});
+
+private:
+    std::string label_;
+    std::size_t total_;
+    bool terminal_;
+    int lastTenth_ = -1;
+};
+
+}  // namespace throng::town

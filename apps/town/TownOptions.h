@@ -1,0 +1,31 @@
+#pragma once
+// The command line of throng-town.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace throng::town {
+
+/// What to run, how, and where the results go.
+struct TownOptions {
+    std::string scene;                      ///< scene file (default: the example's default scene)
+    std::optional<std::int64_t> actors;     ///< total actors (groups scaled to it), if given
+    std::int64_t frames = 600;              ///< frames to run headless
+    std::optional<std::uint64_t> seed;      ///< overrides the scene's seed
+    std::string out = "town-out";           ///< folder for frames, stats.csv and summary.json
+    int width = 1280, height = 720;         ///< pixels
+    bool headless = false;                  ///< never open a window
+    std::string processing = "actor";       ///< actor or traditional
+    int every = 60;                         ///< headless: write a PNG every `every` frames (0: never)
+    int threads = 1;                        ///< threads for the per-actor phases
+    double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
+};
+
+/// Parses argv. Prints usage and exits on --help; throws std::invalid_argument naming the option
+/// on a bad one.
+TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene);
+/// The usage text.
+std::string townUsage();
+
+}  // namespace throng::town

@@ -1,0 +1,318 @@
+// throng-town: the town-crowd example. Builds the world a scene file declares (a town of modular
+// tiles, walkers on its navigation mesh, standing groups, a flock), then runs it: in a window when
+// there is a display (free camera, pause, LOD scale, a shrunken culling pyramid to watch culling at
+// work, on-screen statistics), headless otherwise (PNG frames every K frames, stats.csv per frame,
+// summary.json, a progress bar).
+
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "ProgressBar.h"
+#include "TownOptions.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/GlfwWindowContext.h"
+#include "throng/render/ImageIO.h"
+#include "throng/render/TextOverlay.h"
+#include "throng/sim/SceneError.h"
+#include "throng/sim/SceneParser.h"
+#include "throng/sim/Simulation.h"
+#include "throng/sim/SimulationClock.h"
+
+using namespace throng;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The renderer, plus what the town app adds to a frame: counts of items by kind and, in a window,
+// the statistics text drawn before the frame is presented.
+class TownBackend : public DrawBackend {
+public:
+    TownBackend(std::shared_ptr<GlContext> context) : renderer_(context), overlay_(context->headless() ? nullptr : new TextOverlay(*context)) {}
+    void beginFrame(const Camera& camera) override { renderer_.beginFrame(camera); }
+    void draw(const DrawList& list) override {
+        skinned_ = 0;
+        for (const DrawItem& item : list.items()) skinned_ += item.skinPaletteSize > 0;
+        renderer_.draw(list);
+    }
+    void endFrame() override {
+        if (overlay_ && !text_.empty()) overlay_->draw(text_, 12, 12, 1.6f);
+        renderer_.endFrame();
+    }
+    GlRenderer& renderer() { return renderer_; }
+    std::uint64_t skinnedItems() const { return skinned_; }
+    void setText(std::string text) { text_ = std::move(text); }
+
+private:
+    GlRenderer renderer_;
+    std::unique_ptr<TextOverlay> overlay_;
+    std::uint64_t skinned_ = 0;
+    std::string text_;
+};
+
+// Scales every group so that the scene holds `total` actors (largest remainders: the sum is exact).
+void scaleActors(sim::SceneDescription& scene, std::int64_t total) {
+    std::int64_t current = 0;
+    for (const auto& g : scene.actors) current += g.count;
+    if (current == 0) return;
+    std::vector<double> remainder;
+    std::int64_t given = 0;
+    for (auto& g : scene.actors) {
+        const double exact = double(g.count) * double(total) / double(current);
+        g.count = std::int64_t(std::floor(exact));
+        given += g.count;
+        remainder.push_back(exact - double(g.count));
+    }
+    while (given < total) {
+        const auto i = std::size_t(std::max_element(remainder.begin(), remainder.end()) - remainder.begin());
+        ++scene.actors[i].count;
+        remainder[i] = -1.0;
+        ++given;
+    }
+}
+
+const char* kCsvHeader =
+    "frame,time,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
+    "draw_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
+    "primitives,draw_calls,triangles_drawn\n";
+
+std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& s, std::uint64_t skinned,
+                   const RenderStatistics& r) {
+    std::ostringstream o;
+    o.precision(6);
+    o << frame << ',' << time << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ',' << s.cullMs << ','
+      << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ',' << s.drawMs
+      << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
+      << s.c3_1 << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.drawItems << ',' << skinned << ','
+      << s.primitives << ',' << r.drawCalls << ',' << r.triangles << '\n';
+    return o.str();
+}
+
+// Running sums of what summary.json reports as means.
+struct Sums {
+    double app = 0, phases[9] = {}, draw = 0;
+    double posed = 0, nodes = 0, items = 0, primitives = 0;
+    std::int64_t frames = 0;
+    void add(const ActorFrameStatistics& s) {
+        app += s.appCullMs();
+        const double p[9] = {s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
+        for (int i = 0; i < 9; ++i) phases[i] += p[i];
+        draw += s.drawMs;
+        posed += double(s.actorsPosed);
+        nodes += double(s.skeletonNodesEvaluated);
+        items += double(s.drawItems);
+        primitives += double(s.primitives);
+        ++frames;
+    }
+};
+
+std::string statusText(const sim::Simulation& world, const ActorFrameStatistics& s, double fps, double lodScale,
+                       bool paused, bool shrunk, bool freeCamera) {
+    char buf[1024];
+    std::snprintf(buf, sizeof buf,
+                  "%s   %.1f fps   %s processing%s\n"
+                  "actors %llu: culled with group %llu  A %llu  B %llu  C1 %llu  C2 %llu  C3.1 %llu  C3.2 %llu\n"
+                  "posed %llu, skeleton nodes %llu, draw items %llu, triangles %llu\n"
+                  "APP+CULL %.2f ms (APP %.2f, refpoints %.2f, bounds %.2f, CULL1 %.2f, roots %.2f, CULL2 %.2f, poses %.2f, CULL3 %.2f, list %.2f)\n"
+                  "LOD scale %.2f (+/-)   culling pyramid %s (C)   camera %s (Tab)   %s",
+                  world.description().name.c_str(), fps, s.processing == Processing::Actor ? "actor" : "traditional",
+                  paused ? "   PAUSED" : "", (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
+                  (unsigned long long)s.a, (unsigned long long)s.b, (unsigned long long)s.c1, (unsigned long long)s.c2,
+                  (unsigned long long)s.c3_1, (unsigned long long)s.c3_2, (unsigned long long)s.actorsPosed,
+                  (unsigned long long)s.skeletonNodesEvaluated, (unsigned long long)s.drawItems, (unsigned long long)s.primitives,
+                  s.appCullMs(), s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs,
+                  s.cull3Ms, s.drawListMs, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
+                  "W/A/S/D/Q/E move, drag to look, Space pause, P processing, Esc quit");
+    return buf;
+}
+
+nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& world, const Sums& sums, double wallSeconds,
+                           double firstFrameSeconds) {
+    nlohmann::json j;
+    j["scene"] = world.description().name;
+    j["sceneFile"] = o.scene;
+    j["seed"] = world.description().seed;
+    j["processing"] = o.processing;
+    j["threads"] = o.threads;
+    j["width"] = o.width;
+    j["height"] = o.height;
+    j["frames"] = sums.frames;
+    j["step"] = world.description().step;
+    j["actors"] = world.crowd().size();
+    for (const auto& g : world.groups()) j["groups"].push_back({{"name", g.name}, {"behaviour", g.behaviour}, {"actors", g.actors.size()}});
+    if (const auto* t = world.town()) j["town"] = {{"tilesX", t->tilesX}, {"tilesZ", t->tilesZ}, {"tileSize", t->tileSize}, {"triangles", world.townTriangles()}};
+    if (const auto* nav = world.navMesh()) j["navMeshPolygons"] = nav->polygonCount();
+    const double n = double(std::max<std::int64_t>(sums.frames, 1));
+    j["wallSeconds"] = wallSeconds;
+    j["fps"] = sums.frames > 1 ? double(sums.frames - 1) / std::max(1e-9, wallSeconds - firstFrameSeconds) : 0.0;
+    const char* names[9] = {"app", "refpoint", "matricesBounds", "cull", "skeletonRoot", "cull2", "pose", "cull3", "drawList"};
+    for (int i = 0; i < 9; ++i) j["meanMs"][names[i]] = sums.phases[i] / n;
+    j["meanMs"]["appCull"] = sums.app / n;
+    j["meanMs"]["draw"] = sums.draw / n;
+    j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}};
+    // Every effect Throng knows, zero when the scene did not declare it.
+    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight"}) {
+        const auto c = world.effects().of(effect);
+        j["effects"][effect] = {{"constructed", c.constructed}, {"ticks", c.ticks}};
+    }
+    return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    town::TownOptions o;
+    sim::SceneDescription scene;
+    try {
+        o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
+        scene = sim::parseSceneFile(o.scene);
+    } catch (const sim::SceneError& e) {
+        std::fprintf(stderr, "throng-town: %s\n", e.what());
+        return 2;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
+        return 2;
+    }
+    if (o.actors) scaleActors(scene, *o.actors);
+    if (o.seed) scene.seed = *o.seed;
+    const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
+
+    std::unique_ptr<sim::Simulation> world;
+    try {
+        town::ProgressBar bar("building", 100);
+        world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
+        bar.finish(std::to_string(world->crowd().size()) + " actors");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "\nthrong-town: %s\n", e.what());
+        return 2;
+    }
+
+    std::string why;
+    const bool wantWindow = !o.headless && displayAvailable();
+    auto context = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town"}, &why);
+    const bool window = !context->headless();
+    if (wantWindow && !window) std::fprintf(stderr, "throng-town: no window (%s): running headless\n", why.c_str());
+    TownBackend backend(context);
+    ActorProcessor processor(world->crowd());
+    processor.setProcessing(o.processing == "traditional" ? Processing::Traditional : Processing::Actor);
+    processor.setThreads(unsigned(o.threads));
+    processor.setLodScale(lodScale);
+    sim::SimulationClock clock(world->description().step);
+    const double aspect = double(o.width) / double(o.height);
+
+    fs::create_directories(o.out);
+    std::ofstream csv(fs::path(o.out) / "stats.csv");
+    csv << kCsvHeader;
+    Sums sums;
+    const auto start = std::chrono::steady_clock::now();
+    double firstFrame = 0.0;
+    auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+    if (!window) {
+        town::ProgressBar bar("running", std::size_t(o.frames));
+        if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
+        for (std::int64_t f = 0; f < o.frames; ++f, clock.advance()) {
+            const double t = clock.time();
+            const ActorFrameStatistics& s = processor.processFrame(world->root(), world->camera().at(t, aspect), t, &backend);
+            if (f == 0) firstFrame = seconds();
+            sums.add(s);
+            csv << csvRow(f, t, s, backend.skinnedItems(), backend.renderer().statistics());
+            if (o.every > 0 && f % o.every == 0) {
+                char name[64];
+                std::snprintf(name, sizeof name, "frame_%06lld.png", (long long)f);
+                writePng(backend.renderer().readFrame(), (fs::path(o.out) / "frames" / name).string());
+            }
+            char detail[128];
+            std::snprintf(detail, sizeof detail, "frame %lld/%lld, %.1f fps", (long long)f + 1, (long long)o.frames,
+                          f > 0 ? double(f) / std::max(1e-9, seconds() - firstFrame) : 0.0);
+            bar.update(std::size_t(f + 1), detail);
+        }
+        bar.finish();
+    } else {
+        auto* glfw = static_cast<GlfwWindowContext*>(context.get())->window();
+        bool paused = false, shrunk = false, freeCamera = false;
+        double scale = lodScale, yaw = 0.0, pitch = -0.3, lastX = 0.0, lastY = 0.0;
+        glm::dvec3 position(0.0, 30.0, 60.0);
+        std::map<int, bool> held;
+        auto pressed = [&](int key) {  // once per press
+            const bool down = glfwGetKey(glfw, key) == GLFW_PRESS;
+            const bool edge = down && !held[key];
+            held[key] = down;
+            return edge;
+        };
+        auto last = std::chrono::steady_clock::now();
+        double fps = 0.0;
+        while (!context->shouldClose()) {
+            context->pollEvents();
+            if (glfwGetKey(glfw, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
+            if (pressed(GLFW_KEY_SPACE)) paused = !paused;
+            if (pressed(GLFW_KEY_C)) shrunk = !shrunk;
+            if (pressed(GLFW_KEY_P))
+                processor.setProcessing(processor.processing() == Processing::Actor ? Processing::Traditional : Processing::Actor);
+            if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) processor.setLodScale(scale *= 1.25);
+            if (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT)) processor.setLodScale(scale /= 1.25);
+            Camera camera = world->camera().at(clock.time(), aspect);
+            if (pressed(GLFW_KEY_TAB)) {
+                freeCamera = !freeCamera;
+                if (freeCamera) {  // start from where the path camera is
+                    position = camera.eye();
+                    const glm::dvec3 f = -glm::dvec3(glm::transpose(glm::dmat3(camera.view()))[2]);
+                    yaw = std::atan2(f.x, -f.z);
+                    pitch = std::asin(std::clamp(f.y, -1.0, 1.0));
+                }
+            }
+            double x, y;
+            glfwGetCursorPos(glfw, &x, &y);
+            if (glfwGetMouseButton(glfw, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && freeCamera) {
+                yaw += (x - lastX) * 0.004;
+                pitch = std::clamp(pitch - (y - lastY) * 0.004, -1.5, 1.5);
+            }
+            lastX = x, lastY = y;
+            if (freeCamera) {
+                const glm::dvec3 forward(std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
+                const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
+                const double step = glfwGetKey(glfw, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 3.0 : 0.6;
+                if (glfwGetKey(glfw, GLFW_KEY_W) == GLFW_PRESS) position += forward * step;
+                if (glfwGetKey(glfw, GLFW_KEY_S) == GLFW_PRESS) position -= forward * step;
+                if (glfwGetKey(glfw, GLFW_KEY_D) == GLFW_PRESS) position += right * step;
+                if (glfwGetKey(glfw, GLFW_KEY_A) == GLFW_PRESS) position -= right * step;
+                if (glfwGetKey(glfw, GLFW_KEY_E) == GLFW_PRESS) position.y += step;
+                if (glfwGetKey(glfw, GLFW_KEY_Q) == GLFW_PRESS) position.y -= step;
+                camera.setLookAt(position, position + forward, glm::dvec3(0, 1, 0));
+            }
+            // The shrunken pyramid culls as if the view were 60% as wide: actors vanish near the edges.
+            if (shrunk) {
+                Camera narrow = camera;
+                const auto& d = world->description().camera;
+                narrow.setPerspective(0.6 * d.fovDegrees * std::numbers::pi / 180.0, aspect, d.nearDistance, d.farDistance);
+                processor.setCullingFrustum(narrow.frustum());
+            } else {
+                processor.setCullingFrustum(std::nullopt);
+            }
+            const ActorFrameStatistics& s = processor.processFrame(world->root(), camera, clock.time(), &backend);
+            sums.add(s);
+            csv << csvRow(sums.frames - 1, clock.time(), s, backend.skinnedItems(), backend.renderer().statistics());
+            const auto now = std::chrono::steady_clock::now();
+            const double dt = std::chrono::duration<double>(now - last).count();
+            last = now;
+            fps = fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fps + 0.1 / std::max(dt, 1e-6);
+            backend.setText(statusText(*world, s, fps, scale, paused, shrunk, freeCamera));
+            if (!paused) clock.advance();
+        }
+    }
+    const double wall = seconds();
+    std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame).dump(2) << '\n';
+    std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums.frames, wall,
+                 !window && o.every > 0 ? " and frames/" : "", o.out.c_str());
+    return 0;
+}
