@@ -1,5 +1,6 @@
 #include "throng/actors/ActorProcessor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -78,6 +79,7 @@ const DrawList& ActorProcessor::drawList() const {
 const ActorFrameStatistics& ActorProcessor::processFrame(Node& root, const Camera& camera, double time,
                                                          DrawBackend* backend) {
     requireFinite(time, "ActorProcessor::processFrame", "time");
+    const std::uint64_t framesBegun = crowd_.framesBegun();
     if (processing_ == Processing::Actor) {
         processActors(root, camera, time, backend);
     } else {
@@ -85,7 +87,9 @@ const ActorFrameStatistics& ActorProcessor::processFrame(Node& root, const Camer
         stats_ = ActorFrameStatistics{};
         stats_.processing = Processing::Traditional;
         stats_.frame = frame_;
-        stats_.appMs = f.appMs;
+        // The behaviours' step ran inside APP (the first actor node began the frame).
+        const double step = crowd_.framesBegun() != framesBegun ? crowd_.lastStepMs() : 0.0;
+        stats_.appMs = std::max(0.0, f.appMs - step);
         stats_.matricesBoundsMs = f.matricesBoundsMs;
         stats_.cullMs = f.cullMs;
         stats_.drawMs = f.drawMs;
@@ -103,6 +107,7 @@ const ActorFrameStatistics& ActorProcessor::processFrame(Node& root, const Camer
         stats_.primitives = f.cull.primitives;
         stats_.fmultTotal = f.fmultTotal;
     }
+    if (crowd_.framesBegun() != framesBegun) stats_.stepMs = crowd_.lastStepMs();
     lastTime_ = time;
     ++frame_;
     return stats_;

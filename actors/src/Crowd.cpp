@@ -8,6 +8,7 @@
 
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorGroup.h"
+#include "throng/scenegraph/Stopwatch.h"
 
 namespace throng {
 
@@ -170,7 +171,10 @@ void Crowd::beginFrame(const FrameContext& context) {
     frameTime_ = context.time;
     drawMatrices_.clear();
     skinPalettes_.clear();
+    Stopwatch watch;
     for (const auto& b : behaviours_) b->advance(context);
+    lastStepMs_ = watch.elapsedMs();
+    ++framesBegun_;
 }
 
 }  // namespace throng

@@ -30,6 +30,9 @@ struct ActorFrameStatistics {
     double cull3Ms = 0;           ///< phase 6: CULL 3 on internal spheres
     double drawListMs = 0;        ///< phase 7: the draw list
     double drawMs = 0;            ///< DRAW
+    /// The behaviours' shared step (navigation, flocking), the same work under both methods:
+    /// not part of APP+CULL (traditional processing's APP has it taken out).
+    double stepMs = 0;
 
     // The cascade (actor processing), as in Table 2.
     std::uint64_t actorsInScene = 0;    ///< actors held by a node of the scene

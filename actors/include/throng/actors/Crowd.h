@@ -157,6 +157,11 @@ public:
     /// frame's draw matrices and advances every behaviour once. Idempotent within a frame, so
     /// every node and processor may call it.
     void beginFrame(const FrameContext& context);
+    /// Milliseconds the behaviours' shared step (navigation, flocking) took in the last frame
+    /// begun. Both processing methods pay it alike, so APP+CULL figures leave it out.
+    double lastStepMs() const { return lastStepMs_; }
+    /// Frames begun so far: tells a processor whether its frame began one.
+    std::uint64_t framesBegun() const { return framesBegun_; }
     /// The nodes standing for this crowd's actors (Actor and ActorGroup), in creation order.
     std::span<Node* const> nodes() const { return nodes_; }
     /// Called by a node being destroyed: its actors stay in the crowd, held by no node.
@@ -175,6 +180,8 @@ private:
     std::vector<Node*> nodes_;
     std::uint64_t frame_ = ~std::uint64_t{0};
     double frameTime_ = 0.0;
+    double lastStepMs_ = 0.0;
+    std::uint64_t framesBegun_ = 0;
 };
 
 }  // namespace throng
