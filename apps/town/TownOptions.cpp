@@ -23,7 +23,7 @@ std::string townUsage() {
     return "usage: throng-town [options]\n"
            "  --scene FILE        scene file (JSON; default: the town example's default scene)\n"
            "  --actors N          total actors, the scene's groups scaled to it\n"
-           "  --frames N          frames to run headless (default 600 = 10 s)\n"
+           "  --frames N          frames to run headless (default 600 = 10 s); in a window, quit after N\n"
            "  --seed N            overrides the scene's seed\n"
            "  --out DIR           frames, stats.csv and summary.json go here (default town-out)\n"
            "  --width W --height H   image size (default 1280 x 720)\n"
@@ -53,6 +53,7 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
             o.actors = integer(a, value(), 0, 2'000'000);
         } else if (a == "--frames") {
             o.frames = integer(a, value(), 1, 100'000'000);
+            o.framesGiven = true;
         } else if (a == "--seed") {
             o.seed = std::uint64_t(integer(a, value(), 0, INT64_MAX));
         } else if (a == "--out") {

@@ -12,6 +12,7 @@ struct TownOptions {
     std::string scene;                      ///< scene file (default: the example's default scene)
     std::optional<std::int64_t> actors;     ///< total actors (groups scaled to it), if given
     std::int64_t frames = 600;              ///< frames to run headless
+    bool framesGiven = false;               ///< --frames was given: a window also closes after them
     std::optional<std::uint64_t> seed;      ///< overrides the scene's seed
     std::string out = "town-out";           ///< folder for frames, stats.csv and summary.json
     int width = 1280, height = 720;         ///< pixels

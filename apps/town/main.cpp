@@ -24,6 +24,7 @@
 #include "throng/render/GlfwWindowContext.h"
 #include "throng/render/ImageIO.h"
 #include "throng/render/TextOverlay.h"
+#include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
@@ -60,30 +61,9 @@ private:
     std::string text_;
 };
 
-// Scales every group so that the scene holds `total` actors (largest remainders: the sum is exact).
-void scaleActors(sim::SceneDescription& scene, std::int64_t total) {
-    std::int64_t current = 0;
-    for (const auto& g : scene.actors) current += g.count;
-    if (current == 0) return;
-    std::vector<double> remainder;
-    std::int64_t given = 0;
-    for (auto& g : scene.actors) {
-        const double exact = double(g.count) * double(total) / double(current);
-        g.count = std::int64_t(std::floor(exact));
-        given += g.count;
-        remainder.push_back(exact - double(g.count));
-    }
-    while (given < total) {
-        const auto i = std::size_t(std::max_element(remainder.begin(), remainder.end()) - remainder.begin());
-        ++scene.actors[i].count;
-        remainder[i] = -1.0;
-        ++given;
-    }
-}
-
 const char* kCsvHeader =
     "frame,time,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
-    "draw_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
+    "draw_ms,step_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
     "primitives,draw_calls,triangles_drawn\n";
 
 std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& s, std::uint64_t skinned,
@@ -92,7 +72,7 @@ std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& 
     o.precision(6);
     o << frame << ',' << time << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ',' << s.cullMs << ','
       << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ',' << s.drawMs
-      << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
+      << ',' << s.stepMs << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
       << s.c3_1 << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.drawItems << ',' << skinned << ','
       << s.primitives << ',' << r.drawCalls << ',' << r.triangles << '\n';
     return o.str();
@@ -100,7 +80,7 @@ std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& 
 
 // Running sums of what summary.json reports as means.
 struct Sums {
-    double app = 0, phases[9] = {}, draw = 0;
+    double app = 0, phases[9] = {}, draw = 0, step = 0;
     double posed = 0, nodes = 0, items = 0, primitives = 0;
     std::int64_t frames = 0;
     void add(const ActorFrameStatistics& s) {
@@ -108,6 +88,7 @@ struct Sums {
         const double p[9] = {s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
         for (int i = 0; i < 9; ++i) phases[i] += p[i];
         draw += s.drawMs;
+        step += s.stepMs;
         posed += double(s.actorsPosed);
         nodes += double(s.skeletonNodesEvaluated);
         items += double(s.drawItems);
@@ -159,6 +140,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     for (int i = 0; i < 9; ++i) j["meanMs"][names[i]] = sums.phases[i] / n;
     j["meanMs"]["appCull"] = sums.app / n;
     j["meanMs"]["draw"] = sums.draw / n;
+    j["meanMs"]["step"] = sums.step / n;  // the behaviours' shared step, outside APP+CULL
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight"}) {
@@ -183,7 +165,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
-    if (o.actors) scaleActors(scene, *o.actors);
+    if (o.actors) sim::scaleActors(scene, *o.actors);
     if (o.seed) scene.seed = *o.seed;
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 
@@ -252,7 +234,7 @@ int main(int argc, char** argv) {
         };
         auto last = std::chrono::steady_clock::now();
         double fps = 0.0;
-        while (!context->shouldClose()) {
+        while (!context->shouldClose() && !(o.framesGiven && sums.frames >= o.frames)) {
             context->pollEvents();
             if (glfwGetKey(glfw, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
             if (pressed(GLFW_KEY_SPACE)) paused = !paused;

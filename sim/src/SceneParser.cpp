@@ -143,6 +143,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
     root.object({"name", "seed", "step", "town", "templates", "actors", "effects", "representation", "camera"});
     SceneDescription s;
     s.baseDirectory = baseDirectory;
+    s.file = file;
     if (root.has("name")) s.name = root.at("name").string();
     if (root.has("seed")) s.seed = static_cast<std::uint64_t>(root.at("seed").atLeast(0));
     if (root.has("step")) {

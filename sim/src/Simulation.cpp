@@ -102,7 +102,7 @@ std::unique_ptr<Simulation> Simulation::build(SceneDescription description, cons
 
 void Simulation::buildTown(const BuildProgress& progress) {
     const SceneDescription& d = description_;
-    const std::string file = d.baseDirectory.empty() ? "scene" : d.baseDirectory + "/scene";
+    const std::string file = d.file.empty() ? "scene" : d.file;
     if (!d.town) {
         // A plain ground to stand and fly over.
         auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
@@ -159,7 +159,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
 
 void Simulation::buildActors(const BuildProgress& progress) {
     const SceneDescription& d = description_;
-    const std::string file = d.baseDirectory.empty() ? "scene" : d.baseDirectory + "/scene";
+    const std::string file = d.file.empty() ? "scene" : d.file;
     std::map<std::string, ResolvedTemplate> templates;
     for (const ActorGroupDescription& g : d.actors)
         if (g.count > 0 && !templates.count(g.templateName))

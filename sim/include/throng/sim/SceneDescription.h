@@ -97,6 +97,7 @@ struct SceneDescription {
     RepresentationDescription representation;
     CameraDescription camera;
     std::string baseDirectory;                             ///< paths in the file are relative to it
+    std::string file;                                      ///< where it was read from, for messages
 };
 
 }  // namespace throng::sim

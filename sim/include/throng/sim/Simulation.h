@@ -45,6 +45,8 @@ public:
     Group& root() { return *root_; }
     /// The actors.
     Crowd& crowd() { return crowd_; }
+    /// The actors, read-only.
+    const Crowd& crowd() const { return crowd_; }
     /// Construction and tick counts of every effect.
     const EffectCounters& effects() const { return effects_; }
     /// What was built.

@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""End-to-end checks of throng-town, run by CTest.
+
+usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
+  determinism  same seed: identical stats.csv (timing columns aside) and identical frames,
+               run twice with 1 thread and once with 2
+  effects      a scene that declares no avoidance, gaze or flight never constructs or ticks them;
+               declaring them turns them on
+  window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
+"""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+# stats.csv columns that hold wall-clock times: they differ from run to run.
+TIMING = {"app_ms", "refpoint_ms", "matrices_bounds_ms", "cull_ms", "skeleton_root_ms", "cull2_ms", "pose_ms",
+          "cull3_ms", "draw_list_ms", "draw_ms", "step_ms"}
+
+
+def run(exe, out, *args):
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    cmd = [exe, "--out", out, *args]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
+    return p
+
+
+def stats_without_timing(out):
+    with open(os.path.join(out, "stats.csv")) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"{out}/stats.csv has no rows")
+    return [{k: v for k, v in r.items() if k not in TIMING} for r in rows]
+
+
+def frames(out):
+    folder = os.path.join(out, "frames")
+    names = sorted(os.listdir(folder))
+    if not names:
+        sys.exit(f"{folder} holds no frame")
+    return {n: open(os.path.join(folder, n), "rb").read() for n in names}
+
+
+def first_difference(a, b):
+    for i, (x, y) in enumerate(zip(a, b)):
+        if x != y:
+            keys = [k for k in x if x[k] != y.get(k)]
+            return f"frame {i}: columns {keys}: {[x[k] for k in keys]} vs {[y[k] for k in keys]}"
+    return f"{len(a)} rows vs {len(b)}"
+
+
+def determinism(exe, scenes, work):
+    common = ["--scene", os.path.join(scenes, "effects.json"), "--headless", "--frames", "90", "--every", "30",
+              "--width", "320", "--height", "180", "--seed", "4"]
+    runs = {name: os.path.join(work, name) for name in ("one", "again", "two-threads")}
+    run(exe, runs["one"], *common, "--threads", "1")
+    run(exe, runs["again"], *common, "--threads", "1")
+    run(exe, runs["two-threads"], *common, "--threads", "2")
+    reference = stats_without_timing(runs["one"])
+    reference_frames = frames(runs["one"])
+    moved = {r["skeleton_nodes"] for r in reference}
+    if len(moved) < 2:
+        sys.exit("the scene does not change from frame to frame: the comparison would prove nothing")
+    for name in ("again", "two-threads"):
+        other = stats_without_timing(runs[name])
+        if other != reference:
+            sys.exit(f"stats.csv of run '{name}' differs from the first run: {first_difference(reference, other)}")
+        other_frames = frames(runs[name])
+        if other_frames.keys() != reference_frames.keys():
+            sys.exit(f"run '{name}' wrote frames {sorted(other_frames)} instead of {sorted(reference_frames)}")
+        for n in reference_frames:
+            if other_frames[n] != reference_frames[n]:
+                sys.exit(f"frame {n} of run '{name}' differs from the first run")
+    print(f"3 runs agree: {len(reference)} rows of stats.csv, {len(reference_frames)} frames")
+
+
+def effects(exe, scenes, work):
+    summaries = {}
+    for scene in ("plain", "effects"):
+        out = os.path.join(work, scene)
+        run(exe, out, "--scene", os.path.join(scenes, scene + ".json"), "--headless", "--frames", "30", "--every", "0",
+            "--width", "160", "--height", "90")
+        summaries[scene] = json.load(open(os.path.join(out, "summary.json")))["effects"]
+    for effect in ("avoidance", "gaze", "flight"):
+        off = summaries["plain"][effect]
+        on = summaries["effects"][effect]
+        if off["constructed"] != 0 or off["ticks"] != 0:
+            sys.exit(f"undeclared {effect} was constructed {off['constructed']} times and ticked {off['ticks']} times")
+        if on["constructed"] < 1 or on["ticks"] < 1:
+            sys.exit(f"declared {effect} was not running: {on}")
+    for effect in ("locomotion", "idle"):
+        if summaries["plain"][effect]["ticks"] < 1:
+            sys.exit(f"the plain scene's {effect} never ticked")
+    print(json.dumps(summaries, indent=1))
+
+
+def window(exe, scenes, work):
+    out = os.path.join(work, "window")
+    p = run(exe, out, "--scene", os.path.join(scenes, "plain.json"), "--frames", "5", "--width", "320", "--height", "180")
+    if "running headless" in p.stderr:
+        sys.exit("no window opened:\n" + p.stderr)
+    frames_run = json.load(open(os.path.join(out, "summary.json")))["frames"]
+    if frames_run != 5:
+        sys.exit(f"the window ran {frames_run} frames instead of 5")
+    print("a window ran 5 frames")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5:
+        sys.exit(__doc__)
+    exe, mode, scenes, work = sys.argv[1:]
+    os.makedirs(work, exist_ok=True)
+    {"determinism": determinism, "effects": effects, "window": window}[mode](exe, scenes, work)
