@@ -7,7 +7,7 @@ packages=(
   # toolchain
   g++ clang libclang-rt-14-dev cmake ninja-build pkg-config git
   # libraries named by the design card
-  libvtk9-dev libglm-dev libglfw3-dev libosmesa6-dev libgl-dev libgl1-mesa-dri libtinygltf-dev
+  libvtk9-dev libglm-dev libglfw3-dev libosmesa6-dev libgl-dev libgl1-mesa-dri libtinygltf-dev libmeshoptimizer-dev
   # tests, benchmarks, navigation, scene files, images, GL loader, virtual display
   libgtest-dev libgmock-dev libbenchmark-dev librecast-dev nlohmann-json3-dev libstb-dev libjpeg-dev
   python3 python3-glad xvfb xauth

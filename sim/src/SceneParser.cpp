@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
@@ -173,7 +174,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
     templates.anyObject();  // its keys are template names
     for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
         const Reader t(it.value(), "/templates/" + it.key(), file);
-        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed"});
+        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod"});
         TemplateDescription d;
         if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
         if (t.has("gltf")) d.gltf = existingFile(t.at("gltf"), baseDirectory, false);
@@ -188,6 +189,26 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").positive();
         if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").positive();
         if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
+        if ((t.has("scale") || t.has("lod")) && !t.has("gltf")) t.fail("'scale' and 'lod' apply to glTF templates only");
+        if (t.has("scale")) d.scale = t.at("scale").positive();
+        if (t.has("lod")) {
+            const Reader lod = t.at("lod");
+            const std::size_t n = lod.array();
+            if (n == 0) lod.fail("must hold at least one level");
+            double previous = 0.0;
+            for (std::size_t i = 0; i < n; ++i) {
+                const Reader level = lod.at(i);
+                level.object({"until", "triangles"});
+                double until = std::numeric_limits<double>::infinity();
+                if (level.has("until")) until = level.at("until").positive();
+                else if (i + 1 < n) level.fail("needs 'until': only the last level may reach to any distance");
+                if (!(until > previous)) level.at("until").fail("must exceed the previous level's distance");
+                const double share = level.has("triangles") ? level.at("triangles").positive() : 1.0;
+                if (share > 1.0) level.at("triangles").fail("is a share of the triangles: at most 1");
+                d.lod.push_back({until, share});
+                previous = until;
+            }
+        }
         s.templates[it.key()] = d;
     }
     if (s.templates.empty()) templates.fail("must declare at least one template");

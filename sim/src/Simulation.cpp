@@ -48,7 +48,10 @@ ResolvedTemplate resolve(const std::string& key, const TemplateDescription& d, c
     ResolvedTemplate r;
     if (!d.gltf.empty()) {
         try {
-            r.tmpl = loadCharacter(d.gltf).primaryTemplate();
+            GltfLoadOptions options;
+            options.scale = d.scale;
+            for (const glm::dvec2& level : d.lod) options.lodLevels.push_back({level.x, level.y});
+            r.tmpl = loadCharacter(d.gltf, options).primaryTemplate();
         } catch (const std::exception& e) {
             throw SceneError(file, path + "/gltf", e.what());
         }

@@ -3,6 +3,7 @@
 // into clips. See GltfLoader.h.
 
 #include "throng/actors/GltfLoader.h"
+#include "throng/actors/MeshSimplifier.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <set>
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -119,6 +121,10 @@ public:
         : doc_(doc), m_(doc.model), options_(options), reader_(doc, options.limits), name_(std::move(name)) {}
 
     CharacterAsset run();
+    // The uniform scale of GltfLoadOptions::scale as a matrix.
+    dmat4 fileScale() const { return glm::scale(dmat4(1.0), dvec3(options_.scale)); }
+    // Rejects a scale or LOD levels that make no sense, before any work.
+    void checkOptions() const;
 
 private:
     [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
@@ -239,7 +245,7 @@ void Loader::readNodes() {
     while (!stack.empty()) {
         const auto i = static_cast<std::size_t>(stack.back());
         stack.pop_back();
-        world_[i] = parent_[i] >= 0 ? world_[static_cast<std::size_t>(parent_[i])] * local_[i] : local_[i];
+        world_[i] = parent_[i] >= 0 ? world_[static_cast<std::size_t>(parent_[i])] * local_[i] : fileScale() * local_[i];
         for (int c : m_.nodes[i].children) stack.push_back(c);
     }
 }
@@ -818,7 +824,7 @@ void Loader::buildSkin(int s) {
         int skeletonParent;
         dmat4 above;  // non-joint transforms since the skeleton parent (or the world origin)
     };
-    std::vector<Item> stack{{root, -1, dmat4(1.0)}};
+    std::vector<Item> stack{{root, -1, fileScale()}};
     std::vector<dvec3> extentPoints;
     while (!stack.empty()) {
         Item it = stack.back();
@@ -930,7 +936,24 @@ void Loader::buildSkin(int s) {
     skin.name = skinName.empty() ? tmplName : skinName;
     for (int k : skeletonOfJoint) skin.joints.push_back(static_cast<std::uint32_t>(k));
     const int skinIndex = builder.addSkin(skin);
-    if (mesh) builder.rootGeometry().addLevel(std::numeric_limits<double>::infinity(), std::make_shared<MeshDrawable>(mesh), skinIndex);
+    if (mesh && options_.lodLevels.empty()) {
+        builder.rootGeometry().addLevel(std::numeric_limits<double>::infinity(), std::make_shared<MeshDrawable>(mesh), skinIndex);
+        ch.lodErrors.push_back(0.0);
+    } else if (mesh) {
+        // Coarser levels keep the vertices they use with their influences: they skin alike.
+        for (const GltfLodLevel& level : options_.lodLevels) {
+            std::shared_ptr<const MeshData> shown = mesh;
+            double error = 0.0;
+            if (level.triangleShare < 1.0) {
+                SimplifiedMesh simple = simplifyMesh(*mesh, level.triangleShare);
+                simple.mesh->name = mesh->name + "/lod" + std::to_string(ch.lodErrors.size());
+                shown = simple.mesh;
+                error = simple.error * options_.scale;
+            }
+            builder.rootGeometry().addLevel(level.maxDistance, std::make_shared<MeshDrawable>(shown), skinIndex);
+            ch.lodErrors.push_back(error);
+        }
+    }
 
     // Clips: one per animation that drives one of these joints.
     std::set<std::string> clipNames;
@@ -1018,6 +1041,7 @@ void Loader::buildStatic() {
 
 CharacterAsset Loader::run() {
     asset_.source = doc_.file;
+    checkOptions();
     if (m_.nodes.empty() && m_.meshes.empty()) fail("/", "the file holds no node and no mesh: nothing to load");
     readNodes();
     readScene();
@@ -1036,6 +1060,19 @@ CharacterAsset Loader::run() {
     }
     asset_.warnings = doc_.warnings;
     return std::move(asset_);
+}
+
+void Loader::checkOptions() const {
+    if (!(std::isfinite(options_.scale) && options_.scale > 0.0))
+        fail("/", "GltfLoadOptions::scale must be a positive number, got " + std::to_string(options_.scale));
+    double previous = 0.0;
+    for (std::size_t i = 0; i < options_.lodLevels.size(); ++i) {
+        const GltfLodLevel& l = options_.lodLevels[i];
+        const std::string which = "GltfLoadOptions::lodLevels[" + std::to_string(i) + "]";
+        if (!(l.maxDistance > previous)) fail("/", which + ": maxDistance must exceed the previous level's (" + std::to_string(previous) + ")");
+        if (!(l.triangleShare > 0.0 && l.triangleShare <= 1.0)) fail("/", which + ": triangleShare must be in (0, 1]");
+        previous = l.maxDistance;
+    }
 }
 
 std::string stem(const std::string& path) {

@@ -3,10 +3,17 @@
 // resource limits, and the Sklsroot sphere parameters of the templates it builds.
 
 #include <string>
+#include <vector>
 
 #include "throng/actors/GltfLimits.h"
 
 namespace throng {
+
+/// One geometric level of a skinned character, made by simplifying its mesh (meshoptimizer).
+struct GltfLodLevel {
+    double maxDistance = 0.0;    ///< end of the level's range (eye distance, metres after `scale`)
+    double triangleShare = 1.0;  ///< share of the mesh's triangles kept, in (0, 1]
+};
 
 /// Options of loadCharacter / loadCharacterFromMemory.
 struct GltfLoadOptions {
@@ -26,6 +33,12 @@ struct GltfLoadOptions {
     double sklsrootMargin = -1.0;
     /// Rate at which clips are sampled for the Sklsroot radius, besides every key time (Hz).
     double sklsrootSampleRate = 30.0;
+    /// Uniform scale applied to the whole file, folded into the skeleton like a scaling parent
+    /// node (Fox is modelled in centimetres: 0.01 gives metres).
+    double scale = 1.0;
+    /// vaLod levels of each skinned mesh, nearest first, distances increasing; empty: the mesh as
+    /// it is, at every distance. A share of 1 is the mesh itself.
+    std::vector<GltfLodLevel> lodLevels;
 };
 
 }  // namespace throng

@@ -17,6 +17,9 @@ struct LoadedCharacter {
     int jointCount = 0;                         ///< joints of the skin (Skeleton nodes with DOFs)
     std::vector<int> primitives;                ///< indices into CharacterAsset::primitives drawn by it
     std::vector<int> clipSource;                ///< glTF animation of each clip of the template
+    /// Per vaLod level of the skinned mesh: the largest surface deviation its simplification
+    /// made, in metres (0 for the full mesh): what each level's saving costs in accuracy.
+    std::vector<double> lodErrors;
 };
 
 }  // namespace throng

@@ -33,6 +33,10 @@ struct TemplateDescription {
     std::string idleClip;       ///< clip to stand with, or empty (walk clip held)
     double walkClipSpeed = 1.4; ///< speed the walk clip was authored for, m/s
     double runClipSpeed = 3.5;  ///< speed the run clip was authored for, m/s
+    double scale = 1.0;         ///< glTF: uniform scale to metres (Fox: 0.01)
+    /// glTF: geometric levels {until distance, share of triangles}, nearest first; the last one
+    /// may reach to infinity. Empty: the full mesh at every distance.
+    std::vector<glm::dvec2> lod;
 };
 
 /// Where a group of actors starts: a rectangle on the ground (centre and size, metres).
