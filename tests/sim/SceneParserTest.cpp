@@ -131,7 +131,20 @@ INSTANTIATE_TEST_SUITE_P(
                  scene(kActors, R"(, "camera": {"path": [{"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}, {"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
                  "/camera/path/1/time", "must increase"},
         BadScene{"hysteresis out of range", scene(kActors, R"(, "representation": {"hysteresis": 0.9})"),
-                 "/representation/hysteresis", "[0, 0.5]"}),
+                 "/representation/hysteresis", "[0, 0.5]"},
+        BadScene{"negative scale", R"({"templates": {"x": {"gltf": "characters/Fox.glb", "scale": -0.01}}, "actors": []})",
+                 "/templates/x/scale", "must be positive"},
+        BadScene{"scale on a procedural template", R"({"templates": {"x": {"procedural": "bird", "scale": 2}}, "actors": []})",
+                 "/templates/x", "glTF templates only"},
+        BadScene{"lod distances not increasing",
+                 R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"until": 30}, {"until": 20}]}}, "actors": []})",
+                 "/templates/x/lod/1/until", "must exceed"},
+        BadScene{"lod share above 1",
+                 R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"until": 30, "triangles": 1.5}]}}, "actors": []})",
+                 "/templates/x/lod/0/triangles", "at most 1"},
+        BadScene{"open-ended lod level before the last",
+                 R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"triangles": 1}, {"until": 20}]}}, "actors": []})",
+                 "/templates/x/lod/0", "needs 'until'"}),
     [](const auto& param) {
         std::string name = param.param.what;
         for (char& c : name)

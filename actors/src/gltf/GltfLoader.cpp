@@ -919,7 +919,7 @@ void Loader::buildSkin(int s) {
             const glm::dvec4 p = glm::dmat4(ibm_[static_cast<std::size_t>(s)][static_cast<std::size_t>(bestK)]) *
                                  glm::dvec4(dvec3(mesh->positions[v]), 1.0);
             if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) spheres[static_cast<std::size_t>(bestK)].expandBy(dvec3(p));
-            extentPoints.push_back(dvec3(mesh->positions[v]));
+            extentPoints.push_back(options_.scale * dvec3(mesh->positions[v]));  // bind space, in file units
         }
         for (std::size_t k = 0; k < joints.size(); ++k)
             nodes[static_cast<std::size_t>(skeletonOfJoint[k])].geometrySphere = spheres[k];
