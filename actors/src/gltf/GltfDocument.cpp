@@ -146,6 +146,25 @@ void precheck(const nlohmann::json& doc, const std::string& file, bool binary) {
                 if (!j[k].is_number_integer() || j[k].get<std::int64_t>() < 0 || j[k].get<std::int64_t>() > INT32_MAX)
                     throw GltfError(file, where + "/joints/" + std::to_string(k), "is not a node index");
         }
+    // Primitive references: tinygltf would reject some without saying where.
+    const auto accessors = doc.contains("accessors") && doc["accessors"].is_array() ? doc["accessors"].size() : 0;
+    if (const auto* meshes = array("meshes"))
+        for (std::size_t i = 0; i < meshes->size(); ++i) {
+            const auto& m = (*meshes)[i];
+            if (!m.is_object() || !m.contains("primitives") || !m["primitives"].is_array()) continue;
+            for (std::size_t p = 0; p < m["primitives"].size(); ++p) {
+                const auto& prim = m["primitives"][p];
+                const std::string where = "/meshes/" + std::to_string(i) + "/primitives/" + std::to_string(p);
+                auto check = [&](const nlohmann::json& v, const std::string& at) {
+                    if (!v.is_number_integer() || v.get<std::int64_t>() < 0 || static_cast<std::size_t>(v.get<std::int64_t>()) >= accessors)
+                        throw GltfError(file, at, "accessor " + v.dump() + " does not exist (" + std::to_string(accessors) + " accessors)");
+                };
+                if (!prim.is_object()) continue;
+                if (prim.contains("indices")) check(prim["indices"], where + "/indices");
+                if (prim.contains("attributes") && prim["attributes"].is_object())
+                    for (const auto& [key, value] : prim["attributes"].items()) check(value, where + "/attributes/" + key);
+            }
+        }
     for (const char* key : {"nodes", "meshes", "accessors", "bufferViews", "animations", "materials", "textures",
                             "images", "scenes", "samplers"})
         array(key);

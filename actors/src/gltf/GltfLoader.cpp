@@ -171,6 +171,7 @@ private:
     struct Channel {
         int node = -1;
         int path = 0;  // 0 translation, 1 rotation, 2 scale
+        int index = 0; // channel index in the animation
         Interpolation interpolation = Interpolation::Linear;
         std::shared_ptr<const std::vector<float>> times;
         std::shared_ptr<const std::vector<float>> values;
@@ -619,6 +620,9 @@ void Loader::readPrimitives() {
 }
 
 void Loader::readAnimations() {
+    std::vector<char> isJoint(m_.nodes.size(), 0);
+    for (const auto& joints : skinJoints_)
+        for (int j : joints) isJoint[static_cast<std::size_t>(j)] = 1;
     channels_.resize(m_.animations.size());
     loadedChannels_.resize(m_.animations.size());
     for (std::size_t a = 0; a < m_.animations.size(); ++a) {
@@ -649,11 +653,17 @@ void Loader::readAnimations() {
             } else {
                 fail(cw + "/target/path", "unknown path '" + ch.target_path + "'");
             }
+            if (!isJoint[static_cast<std::size_t>(ch.target_node)]) {
+                // Only joints become Skeleton nodes; the data of such channels is not even read.
+                warn(cw, "animates node " + std::to_string(ch.target_node) + ", which is not a joint of any skin: ignored");
+                continue;
+            }
             const tinygltf::AnimationSampler& s = anim.samplers[static_cast<std::size_t>(ch.sampler)];
             const std::string sw = ptr(where + "/samplers", static_cast<std::size_t>(ch.sampler));
             Channel out;
             out.node = ch.target_node;
             out.path = path;
+            out.index = static_cast<int>(c);
             if (s.interpolation == "LINEAR") out.interpolation = Interpolation::Linear;
             else if (s.interpolation == "STEP") out.interpolation = Interpolation::Step;
             else if (s.interpolation == "CUBICSPLINE") out.interpolation = Interpolation::CubicSpline;
@@ -979,11 +989,11 @@ void Loader::buildSkin(int s) {
                 for (std::size_t k = 0; k + 3 < cc.values.size(); k += 4) {
                     const double len = std::sqrt(double(cc.values[k]) * cc.values[k] + double(cc.values[k + 1]) * cc.values[k + 1] +
                                                  double(cc.values[k + 2]) * cc.values[k + 2] + double(cc.values[k + 3]) * cc.values[k + 3]);
-                    if (!(len > 1e-6)) fail(ptr("/animations", a) + "/channels/" + std::to_string(c), "key " + std::to_string(k / 4) + " is a zero quaternion");
+                    if (!(len > 1e-6)) fail(ptr("/animations", a) + "/channels/" + std::to_string(in.index), "key " + std::to_string(k / 4) + " is a zero quaternion");
                     for (int q = 0; q < 4; ++q) cc.values[k + static_cast<std::size_t>(q)] = static_cast<float>(cc.values[k + static_cast<std::size_t>(q)] / len);
                 }
             out.push_back(std::move(cc));
-            loadedChannels_[a].insert(static_cast<int>(c));
+            loadedChannels_[a].insert(in.index);
         }
         if (out.empty()) continue;
         std::string clipName = asset_.animations[a].name;
@@ -1042,22 +1052,16 @@ void Loader::buildStatic() {
 CharacterAsset Loader::run() {
     asset_.source = doc_.file;
     checkOptions();
-    if (m_.nodes.empty() && m_.meshes.empty()) fail("/", "the file holds no node and no mesh: nothing to load");
     readNodes();
     readScene();
     checkSkins();
+    if (m_.nodes.empty() && m_.meshes.empty()) fail("/", "the file holds no node and no mesh: nothing to load");
     readPrimitives();
     readAnimations();
     for (std::size_t s = 0; s < m_.skins.size(); ++s) buildSkin(static_cast<int>(s));
     buildStatic();
-    // Channels no template took: on nodes that are not joints.
-    for (std::size_t a = 0; a < channels_.size(); ++a) {
-        for (std::size_t c = 0; c < channels_[a].size(); ++c)
-            if (!loadedChannels_[a].count(static_cast<int>(c)))
-                warn(ptr("/animations", a) + "/channels/" + std::to_string(c),
-                     "animates node " + std::to_string(channels_[a][c].node) + ", which is not a joint: ignored");
+    for (std::size_t a = 0; a < channels_.size(); ++a)
         asset_.animations[a].channelsLoaded = static_cast<int>(loadedChannels_[a].size());
-    }
     asset_.warnings = doc_.warnings;
     return std::move(asset_);
 }
