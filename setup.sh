@@ -9,7 +9,7 @@ packages=(
   # libraries named by the design card
   libvtk9-dev libglm-dev libglfw3-dev libosmesa6-dev libgl-dev libgl1-mesa-dri libtinygltf-dev
   # tests, benchmarks, navigation, scene files, images, GL loader, virtual display
-  libgtest-dev libgmock-dev libbenchmark-dev librecast-dev nlohmann-json3-dev libstb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev librecast-dev nlohmann-json3-dev libstb-dev libjpeg-dev
   python3 python3-glad xvfb xauth
 )
 

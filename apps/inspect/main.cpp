@@ -1,0 +1,85 @@
+// throng-inspect FILE: what the glTF loader makes of a file (templates, joint tree, clips,
+// primitives, bounding spheres, warnings). Exit 1 with "file: where: problem" when it cannot load.
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include "throng/actors/GltfLoader.h"
+
+using namespace throng;
+
+namespace {
+
+void printCharacter(const CharacterAsset& asset, const LoadedCharacter& c) {
+    const ActorTemplate& t = *c.tmpl;
+    std::size_t triangles = 0, vertices = 0;
+    for (int p : c.primitives) {
+        triangles += asset.primitives[static_cast<std::size_t>(p)].data->triangleCount();
+        vertices += asset.primitives[static_cast<std::size_t>(p)].data->vertexCount();
+    }
+    std::printf("template '%s'%s\n", t.name().c_str(), c.skin >= 0 ? "" : " (rigid)");
+    if (c.skin >= 0) std::printf("  skin %d: %d joints\n", c.skin, c.jointCount);
+    std::printf("  Skeleton nodes: %zu, DOFs: %u, primitives: %zu, triangles: %zu, vertices: %zu\n", t.nodeCount(),
+                t.dofCount(), c.primitives.size(), triangles, vertices);
+    std::printf("  Sklsroot sphere radius: %.4g (margin %.4g), reach bound: %.4g\n", t.skeletonRootRadius(),
+                t.skeletonRootMargin(), t.reachRadius());
+    std::printf("  joints:\n");
+    std::vector<int> depth(t.nodeCount(), 0);
+    for (std::size_t i = 0; i < t.nodeCount(); ++i) {
+        const SkeletonNode& n = t.nodes()[i];
+        depth[i] = n.parent >= 0 ? depth[static_cast<std::size_t>(n.parent)] + 1 : 0;
+        std::printf("    %*s%s", depth[i] * 2, "", n.name.c_str());
+        if (n.dofs.empty()) std::printf(" (no DOF)");
+        if (n.geometrySphere.valid())
+            std::printf("  sphere (%.3g, %.3g, %.3g) r %.3g", n.geometrySphere.center().x, n.geometrySphere.center().y,
+                        n.geometrySphere.center().z, n.geometrySphere.radius());
+        std::printf("\n");
+    }
+    std::printf("  clips: %zu\n", t.clips().size());
+    for (const auto& clip : t.clips())
+        std::printf("    %-24s %8.3f s  %zu channels\n", clip->name().c_str(), clip->duration(), clip->channels().size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+        std::fprintf(stderr, "usage: throng-inspect FILE.gltf|FILE.glb\n");
+        return argc == 2 ? 0 : 2;
+    }
+    CharacterAsset asset;
+    try {
+        asset = loadCharacter(argv[1]);
+    } catch (const GltfError& e) {
+        std::cerr << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << argv[1] << ": /: " << e.what() << "\n";
+        return 1;
+    }
+    std::printf("file: %s\n", asset.source.c_str());
+    std::printf("templates: %zu\n", asset.characters.size());
+    for (const LoadedCharacter& c : asset.characters) printCharacter(asset, c);
+    std::printf("animations: %zu\n", asset.animations.size());
+    for (const LoadedAnimation& a : asset.animations)
+        std::printf("  %-24s %8.3f s  %d channels (%d loaded)\n", a.name.c_str(), a.duration, a.channels, a.channelsLoaded);
+    std::size_t triangles = 0, vertices = 0;
+    std::printf("primitives: %zu\n", asset.primitives.size());
+    for (const LoadedPrimitive& p : asset.primitives) {
+        triangles += p.data->triangleCount();
+        vertices += p.data->vertexCount();
+        const BoundingSphere b = p.data->computeBound();
+        std::printf("  mesh %d #%d node %d%s: %zu triangles, %zu vertices, %s, sphere (%.3g, %.3g, %.3g) r %.3g\n", p.mesh,
+                    p.primitive, p.node, p.skin >= 0 ? (" skin " + std::to_string(p.skin)).c_str() : "",
+                    p.data->triangleCount(), p.data->vertexCount(),
+                    p.data->baseColorTexture ? (std::to_string(p.data->baseColorTexture->width) + "x" +
+                                                std::to_string(p.data->baseColorTexture->height) + " texture").c_str()
+                                             : "no texture",
+                    b.center().x, b.center().y, b.center().z, b.radius());
+    }
+    std::printf("triangles: %zu\nvertices: %zu\n", triangles, vertices);
+    std::printf("warnings: %zu\n", asset.warnings.size());
+    for (const std::string& w : asset.warnings) std::printf("  %s\n", w.c_str());
+    return 0;
+}
