@@ -16,18 +16,18 @@ bool covered(const Image& a, const Image& b, std::size_t pixel) { return a.rgba[
 
 }  // namespace
 
-double normalizedCrossCorrelation(const Image& a, const Image& b) {
+double normalizedCrossCorrelation(const Image& a, const Image& b, bool coveredOnly) {
     check(a, b, "normalizedCrossCorrelation");
     const std::size_t pixels = static_cast<std::size_t>(a.width) * a.height;
     double sa = 0, sb = 0, n = 0;
     for (std::size_t i = 0; i < pixels; ++i)
-        if (covered(a, b, i))
+        if (!coveredOnly || covered(a, b, i))
             for (int c = 0; c < 4; ++c) sa += a.rgba[i * 4 + c], sb += b.rgba[i * 4 + c], n += 1;
     if (n == 0) return 1.0;
     const double ma = sa / n, mb = sb / n;
     double ab = 0, aa = 0, bb = 0;
     for (std::size_t i = 0; i < pixels; ++i)
-        if (covered(a, b, i))
+        if (!coveredOnly || covered(a, b, i))
             for (int c = 0; c < 4; ++c) {
                 const double da = a.rgba[i * 4 + c] - ma, db = b.rgba[i * 4 + c] - mb;
                 ab += da * db, aa += da * da, bb += db * db;
