@@ -5,10 +5,21 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "ImpostorTestSupport.h"
+#include "RenderTestSupport.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/Actor.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/ImpostorBatcher.h"
+#include "throng/render/ImpostorDrawable.h"
+#include "throng/render/ImpostorRenderer.h"
+#include "throng/scenegraph/Group.h"
 #include "throng/render/GpuMorpher.h"
 #include "throng/render/ImageCompare.h"
 #include "throng/render/ImageSimilarity.h"
@@ -137,6 +148,83 @@ TEST(Impostor, CacheMorphsEachCellOncePerFrame) {
         EXPECT_EQ(cache.statistics().hits, 42u);
     }
     EXPECT_THROW(cache.request(atlas, 0, 2), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace throng
+
+namespace throng {
+namespace {
+
+// A hybrid scene: one actor near (geometry), four far (impostors) drawn by GlRenderer then
+// ImpostorRenderer; and one far actor drawn both ways covers about the same pixels.
+struct HybridScene {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    Camera camera;
+
+    explicit HybridScene(const std::vector<Vec3>& positions) {
+        auto behaviour = std::make_shared<KeyframeBehaviour>();
+        for (const Vec3& p : positions) {
+            KeyframeBehaviour::Actor a;
+            a.tmpl = BakedHumanoid::get().tmpl;
+            a.clip = a.tmpl->findClip("walk");
+            a.position = p;
+            root->addChild(crowd.makeActorNode(crowd.add(a.tmpl, behaviour, behaviour->addActor(a))));
+        }
+        camera.setPerspective(0.5, 4.0 / 3.0, 0.5, 500.0);
+        camera.setLookAt(Vec3(0, 1, 10), Vec3(0, 1, -60));
+    }
+
+    Image render(double impostorDistance, std::uint64_t* impostors = nullptr) {
+        BakedHumanoid& b = BakedHumanoid::get();
+        RendererOptions ro;
+        ro.width = 160, ro.height = 120;
+        ro.captureFrames = true;
+        GlRenderer renderer(b.context, ro);
+        ImpostorRenderer quads(b.context);
+        auto atlas = std::make_shared<ImpostorAtlas>(*b.full);
+        atlas->dropOddKeyframes();
+        auto drawable = std::make_shared<ImpostorDrawable>(atlas);
+        ActorProcessor processor(crowd);
+        processor.setImpostorDistance(impostorDistance, 1.0);
+        processor.setImpostor(*b.tmpl, drawable);
+        const double t = 0.25;  // a dropped key-frame (1 of 8 over 2 s): the morph path is drawn
+        processor.processFrame(*root, camera, t);
+        MorphCache cache;
+        ImpostorBatcher batcher(cache);
+        batcher.build(processor.drawList(), camera, t);
+        renderer.beginFrame(camera);
+        renderer.draw(processor.drawList());
+        quads.draw(camera, batcher.instances());
+        renderer.endFrame();
+        if (impostors) *impostors = quads.statistics().instances;
+        EXPECT_EQ(quads.statistics().instances, processor.statistics().impostors);
+        return renderer.lastFrame();
+    }
+};
+
+std::size_t differentFromClear(const Image& image) {
+    const RendererOptions defaults;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+        n += std::abs(image.rgba[i] - static_cast<int>(std::lround(defaults.clearColor.r * 255))) > 3 ||
+             std::abs(image.rgba[i + 2] - static_cast<int>(std::lround(defaults.clearColor.b * 255))) > 3;
+    return n;
+}
+
+TEST(Impostor, HybridSceneDrawsFarActorsAsQuads) {
+    HybridScene scene({Vec3(1.5, 0, 0), Vec3(-4, 0, -40), Vec3(0, 0, -45), Vec3(4, 0, -50), Vec3(8, 0, -55)});
+    std::uint64_t impostors = 0;
+    const Image hybrid = scene.render(20.0, &impostors);
+    EXPECT_EQ(impostors, 4u);
+    const Image geometry = scene.render(0.0);
+    const double a = static_cast<double>(differentFromClear(hybrid)), b = static_cast<double>(differentFromClear(geometry));
+    EXPECT_GT(a, 0.0);
+    // The impostors stand where the figures stand, about as big (cell filtering blurs the edges).
+    EXPECT_NEAR(a / b, 1.0, 0.35) << a << " pixels as impostors, " << b << " as geometry";
+    test::writeOutput(hybrid, "impostor-hybrid");
+    test::writeOutput(geometry, "impostor-geometry");
 }
 
 }  // namespace
