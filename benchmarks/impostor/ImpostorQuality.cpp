@@ -227,8 +227,8 @@ int main(int argc, char** argv) {
             std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.4f | %.4f | %.4f | %.2f | %.4f | %s | %s |\n",
                           r.asset.c_str(), r.clip.c_str(), r.method.c_str(),
                           r.features < 0 ? "-" : std::to_string(r.features).c_str(), r.nccMean, r.nccStd, r.nccWhole, r.psnr, r.ssim,
-                          r.features < 0 ? "-" : (std::to_string(r.gpuMs).substr(0, 5)).c_str(),
-                          r.features < 0 ? "-" : (std::to_string(r.cpuMs).substr(0, 5)).c_str());
+                          r.features <= 0 ? "-" : (std::to_string(r.gpuMs).substr(0, 5)).c_str(),
+                          r.features <= 0 ? "-" : (std::to_string(r.cpuMs).substr(0, 5)).c_str());
             md << line;
         }
         md << "\n| asset | texture, all key-frames | texture, half | ratio |\n|---|---:|---:|---:|\n";
