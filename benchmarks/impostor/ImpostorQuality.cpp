@@ -7,6 +7,9 @@
 // the time to morph one cell on the CPU and on the GPU. Writes impostor-quality.md, .csv and a plot
 // (impostor-quality.png, through VTK: run under xvfb-run -a without a display).
 //
+// Also measures view blending: eye directions between baked views shown as the nearest view, the
+// barycentric blend of three, or the smoothstep-biased blend, against the cell rendered from there.
+//
 //   throng-impostor-quality [--out DIR] [--size 128] [--keyframes 16] [--views 16x4]
 //                           [--a A --b B --p P] [--asset NAME=SOURCE:CLIP ...]
 
@@ -17,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -46,6 +50,12 @@ struct Row {
     int features = 0;  // -1: not a morph
     double nccMean = 0, nccStd = 0, nccWhole = 0, psnr = 0, ssim = 0, cpuMs = 0, gpuMs = 0;
     int cells = 0;
+};
+
+// One row of the view-blending table: a way of showing an in-between eye direction.
+struct ViewRow {
+    std::string asset, method;
+    double ncc = 0, nccWhole = 0, psnr = 0, ssim = 0;
 };
 
 struct Memory {
@@ -81,8 +91,46 @@ struct Scores {
     }
 };
 
+// Premultiplied sum of the cells of `blend`'s views at stored key-frame `keyframe`.
+Image blendViews(const ImpostorAtlas& atlas, const ViewBlend& blend, int keyframe) {
+    Image out = atlas.cell(blend.views[0], keyframe);
+    std::vector<float> acc(out.rgba.size(), 0.0f);
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (blend.weights[i] <= 0.0f) continue;
+        const Image c = atlas.cell(blend.views[i], keyframe);
+        for (std::size_t j = 0; j < acc.size(); ++j) acc[j] += blend.weights[i] * static_cast<float>(c.rgba[j]);
+    }
+    for (std::size_t j = 0; j < acc.size(); ++j)
+        out.rgba[j] = static_cast<std::uint8_t>(std::clamp(std::lround(acc[j]), 0L, 255L));
+    return out;
+}
+
+// Eye directions between the baked views: the nearest view, the barycentric blend of three and the
+// smoothstep-biased blend, against the cell rendered from that very direction.
+void measureViews(const Asset& asset, ImpostorBaker& baker, const ImpostorAtlas& full, std::vector<ViewRow>& rows) {
+    const ViewHemisphere& h = full.views();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> az(0.0f, 6.2831853f), el(0.0f, h.elevation(h.elevations() - 1));
+    Scores nearest, blend, smooth;
+    for (int i = 0; i < 96; ++i) {
+        const float a = az(rng), e = el(rng);
+        const glm::vec3 dir(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+        const int k = 2 * (i % (full.keyframeCount() / 2));
+        const Image truth = baker.renderCell(full.duration() * k / full.keyframeCount(), dir);
+        nearest.add(full.cell(h.nearest(dir), k), truth);
+        blend.add(blendViews(full, h.blend(dir, false), k), truth);
+        smooth.add(blendViews(full, h.blend(dir, true), k), truth);
+    }
+    for (auto [name, s] : {std::pair<const char*, Scores*>{"nearest view", &nearest}, {"barycentric blend of 3 views", &blend},
+                           {"smoothstep-biased blend", &smooth}}) {
+        Row r;
+        s->into(r);
+        rows.push_back({asset.name, name, r.nccMean, r.nccWhole, r.psnr, r.ssim});
+    }
+}
+
 void measure(const Asset& asset, const ImpostorBakeOptions& options, const MorphParameters& parameters, const std::filesystem::path& out,
-             std::vector<Row>& rows, std::vector<Memory>& memory) {
+             std::vector<Row>& rows, std::vector<Memory>& memory, std::vector<ViewRow>& viewRows) {
     const auto tmpl = bake::loadTemplate(asset.source);
     const int clip = bake::findClipOrThrow(*tmpl, asset.clip);
     auto context = createContext(ContextOptions{options.cellSize, options.cellSize, false});
@@ -93,6 +141,7 @@ void measure(const Asset& asset, const ImpostorBakeOptions& options, const Morph
     half.dropOddKeyframes();
     memory.push_back({asset.name, full.textureBytes(), half.textureBytes()});
     const std::string clipName = full.clipName();
+    measureViews(asset, baker, full, viewRows);
     GpuMorpher gpu(context);
 
     // Baselines.
@@ -205,7 +254,8 @@ int main(int argc, char** argv) {
         std::filesystem::create_directories(out);
         std::vector<Row> rows;
         std::vector<Memory> memory;
-        for (const Asset& a : assets) measure(a, options, parameters, out, rows, memory);
+        std::vector<ViewRow> viewRows;
+        for (const Asset& a : assets) measure(a, options, parameters, out, rows, memory, viewRows);
 
         std::ofstream csv(out / "impostor-quality.csv");
         csv << "asset,clip,method,features,ncc_mean,ncc_std,ncc_whole_cell,psnr_db,ssim,cells,gpu_ms_per_cell,cpu_ms_per_cell\n";
@@ -236,6 +286,14 @@ int main(int argc, char** argv) {
             std::snprintf(line, sizeof line, "| %s | %.2f MiB | %.2f MiB | %.1f%% |\n", m.asset.c_str(),
                           static_cast<double>(m.full) / 1048576.0, static_cast<double>(m.half) / 1048576.0,
                           100.0 * static_cast<double>(m.half) / static_cast<double>(m.full));
+            md << line;
+        }
+        md << "\nView blending: 96 random eye directions between the baked views (stored key-frames), against "
+              "the cell rendered from that direction:\n\n| asset | shown | NCC | NCC whole cell | PSNR dB | SSIM |\n"
+              "|---|---|---:|---:|---:|---:|\n";
+        for (const ViewRow& v : viewRows) {
+            std::snprintf(line, sizeof line, "| %s | %s | %.4f | %.4f | %.2f | %.4f |\n", v.asset.c_str(), v.method.c_str(),
+                          v.ncc, v.nccWhole, v.psnr, v.ssim);
             md << line;
         }
         std::ofstream(out / "impostor-quality.md") << md.str();

@@ -45,8 +45,10 @@ struct ImpostorBaker::Impl {
         computeModelTransforms(t, dofs, {}, model);
     }
 
-    Camera camera(std::uint32_t view) const {
-        const glm::dvec3 d(views.direction(view));
+    Camera camera(std::uint32_t view) const { return camera(views.direction(view)); }
+
+    Camera camera(const glm::vec3& direction) const {
+        const glm::dvec3 d = glm::normalize(glm::dvec3(direction));
         const glm::dvec3 c(centre);
         const double r = radius;
         Camera cam;
@@ -108,7 +110,9 @@ ImpostorBaker::~ImpostorBaker() = default;
 
 const ViewHemisphere& ImpostorBaker::views() const { return impl_->views; }
 
-Image ImpostorBaker::renderCell(double time, std::uint32_t view) {
+Image ImpostorBaker::renderCell(double time, std::uint32_t view) { return renderCell(time, impl_->views.direction(view)); }
+
+Image ImpostorBaker::renderCell(double time, const glm::vec3& toEye) {
     Impl& s = *impl_;
     const ActorTemplate& t = *s.tmpl;
     s.pose(time);
@@ -137,13 +141,13 @@ Image ImpostorBaker::renderCell(double time, std::uint32_t view) {
     for (std::size_t i = 0; i < t.nodeCount(); ++i)
         if (!t.nodes()[i].geometry.empty())
             addItem(t.nodes()[i].geometry.levels().front(), s.rootMatrix * s.model[i].toDMat4(), static_cast<std::uint32_t>(i + 1));
-    const Camera cam = s.camera(view);
+    const Camera cam = s.camera(toEye);
     s.context->makeCurrent();
     s.renderer->beginFrame(cam);
     s.renderer->draw(list);
     Image image = s.renderer->readFrame();
     s.renderer->endFrame();
-    image.name = t.name() + " t=" + std::to_string(time) + " view " + std::to_string(view);
+    image.name = t.name() + " t=" + std::to_string(time);
     return image;
 }
 

@@ -9,6 +9,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "throng/render/BeierNeely.h"
 #include "throng/render/ImpostorAtlas.h"
 #include "throng/render/ViewHemisphere.h"
@@ -47,6 +49,9 @@ public:
     ImpostorAtlas bake();
     /// The cell of `view` at clip time `time` (seconds, wrapped), premultiplied RGBA.
     Image renderCell(double time, std::uint32_t view);
+    /// The cell seen from unit direction `toEye` (actor frame; any direction with a horizontal
+    /// component), as a baked view would be: the truth view blending is measured against.
+    Image renderCell(double time, const glm::vec3& toEye);
     /// The bones of the pose at `time` projected into `view`'s cell (pixels), one per bone.
     std::vector<FeatureLine> projectBones(double time, std::uint32_t view);
 
