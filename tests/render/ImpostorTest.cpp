@@ -150,6 +150,21 @@ TEST(Impostor, CacheMorphsEachCellOncePerFrame) {
     EXPECT_THROW(cache.request(atlas, 0, 2), std::invalid_argument);
 }
 
+TEST(Impostor, CacheRetainsUpToItsCapacity) {
+    const ImpostorAtlas atlas = halved();
+    MorphCacheOptions options;
+    options.capacity = 3;
+    MorphCache cache(options);
+    cache.beginFrame();
+    for (std::uint32_t v = 0; v < 5; ++v) cache.request(atlas, v, 1);
+    EXPECT_EQ(cache.statistics().synthesized, 5u);
+    cache.beginFrame();  // keeps the 3 most recently used: views 2, 3, 4
+    EXPECT_EQ(cache.statistics().resident, 3u);
+    for (std::uint32_t v = 0; v < 5; ++v) cache.request(atlas, v, 1);
+    EXPECT_EQ(cache.statistics().hits, 3u);
+    EXPECT_EQ(cache.statistics().synthesized, 2u);
+}
+
 }  // namespace
 }  // namespace throng
 
