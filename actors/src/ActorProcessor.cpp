@@ -182,6 +182,41 @@ void ActorProcessor::cullRefpoints(const Frustum& frustum, const Vec3& eye) {
     }
 }
 
+void ActorProcessor::setImpostorDistance(double distance, double hysteresis) {
+    if (!(distance >= 0.0) || !std::isfinite(distance) || !(hysteresis >= 0.0) || !std::isfinite(hysteresis))
+        throw std::invalid_argument("ActorProcessor::setImpostorDistance: distance and hysteresis must be finite and >= 0");
+    impostorDistance_ = distance;
+    impostorHysteresis_ = hysteresis;
+    if (distance == 0.0) impostorTier_.clear();
+}
+
+void ActorProcessor::setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor) {
+    std::erase_if(impostors_, [&](const auto& e) { return e.first == &tmpl; });
+    if (impostor) impostors_.emplace_back(&tmpl, std::move(impostor));
+}
+
+bool ActorProcessor::impostorTier(ActorId id, const ActorTemplate& tmpl, double detail2, const Candidate& cand) {
+    const Drawable* impostor = nullptr;
+    for (const auto& [t, d] : impostors_)
+        if (t == &tmpl) impostor = d.get();
+    if (impostorTier_.size() < crowd_.size()) impostorTier_.resize(crowd_.size(), 0);
+    if (!impostor) return impostorTier_[id] = 0, false;
+    // Hysteresis on squared distances: no square root per actor.
+    const double out = impostorDistance_ + impostorHysteresis_, in = std::max(impostorDistance_ - impostorHysteresis_, 0.0);
+    std::uint8_t& tier = impostorTier_[id];
+    if (tier != 0 && detail2 < in * in) tier = 0;
+    else if (tier == 0 && detail2 > out * out) tier = 1;
+    if (tier == 0) return false;
+    Crowd::State& s = crowd_.state();
+    drawList_.add(detail::actorPartItem(cand.node, cand.member, s.tint[id], *impostor, &s.refWorld[id],
+                                        static_cast<std::uint32_t>(tmpl.nodeCount()), 0),
+                  impostor->primitiveCount());
+    ++stats_.impostors;
+    ++stats_.drawItems;
+    stats_.primitives += impostor->primitiveCount();
+    return true;
+}
+
 void ActorProcessor::processActors(Node& root, const Camera& camera, double time, DrawBackend* backend) {
     Crowd::State& s = crowd_.state();
     OpCounter& counterRef = counter();
@@ -302,6 +337,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         countOperations(c, OpCategory::LodDistance);
         ++stats_.lodDistances;
         const ActorTemplate& t = *s.tmpl[id];
+        if (impostorDistance_ > 0.0 && impostorTier(id, t, d2, cand)) continue;
         detail2_[kept] = d2;
         level_[kept] = behaviouralLod_ ? s.behaviour[id]->levelFor(std::sqrt(d2)) : 0;
         nodeBase_[kept] = nodes;

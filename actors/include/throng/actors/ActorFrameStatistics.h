@@ -46,6 +46,7 @@ struct ActorFrameStatistics {
 
     // Work.
     std::uint64_t actorsPosed = 0;            ///< actors whose behaviour posed them this frame
+    std::uint64_t impostors = 0;              ///< actors drawn as impostors (no Skeleton node processed)
     std::uint64_t skeletonNodesEvaluated = 0; ///< Skeleton nodes whose DOFs and matrix were computed
     std::uint64_t internalSpheresComputed = 0;///< internal spheres recomputed
     std::uint64_t spheresTested = 0;          ///< sphere-frustum tests, all kinds

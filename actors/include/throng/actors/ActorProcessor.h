@@ -26,9 +26,11 @@
 
 namespace throng {
 
+class ActorTemplate;
 class Camera;
 class Crowd;
 class DrawBackend;
+class Drawable;
 class Node;
 
 /// Frame processor for scenes with actors of one Crowd.
@@ -47,6 +49,22 @@ public:
     void setSkeletalLod(bool on) { skeletalLod_ = on; }
     /// Switches behavioural LOD (actor processing): off, behaviours always run at level 0.
     void setBehaviouralLod(bool on) { behaviouralLod_ = on; }
+    /// Hybrid LOD (actor processing): beyond `distance` metres (scaled by the LOD scale and the
+    /// actor's priority, like every LOD distance) an actor whose template has an impostor is drawn
+    /// as one item showing it, placed at its Reference Point, and none of its Skeleton nodes is
+    /// processed (the seed's "LOD formed by none"). An actor becomes an impostor beyond
+    /// distance + hysteresis and gets its geometry back within distance - hysteresis, so actors
+    /// near the threshold do not flicker. Distance 0 (the default) turns impostors off. Throws
+    /// std::invalid_argument for negative or non-finite values.
+    void setImpostorDistance(double distance, double hysteresis = 0.0);
+    /// The impostor distance (0: off).
+    double impostorDistance() const { return impostorDistance_; }
+    /// Shows actors of `tmpl` beyond the impostor distance as `impostor` (null removes it). The
+    /// drawable must outlive its use; the backend knows how to draw it (throng::render's
+    /// ImpostorDrawable).
+    void setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor);
+    /// Whether actor `id` was drawn as an impostor in the last frame.
+    bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
     void setCullingFrustum(std::optional<Frustum> frustum);
     /// Runs the per-actor phases (Reference Points, Skeleton Roots, poses) on `threads` threads
@@ -81,6 +99,9 @@ private:
 
     void processActors(Node& root, const Camera& camera, double time, DrawBackend* backend);
     void cullRefpoints(const Frustum& frustum, const Vec3& eye);  // phase 2 for group members
+    // Phase 4, hybrid LOD: updates the actor's tier; when it is an impostor, adds its item and
+    // returns true (the actor then skips phases 5-7).
+    bool impostorTier(ActorId id, const ActorTemplate& tmpl, double detail2, const Candidate& cand);
     // Calls body(begin, end) over [0, n): on the pool when there is one and nothing is counted.
     void forRanges(std::size_t n, bool counting, const std::function<void(std::size_t, std::size_t)>& body);
 
@@ -88,6 +109,9 @@ private:
     TraditionalProcessor traditional_;
     std::unique_ptr<WorkerPool> pool_;
     Processing processing_ = Processing::Actor;
+    double impostorDistance_ = 0.0, impostorHysteresis_ = 0.0;
+    std::vector<std::pair<const ActorTemplate*, std::shared_ptr<const Drawable>>> impostors_;
+    std::vector<std::uint8_t> impostorTier_;    // per actor: 1 while drawn as an impostor
     double lodScale_ = 1.0;
     bool skeletalLod_ = true;
     bool behaviouralLod_ = true;

@@ -1,0 +1,185 @@
+// Impostor crowds (DESIGN.md, Impostors): the morph work of a frame depends on the views x key-
+// frames in use, not on the number of actors, because the MorphCache makes each needed cell once.
+//
+// ImpostorCrowd/N: N seed humanoids (1k, 4k, 16k) all beyond the impostor distance, random
+// headings and clip phases, in front of the camera. Each frame: actor processing (impostors: no
+// Skeleton node processed), then ImpostorBatcher builds the quad instances and morphs the dropped
+// cells the frame needs on the GPU (llvmpipe here; cache capacity 0, so every frame morphs all it
+// needs again: the worst case). Counters: cells morphed per frame, morph+batch ms per frame,
+// processing ms, impostors.
+//
+// HybridScene/10000: 10k actors from 5 m to 300 m; near ones are geometry, far ones impostors
+// (distance 60 m, hysteresis 5 m), drawn at 640x360: GlRenderer for the meshes, ImpostorRenderer
+// for the quads. Counters: impostors, actors posed, Skeleton nodes evaluated, cells morphed, and the
+// times of processing, batching (with morphing) and drawing per frame.
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <random>
+
+#include "throng/actors/Actor.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/GpuMorpher.h"
+#include "throng/render/ImpostorBaker.h"
+#include "throng/render/ImpostorBatcher.h"
+#include "throng/render/ImpostorDrawable.h"
+#include "throng/render/ImpostorRenderer.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Group.h"
+
+using namespace throng;
+
+namespace {
+
+// The baked humanoid, shared by every benchmark of the run.
+struct Baked {
+    std::shared_ptr<GlContext> context;
+    std::shared_ptr<const ActorTemplate> tmpl;
+    std::shared_ptr<const ImpostorAtlas> atlas;
+    std::shared_ptr<const ImpostorDrawable> drawable;
+    std::unique_ptr<GpuMorpher> gpu;
+
+    Baked() {
+        context = createContext(ContextOptions{64, 64, false});
+        tmpl = makeSeedHumanoid();
+        ImpostorBakeOptions o;
+        o.cellSize = 64;
+        ImpostorBaker baker(context, tmpl, tmpl->findClip("walk"), o);
+        auto a = std::make_shared<ImpostorAtlas>(baker.bake());
+        a->dropOddKeyframes();
+        atlas = a;
+        drawable = std::make_shared<ImpostorDrawable>(atlas);
+        gpu = std::make_unique<GpuMorpher>(context);
+    }
+    static Baked& get() {
+        static Baked b;
+        return b;
+    }
+};
+
+struct Scene {
+    std::unique_ptr<Crowd> crowd = std::make_unique<Crowd>();
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::vector<double> timeOffset;  // per actor
+    Camera camera;
+};
+
+// `n` actors scattered over x in [-w, w], z in [zNear, zFar] (negative: in front of the camera).
+Scene makeScene(std::size_t n, double w, double zNear, double zFar) {
+    Baked& b = Baked::get();
+    Scene s;
+    auto behaviour = std::make_shared<KeyframeBehaviour>();
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<double> ux(-w, w), uz(zFar, zNear), uh(0.0, 6.283185307179586), ut(0.0, 2.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = b.tmpl;
+        a.clip = b.tmpl->findClip("walk");
+        a.position = Vec3(ux(rng), 0.0, uz(rng));
+        a.heading = uh(rng);
+        a.timeOffset = ut(rng);
+        s.timeOffset.push_back(a.timeOffset);
+        const ActorId id = s.crowd->add(b.tmpl, behaviour, behaviour->addActor(a));
+        s.root->addChild(s.crowd->makeActorNode(id));
+    }
+    s.camera.setPerspective(1.0, 16.0 / 9.0, 0.5, 2000.0);
+    s.camera.setLookAt(Vec3(0, 25, 0), Vec3(0, 0, -200));
+    return s;
+}
+
+ImpostorBatcher::ClipTime clipTimes(const Scene& s) {
+    return [&s](const DrawItem& item, double t) {
+        const auto* actor = dynamic_cast<const Actor*>(item.node);
+        return actor ? t + s.timeOffset[actor->id()] : t;
+    };
+}
+
+void ImpostorCrowd(benchmark::State& state) {
+    Baked& b = Baked::get();
+    const auto n = static_cast<std::size_t>(state.range(0));
+    Scene s = makeScene(n, 250.0, -80.0, -900.0);
+    ActorProcessor processor(*s.crowd);
+    processor.setImpostorDistance(40.0, 2.0);
+    processor.setImpostor(*b.tmpl, b.drawable);
+    MorphCacheOptions options;
+    options.features = 8;
+    MorphCache cache(options, b.gpu.get());
+    ImpostorBatcher batcher(cache, false, clipTimes(s));
+    double t = 0.0, morphMs = 0.0, processMs = 0.0, morphed = 0.0, impostors = 0.0, requests = 0.0;
+    std::int64_t frames = 0;
+    for (auto _ : state) {
+        processMs += processor.processFrame(*s.root, s.camera, t).appCullMs();
+        batcher.build(processor.drawList(), s.camera, t);
+        morphMs += batcher.statistics().ms;
+        morphed += static_cast<double>(cache.statistics().synthesized);
+        requests += static_cast<double>(cache.statistics().requests);
+        impostors += static_cast<double>(batcher.statistics().impostors);
+        t += 1.0 / 30.0;
+        ++frames;
+    }
+    const double f = static_cast<double>(frames);
+    state.counters["impostors"] = impostors / f;
+    state.counters["cellRequests"] = requests / f;
+    state.counters["cellsMorphed"] = morphed / f;
+    state.counters["morphMs"] = morphMs / f;
+    state.counters["processMs"] = processMs / f;
+}
+BENCHMARK(ImpostorCrowd)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(6)->Unit(benchmark::kMillisecond);
+
+void HybridScene(benchmark::State& state) {
+    Baked& b = Baked::get();
+    const auto n = static_cast<std::size_t>(state.range(0));
+    Scene s = makeScene(n, 150.0, -5.0, -300.0);
+    ActorProcessor processor(*s.crowd);
+    processor.setImpostorDistance(60.0, 5.0);
+    processor.setImpostor(*b.tmpl, b.drawable);
+    MorphCacheOptions options;
+    options.features = 8;
+    MorphCache cache(options, b.gpu.get());
+    ImpostorBatcher batcher(cache, false, clipTimes(s));
+    RendererOptions ro;
+    ro.width = 640, ro.height = 360;
+    GlRenderer renderer(b.context, ro);
+    ImpostorRenderer quads(b.context);
+    double t = 0.0, impostors = 0.0, posed = 0.0, nodes = 0.0, morphed = 0.0, processMs = 0.0, batchMs = 0.0,
+           drawMs = 0.0;
+    std::int64_t frames = 0;
+    for (auto _ : state) {
+        const ActorFrameStatistics& st = processor.processFrame(*s.root, s.camera, t);
+        processMs += st.appCullMs();
+        batcher.build(processor.drawList(), s.camera, t);
+        batchMs += batcher.statistics().ms;
+        Stopwatch watch;
+        renderer.beginFrame(s.camera);
+        renderer.draw(processor.drawList());
+        quads.draw(s.camera, batcher.instances());
+        renderer.endFrame();
+        drawMs += watch.elapsedMs();
+        impostors += static_cast<double>(st.impostors);
+        posed += static_cast<double>(st.actorsPosed);
+        nodes += static_cast<double>(st.skeletonNodesEvaluated);
+        morphed += static_cast<double>(cache.statistics().synthesized);
+        t += 1.0 / 30.0;
+        ++frames;
+    }
+    const double f = static_cast<double>(frames);
+    state.counters["impostors"] = impostors / f;
+    state.counters["actorsPosed"] = posed / f;
+    state.counters["skeletonNodes"] = nodes / f;
+    state.counters["cellsMorphed"] = morphed / f;
+    state.counters["processMs"] = processMs / f;
+    state.counters["batchMorphMs"] = batchMs / f;
+    state.counters["drawMs"] = drawMs / f;
+}
+BENCHMARK(HybridScene)->Arg(10000)->Iterations(4)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,339 @@
+// throng-impostor-quality: how good morphed impostor key-frames are, and what they cost (DESIGN.md,
+// "Accuracy costs time: show both"). For each character and clip: bakes every key-frame, drops
+// the odd ones, regenerates each dropped cell (every view) by Beier-Neely morphing with the 4, 8,
+// 12 strongest bones or all of them, and compares it with the truly rendered cell: NCC (seed 000
+// Table 2), PSNR and SSIM, beside the baselines of showing the previous key-frame and of a plain
+// cross-dissolve of the neighbours. Also the texture memory with all and half the key-frames, and
+// the time to morph one cell on the CPU and on the GPU. Writes impostor-quality.md, .csv and a plot
+// (impostor-quality.png, through VTK: run under xvfb-run -a without a display).
+//
+// Also measures view blending: eye directions between baked views shown as the nearest view, the
+// barycentric blend of three, or the smoothstep-biased blend, against the cell rendered from there.
+//
+//   throng-impostor-quality [--out DIR] [--size 128] [--keyframes 16] [--views 16x4]
+//                           [--a A --b B --p P] [--asset NAME=SOURCE:CLIP ...]
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "../../apps/bake/CharacterSource.h"
+#include "throng/actors/ActorTemplate.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/GpuMorpher.h"
+#include "throng/render/ImageCompare.h"
+#include "throng/render/ImageIO.h"
+#include "throng/render/ImageSimilarity.h"
+#include "throng/render/ImpostorBaker.h"
+#include "throng/render/MorphCache.h"
+#include "throng/vtk/Chart.h"
+
+namespace {
+
+using namespace throng;
+
+struct Asset {
+    std::string name, source, clip;
+};
+
+struct Row {
+    std::string asset, clip, method;
+    int features = 0;  // -1: not a morph
+    double nccMean = 0, nccStd = 0, nccWhole = 0, psnr = 0, ssim = 0, cpuMs = 0, gpuMs = 0;
+    int cells = 0;
+};
+
+// One row of the view-blending table: a way of showing an in-between eye direction.
+struct ViewRow {
+    std::string asset, method;
+    double ncc = 0, nccWhole = 0, psnr = 0, ssim = 0;
+};
+
+struct Memory {
+    std::string asset;
+    std::size_t full = 0, half = 0;
+};
+
+double ms(std::chrono::steady_clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+// Accumulates the three metrics of approximations against truths.
+struct Scores {
+    std::vector<double> ncc, nccWhole, psnr, ssim;
+    void add(const Image& approx, const Image& truth) {
+        ncc.push_back(normalizedCrossCorrelation(approx, truth));
+        nccWhole.push_back(normalizedCrossCorrelation(approx, truth, false));
+        psnr.push_back(std::min(compareImages(approx, truth).psnr, 99.0));
+        ssim.push_back(structuralSimilarity(approx, truth));
+    }
+    void into(Row& r) const {
+        const auto mean = [](const std::vector<double>& v) {
+            double s = 0;
+            for (double x : v) s += x;
+            return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+        };
+        r.nccMean = mean(ncc);
+        double var = 0;
+        for (double x : ncc) var += (x - r.nccMean) * (x - r.nccMean);
+        r.nccStd = ncc.size() > 1 ? std::sqrt(var / static_cast<double>(ncc.size() - 1)) : 0.0;
+        r.psnr = mean(psnr);
+        r.nccWhole = mean(nccWhole);
+        r.ssim = mean(ssim);
+        r.cells = static_cast<int>(ncc.size());
+    }
+};
+
+// Premultiplied sum of the cells of `blend`'s views at stored key-frame `keyframe`.
+Image blendViews(const ImpostorAtlas& atlas, const ViewBlend& blend, int keyframe) {
+    Image out = atlas.cell(blend.views[0], keyframe);
+    std::vector<float> acc(out.rgba.size(), 0.0f);
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (blend.weights[i] <= 0.0f) continue;
+        const Image c = atlas.cell(blend.views[i], keyframe);
+        for (std::size_t j = 0; j < acc.size(); ++j) acc[j] += blend.weights[i] * static_cast<float>(c.rgba[j]);
+    }
+    for (std::size_t j = 0; j < acc.size(); ++j)
+        out.rgba[j] = static_cast<std::uint8_t>(std::clamp(std::lround(acc[j]), 0L, 255L));
+    return out;
+}
+
+// Eye directions between the baked views: the nearest view, the barycentric blend of three and the
+// smoothstep-biased blend, against the cell rendered from that very direction.
+void measureViews(const Asset& asset, ImpostorBaker& baker, const ImpostorAtlas& full, std::vector<ViewRow>& rows) {
+    const ViewHemisphere& h = full.views();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> az(0.0f, 6.2831853f), el(0.0f, h.elevation(h.elevations() - 1));
+    Scores nearest, blend, smooth;
+    for (int i = 0; i < 96; ++i) {
+        const float a = az(rng), e = el(rng);
+        const glm::vec3 dir(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+        const int k = 2 * (i % (full.keyframeCount() / 2));
+        const Image truth = baker.renderCell(full.duration() * k / full.keyframeCount(), dir);
+        nearest.add(full.cell(h.nearest(dir), k), truth);
+        blend.add(blendViews(full, h.blend(dir, false), k), truth);
+        smooth.add(blendViews(full, h.blend(dir, true), k), truth);
+    }
+    for (auto [name, s] : {std::pair<const char*, Scores*>{"nearest view", &nearest}, {"barycentric blend of 3 views", &blend},
+                           {"smoothstep-biased blend", &smooth}}) {
+        Row r;
+        s->into(r);
+        rows.push_back({asset.name, name, r.nccMean, r.nccWhole, r.psnr, r.ssim});
+    }
+}
+
+void measure(const Asset& asset, const ImpostorBakeOptions& options, const MorphParameters& parameters, const std::filesystem::path& out,
+             std::vector<Row>& rows, std::vector<Memory>& memory, std::vector<ViewRow>& viewRows) {
+    const auto tmpl = bake::loadTemplate(asset.source);
+    const int clip = bake::findClipOrThrow(*tmpl, asset.clip);
+    auto context = createContext(ContextOptions{options.cellSize, options.cellSize, false});
+    ImpostorBaker baker(context, tmpl, clip, options);
+    std::fprintf(stderr, "%s: baking...\n", asset.name.c_str());
+    const ImpostorAtlas full = baker.bake();
+    ImpostorAtlas half = full;
+    half.dropOddKeyframes();
+    memory.push_back({asset.name, full.textureBytes(), half.textureBytes()});
+    const std::string clipName = full.clipName();
+    measureViews(asset, baker, full, viewRows);
+    GpuMorpher gpu(context);
+
+    // Baselines.
+    Scores previous, dissolve;
+    for (int k = 1; k < half.keyframeCount(); k += 2)
+        for (std::uint32_t v = 0; v < half.views().viewCount(); ++v) {
+            const Image truth = full.cell(v, k);
+            previous.add(half.cell(v, k - 1), truth);
+            MorphCacheOptions none;
+            none.features = 0;
+            none.parameters = parameters;
+            dissolve.add(morphDroppedCell(half, v, k, none, &gpu), truth);
+        }
+    Row r{asset.name, clipName, "previous key-frame", -1};
+    previous.into(r);
+    rows.push_back(r);
+    r = Row{asset.name, clipName, "cross-dissolve", 0};
+    dissolve.into(r);
+    rows.push_back(r);
+
+    const std::size_t all = half.boneCount();
+    struct Variant {
+        std::size_t features;
+        bool skeletonTargets;
+    };
+    std::vector<Variant> variants;
+    for (std::size_t f : {std::size_t{4}, std::size_t{8}, std::size_t{12}, all})
+        if (f <= all && (variants.empty() || variants.back().features != f)) variants.push_back({f, true});
+    variants.push_back({all, false});
+    for (const Variant& variant : variants) {
+        MorphCacheOptions o;
+        o.parameters = parameters;
+        o.features = variant.features;
+        o.skeletonTargets = variant.skeletonTargets;
+        Scores s;
+        double gpuMs = 0;
+        for (int k = 1; k < half.keyframeCount(); k += 2)
+            for (std::uint32_t v = 0; v < half.views().viewCount(); ++v) {
+                const auto t0 = std::chrono::steady_clock::now();
+                const Image m = morphDroppedCell(half, v, k, o, &gpu);
+                gpuMs += ms(std::chrono::steady_clock::now() - t0);
+                s.add(m, full.cell(v, k));
+                if (variant.features == all && variant.skeletonTargets && k == 1 && v == 4) {
+                    writePng(m, out / (asset.name + "-morphed.png"));
+                    writePng(full.cell(v, k), out / (asset.name + "-truth.png"));
+                    writePng(half.cell(v, k - 1), out / (asset.name + "-previous.png"));
+                }
+            }
+        // CPU time on a sample of cells (it is the reference, not the run-time path).
+        double cpuMs = 0;
+        int cpuCells = 0;
+        for (std::uint32_t v = 0; v < half.views().viewCount(); v += 8, ++cpuCells) {
+            const auto t0 = std::chrono::steady_clock::now();
+            (void)morphDroppedCell(half, v, 1, o);
+            cpuMs += ms(std::chrono::steady_clock::now() - t0);
+        }
+        Row row{asset.name, clipName,
+                variant.skeletonTargets ? "morph (skeleton targets)" : "morph (interpolated lines)",
+                static_cast<int>(variant.features)};
+        s.into(row);
+        row.gpuMs = gpuMs / row.cells;
+        row.cpuMs = cpuMs / cpuCells;
+        rows.push_back(row);
+        std::fprintf(stderr, "%s: %s, %zu features: NCC %.4f\n", asset.name.c_str(), row.method.c_str(), variant.features,
+                     row.nccMean);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::filesystem::path out = "impostor-report";
+    ImpostorBakeOptions options;
+    MorphParameters parameters;
+    std::vector<Asset> assets;
+    const std::string shared = THRONG_SHARED_ASSETS;
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            const auto next = [&]() -> std::string {
+                if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+                return argv[++i];
+            };
+            if (a == "--out") out = next();
+            else if (a == "--size") options.cellSize = std::stoi(next());
+            else if (a == "--a") parameters.a = std::stof(next());
+            else if (a == "--b") parameters.b = std::stof(next());
+            else if (a == "--p") parameters.p = std::stof(next());
+            else if (a == "--keyframes") options.keyframes = std::stoi(next());
+            else if (a == "--views") {
+                const std::string v = next();
+                options.azimuths = std::stoi(v.substr(0, v.find('x')));
+                options.elevations = std::stoi(v.substr(v.find('x') + 1));
+            } else if (a == "--asset") {
+                const std::string v = next();
+                const auto eq = v.find('='), colon = v.rfind(':');
+                if (eq == std::string::npos || colon == std::string::npos || colon < eq)
+                    throw std::runtime_error("--asset wants NAME=SOURCE:CLIP");
+                assets.push_back({v.substr(0, eq), v.substr(eq + 1, colon - eq - 1), v.substr(colon + 1)});
+            } else {
+                std::fprintf(stderr, "usage: throng-impostor-quality [--out DIR] [--size N] [--keyframes N] [--views AxE] "
+                                     "[--asset NAME=SOURCE:CLIP ...]\n");
+                return a == "--help" ? 0 : 2;
+            }
+        }
+        if (assets.empty())
+            assets = {{"CesiumMan", shared + "/characters/CesiumMan.glb", ""},
+                      {"robot", shared + "/characters/robot.glb", "Robot_Walking"},
+                      {"seed-humanoid", "seed-humanoid", "walk"}};
+        std::filesystem::create_directories(out);
+        std::vector<Row> rows;
+        std::vector<Memory> memory;
+        std::vector<ViewRow> viewRows;
+        for (const Asset& a : assets) measure(a, options, parameters, out, rows, memory, viewRows);
+
+        std::ofstream csv(out / "impostor-quality.csv");
+        csv << "asset,clip,method,features,ncc_mean,ncc_std,ncc_whole_cell,psnr_db,ssim,cells,gpu_ms_per_cell,cpu_ms_per_cell\n";
+        for (const Row& r : rows)
+            csv << r.asset << ',' << r.clip << ',' << r.method << ',' << r.features << ',' << r.nccMean << ',' << r.nccStd << ',' << r.nccWhole
+                << ',' << r.psnr << ',' << r.ssim << ',' << r.cells << ',' << r.gpuMs << ',' << r.cpuMs << '\n';
+        std::ostringstream md;
+        char line[512];
+        md << "# Impostor morphing: quality and cost\n\n";
+        md << "Cells of " << options.cellSize << " px, " << options.azimuths << " x " << options.elevations
+           << " views, " << options.keyframes << " key-frames, Beier-Neely a = " << parameters.a << " px, b = " << parameters.b << ", p = " << parameters.p
+           << ", odd key-frames dropped and regenerated; every view of "
+           << "every dropped key-frame compared with the truly rendered cell (NCC and SSIM over the pixels either image "
+           << "covers). Time per cell: GPU = the fragment-shader morph (llvmpipe here), CPU = the reference, one "
+           << "thread.\n\n";
+        md << "| asset | clip | method | features | NCC mean | NCC std | NCC whole cell | PSNR dB | SSIM | GPU ms/cell | CPU ms/cell |\n";
+        md << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const Row& r : rows) {
+            std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.4f | %.4f | %.4f | %.2f | %.4f | %s | %s |\n",
+                          r.asset.c_str(), r.clip.c_str(), r.method.c_str(),
+                          r.features < 0 ? "-" : std::to_string(r.features).c_str(), r.nccMean, r.nccStd, r.nccWhole, r.psnr, r.ssim,
+                          r.features <= 0 ? "-" : (std::to_string(r.gpuMs).substr(0, 5)).c_str(),
+                          r.features <= 0 ? "-" : (std::to_string(r.cpuMs).substr(0, 5)).c_str());
+            md << line;
+        }
+        md << "\n| asset | texture, all key-frames | texture, half | ratio |\n|---|---:|---:|---:|\n";
+        for (const Memory& m : memory) {
+            std::snprintf(line, sizeof line, "| %s | %.2f MiB | %.2f MiB | %.1f%% |\n", m.asset.c_str(),
+                          static_cast<double>(m.full) / 1048576.0, static_cast<double>(m.half) / 1048576.0,
+                          100.0 * static_cast<double>(m.half) / static_cast<double>(m.full));
+            md << line;
+        }
+        md << "\nView blending: 96 random eye directions between the baked views (stored key-frames), against "
+              "the cell rendered from that direction:\n\n| asset | shown | NCC | NCC whole cell | PSNR dB | SSIM |\n"
+              "|---|---|---:|---:|---:|---:|\n";
+        for (const ViewRow& v : viewRows) {
+            std::snprintf(line, sizeof line, "| %s | %s | %.4f | %.4f | %.2f | %.4f |\n", v.asset.c_str(), v.method.c_str(),
+                          v.ncc, v.nccWhole, v.psnr, v.ssim);
+            md << line;
+        }
+        std::ofstream(out / "impostor-quality.md") << md.str();
+        std::printf("%s", md.str().c_str());
+
+        // The plot: NCC against feature count per asset, baselines dashed.
+        vtk::Chart chart;
+        chart.title = "Morphed impostor key-frames against truly rendered ones";
+        chart.xLabel = "feature lines (bones)";
+        chart.yLabel = "mean NCC";
+        chart.legend = vtk::Chart::Legend::Bottom;
+        int colour = 0;
+        for (const Asset& a : assets) {
+            vtk::ChartSeries morph, prev;
+            morph.name = a.name + ": morph";
+            prev.name = a.name + ": previous key-frame";
+            morph.style = vtk::ChartSeries::Style::LineAndPoints;
+            prev.style = vtk::ChartSeries::Style::DashedLine;
+            vtk::paletteColour(colour, morph.rgb);
+            vtk::paletteColour(colour++, prev.rgb);
+            double baseline = 0;
+            for (const Row& r : rows) {
+                if (r.asset != a.name) continue;
+                if (r.features < 0) baseline = r.nccMean;
+                else if (r.method != "morph (interpolated lines)") morph.x.push_back(r.features), morph.y.push_back(r.nccMean);
+            }
+            prev.x = {morph.x.front(), morph.x.back()};
+            prev.y = {baseline, baseline};
+            chart.series.push_back(morph);
+            chart.series.push_back(prev);
+        }
+        try {
+            vtk::writeChartPng(chart, (out / "impostor-quality.png").string());
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "no plot (%s); run under xvfb-run -a\n", e.what());
+        }
+        std::fprintf(stderr, "written to %s\n", out.c_str());
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-impostor-quality: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,63 @@
+#pragma once
+// Bakes an ImpostorAtlas for one actor template and clip (seed 000 §3): renders the figure with
+// GlRenderer, orthographically, from every view of a ViewHemisphere at every key-frame, over
+// transparent black, and projects every bone (parent joint to child joint) into each cell as a
+// feature line. Also renders single cells at any time, the "truth" morphed frames are measured
+// against.
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "throng/render/BeierNeely.h"
+#include "throng/render/ImpostorAtlas.h"
+#include "throng/render/ViewHemisphere.h"
+#include "throng/scenegraph/Image.h"
+
+namespace throng {
+
+class ActorTemplate;
+class GlContext;
+
+/// What to bake.
+struct ImpostorBakeOptions {
+    int azimuths = 16;       ///< views around
+    int elevations = 4;      ///< rings of views from the horizon up
+    int keyframes = 16;      ///< key-frames over the clip (it loops)
+    int cellSize = 128;      ///< pixels per cell side
+    /// Called after each key-frame with (done, total), for a progress bar.
+    std::function<void(int, int)> progress;
+};
+
+/// Renders impostor cells of one template and clip.
+class ImpostorBaker {
+public:
+    /// A baker of `tmpl`'s clip `clip` drawing in `context` (resized to one cell). Samples the clip
+    /// to find the volume every view covers. Throws std::invalid_argument if a pointer is null,
+    /// the clip does not exist, or an option is out of range.
+    ImpostorBaker(std::shared_ptr<GlContext> context, std::shared_ptr<const ActorTemplate> tmpl, int clip,
+                  const ImpostorBakeOptions& options = {});
+    ~ImpostorBaker();
+    ImpostorBaker(const ImpostorBaker&) = delete;
+    ImpostorBaker& operator=(const ImpostorBaker&) = delete;
+
+    /// The views baked.
+    const ViewHemisphere& views() const;
+    /// Renders every view of every key-frame and their feature lines (all key-frames stored).
+    ImpostorAtlas bake();
+    /// The cell of `view` at clip time `time` (seconds, wrapped), premultiplied RGBA.
+    Image renderCell(double time, std::uint32_t view);
+    /// The cell seen from unit direction `toEye` (actor frame; any direction with a horizontal
+    /// component), as a baked view would be: the truth view blending is measured against.
+    Image renderCell(double time, const glm::vec3& toEye);
+    /// The bones of the pose at `time` projected into `view`'s cell (pixels), one per bone.
+    std::vector<FeatureLine> projectBones(double time, std::uint32_t view);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace throng

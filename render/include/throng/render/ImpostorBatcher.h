@@ -1,0 +1,69 @@
+#pragma once
+// One frame of impostors, before any GL: for every ImpostorDrawable item of a draw list, the eye
+// direction in the actor's frame picks three views with barycentric weights (ViewHemisphere), the
+// actor's clip time picks a key-frame, and dropped key-frames come from the shared MorphCache, so
+// each needed cell is morphed once whatever the number of actors. The output is a flat array of
+// quad instances a renderer draws in one instanced call. Data-oriented: no allocation per actor
+// once warmed up.
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "throng/render/MorphCache.h"
+#include "throng/scenegraph/Math.h"
+
+namespace throng {
+
+class Camera;
+class DrawList;
+class ImpostorDrawable;
+struct DrawItem;
+
+/// One camera-facing quad: where, how big, and up to three cells blended.
+struct ImpostorInstance {
+    Vec3 centre{0.0};                      ///< world centre of the baked volume
+    float halfSize = 1.0f;                 ///< half the quad's side (metres)
+    glm::vec4 tint{1.0f};                  ///< the actor's tint
+    const ImpostorDrawable* drawable = nullptr;  ///< whose atlas
+    std::array<std::uint32_t, 3> views{};  ///< views blended
+    std::array<float, 3> weights{};        ///< their weights (sum 1)
+    int keyframe = 0;                      ///< key-frame shown
+    /// Morphed cells of a dropped key-frame (null for a stored key-frame or a zero weight).
+    std::array<const Image*, 3> morphed{};
+};
+
+/// Per-frame work of the batcher.
+struct ImpostorBatchStatistics {
+    std::uint64_t impostors = 0;       ///< instances made
+    std::uint64_t droppedCells = 0;    ///< cell uses that needed a morphed cell
+    double ms = 0;                     ///< time of build(), morphing included
+};
+
+/// Turns impostor draw items into quad instances, morphing through a MorphCache.
+class ImpostorBatcher {
+public:
+    /// Clip time (seconds) of the actor behind an item; default: the frame time for all.
+    using ClipTime = std::function<double(const DrawItem&, double frameTime)>;
+
+    /// A batcher requesting dropped cells from `cache` (which must outlive it). `smoothstep`
+    /// biases view weights towards the dominant view (seed 003).
+    explicit ImpostorBatcher(MorphCache& cache, bool smoothstep = false, ClipTime clipTime = {});
+    /// Starts the cache's frame and builds the instances of `list`'s ImpostorDrawable items seen
+    /// by `camera` at `time` (other items are ignored).
+    void build(const DrawList& list, const Camera& camera, double time);
+    /// The instances of the last build().
+    const std::vector<ImpostorInstance>& instances() const { return instances_; }
+    /// Statistics of the last build().
+    const ImpostorBatchStatistics& statistics() const { return stats_; }
+
+private:
+    MorphCache& cache_;
+    bool smoothstep_;
+    ClipTime clipTime_;
+    std::vector<ImpostorInstance> instances_;
+    ImpostorBatchStatistics stats_;
+};
+
+}  // namespace throng

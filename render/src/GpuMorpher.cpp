@@ -1,0 +1,231 @@
+#include "throng/render/GpuMorpher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glad/gl.h>
+
+#include "throng/render/GlContext.h"
+#include "throng/render/ShaderProgram.h"
+
+namespace throng {
+namespace {
+
+const char* const kVertexShader = R"(#version 330 core
+// A triangle covering the viewport; no vertex buffer needed.
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Mirrors BeierNeely.cpp line for line (lineContribution, samplePremultiplied, morphImages).
+const char* const kFragmentShader = R"(#version 330 core
+uniform sampler2D uFrom;
+uniform sampler2D uTo;
+uniform vec4 uTarget[64];
+uniform vec4 uFromLines[64];
+uniform vec4 uToLines[64];
+uniform int uCount;
+uniform vec3 uParams;      // a, b, p
+uniform float uT;
+uniform ivec2 uSize;
+out vec4 colour;
+
+const float kDegenerate = 1e-3;
+const float kMinLength = 1.0;
+
+vec2 perpendicular(vec2 d) { return vec2(-d.y, d.x); }
+
+vec2 sourcePosition(vec2 x, bool second) {
+    vec2 sum = vec2(0.0);
+    float weightSum = 0.0;
+    for (int i = 0; i < uCount; ++i) {
+        vec4 dl = uTarget[i];
+        vec4 sl = second ? uToLines[i] : uFromLines[i];
+        vec2 d = dl.zw - dl.xy;
+        float len2 = dot(d, d);
+        float len = sqrt(len2);
+        vec2 xp = x - dl.xy;
+        vec2 s = sl.zw - sl.xy;
+        float slen = sqrt(dot(s, s));
+        vec2 proposed;
+        float dist;
+        if (len < kDegenerate || slen < kDegenerate) {
+            proposed = sl.xy + xp;
+            dist = sqrt(dot(xp, xp));
+        } else {
+            float u = dot(xp, d) / len2;
+            float v = dot(xp, perpendicular(d)) / len;
+            proposed = sl.xy + u * s + v * (perpendicular(s) / slen);
+            if (u < 0.0) dist = sqrt(dot(xp, xp));
+            else if (u > 1.0) { vec2 xq = x - dl.zw; dist = sqrt(dot(xq, xq)); }
+            else dist = abs(v);
+        }
+        float a = max(uParams.x, 1e-3);
+        float lenP = pow(max(len, kMinLength), uParams.z);
+        float w = pow(lenP / (a + dist), uParams.y);
+        sum += (proposed - x) * w;
+        weightSum += w;
+    }
+    if (!(weightSum > 0.0) || isinf(weightSum) || isnan(weightSum)) return x;
+    vec2 r = x + sum / weightSum;
+    return (any(isnan(r)) || any(isinf(r))) ? x : r;
+}
+
+vec4 texel(sampler2D image, ivec2 p) {
+    if (p.x < 0 || p.y < 0 || p.x >= uSize.x || p.y >= uSize.y) return vec4(0.0);
+    return texelFetch(image, p, 0);
+}
+
+vec4 samplePremultiplied(sampler2D image, vec2 position) {
+    vec2 f = position - 0.5;
+    vec2 f0 = floor(f);
+    vec2 w = f - f0;
+    if (!(abs(f0.x) < 1e6 && abs(f0.y) < 1e6)) return vec4(0.0);
+    ivec2 i = ivec2(f0);
+    vec4 top = texel(image, i) * (1.0 - w.x) + texel(image, i + ivec2(1, 0)) * w.x;
+    vec4 bottom = texel(image, i + ivec2(0, 1)) * (1.0 - w.x) + texel(image, i + ivec2(1, 1)) * w.x;
+    return top * (1.0 - w.y) + bottom * w.y;
+}
+
+void main() {
+    // Rows are stored top first; gl_FragCoord counts from the bottom.
+    vec2 x = vec2(gl_FragCoord.x, float(uSize.y) - gl_FragCoord.y);
+    vec4 c0 = samplePremultiplied(uFrom, sourcePosition(x, false));
+    vec4 c1 = samplePremultiplied(uTo, sourcePosition(x, true));
+    colour = clamp(c0 * (1.0 - uT) + c1 * uT, 0.0, 1.0);
+}
+)";
+
+std::vector<float> packLines(std::span<const FeatureLine> lines) {
+    std::vector<float> out;
+    out.reserve(lines.size() * 4);
+    for (const FeatureLine& l : lines) out.insert(out.end(), {l.p.x, l.p.y, l.q.x, l.q.y});
+    return out;
+}
+
+}  // namespace
+
+struct GpuMorpher::Impl {
+    std::shared_ptr<GlContext> context;  // first member: destroyed last
+    std::unique_ptr<ShaderProgram> program;
+    GLuint vao = 0, fbo = 0, target = 0, sources[2] = {0, 0};
+    int width = 0, height = 0;
+};
+
+GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
+    if (!context) throw std::invalid_argument("GpuMorpher: argument 'context' is null");
+    impl_ = std::make_unique<Impl>();
+    Impl& s = *impl_;
+    s.context = std::move(context);
+    s.context->makeCurrent();
+    const GladGLContext& gl = s.context->gl();
+    s.program = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher shader", kVertexShader, kFragmentShader);
+    gl.GenVertexArrays(1, &s.vao);
+    gl.GenFramebuffers(1, &s.fbo);
+    gl.GenTextures(1, &s.target);
+    gl.GenTextures(2, s.sources);
+    for (GLuint tex : s.sources) {
+        gl.BindTexture(GL_TEXTURE_2D, tex);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    gl.UseProgram(s.program->id());
+    gl.Uniform1i(s.program->uniformLocation("uFrom"), 0);
+    gl.Uniform1i(s.program->uniformLocation("uTo"), 1);
+    gl.UseProgram(0);
+}
+
+GpuMorpher::~GpuMorpher() {
+    Impl& s = *impl_;
+    try {
+        s.context->makeCurrent();
+    } catch (...) {
+        return;  // the context is gone: so are its objects
+    }
+    const GladGLContext& gl = s.context->gl();
+    gl.DeleteTextures(2, s.sources);
+    gl.DeleteTextures(1, &s.target);
+    gl.DeleteFramebuffers(1, &s.fbo);
+    gl.DeleteVertexArrays(1, &s.vao);
+    s.program.reset();
+}
+
+Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
+                        std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
+                        const MorphParameters& parameters) {
+    if (!from.valid() || !to.valid()) throw std::invalid_argument("GpuMorpher::morph: an image is invalid");
+    if (from.width != to.width || from.height != to.height)
+        throw std::invalid_argument("GpuMorpher::morph: images of different sizes");
+    if (fromLines.size() != targetLines.size() || toLines.size() != targetLines.size())
+        throw std::invalid_argument("GpuMorpher::morph: the three line sets differ in size");
+    if (targetLines.size() > kMaxLines)
+        throw std::invalid_argument("GpuMorpher::morph: " + std::to_string(targetLines.size()) +
+                                    " lines, at most " + std::to_string(kMaxLines));
+    if (!std::isfinite(t)) throw std::invalid_argument("GpuMorpher::morph: t is not finite");
+
+    Impl& s = *impl_;
+    s.context->makeCurrent();
+    const GladGLContext& gl = s.context->gl();
+    const int w = from.width, h = from.height;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.fbo);
+    if (w != s.width || h != s.height) {
+        gl.BindTexture(GL_TEXTURE_2D, s.target);
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s.target, 0);
+        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw std::runtime_error("GpuMorpher::morph: the target framebuffer is incomplete");
+        s.width = w;
+        s.height = h;
+    }
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const Image* images[2] = {&from, &to};
+    for (int i = 0; i < 2; ++i) {
+        gl.ActiveTexture(GL_TEXTURE0 + i);
+        gl.BindTexture(GL_TEXTURE_2D, s.sources[i]);
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, images[i]->rgba.data());
+    }
+    gl.ActiveTexture(GL_TEXTURE0);
+
+    const GLuint program = s.program->id();
+    gl.UseProgram(program);
+    const auto n = static_cast<GLsizei>(targetLines.size());
+    if (n > 0) {
+        gl.Uniform4fv(s.program->uniformLocation("uTarget"), n, packLines(targetLines).data());
+        gl.Uniform4fv(s.program->uniformLocation("uFromLines"), n, packLines(fromLines).data());
+        gl.Uniform4fv(s.program->uniformLocation("uToLines"), n, packLines(toLines).data());
+    }
+    gl.Uniform1i(s.program->uniformLocation("uCount"), n);
+    gl.Uniform3f(s.program->uniformLocation("uParams"), parameters.a, parameters.b, parameters.p);
+    gl.Uniform1f(s.program->uniformLocation("uT"), t);
+    gl.Uniform2i(s.program->uniformLocation("uSize"), w, h);
+
+    gl.Viewport(0, 0, w, h);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Disable(GL_CULL_FACE);
+    gl.BindVertexArray(s.vao);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.BindVertexArray(0);
+
+    Image out;
+    out.name = from.name + "~" + to.name;
+    out.width = w;
+    out.height = h;
+    out.rgba.resize(static_cast<std::size_t>(w) * h * 4);
+    std::vector<std::uint8_t> flipped(out.rgba.size());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+    const std::size_t row = static_cast<std::size_t>(w) * 4;
+    for (int y = 0; y < h; ++y)
+        std::copy_n(flipped.data() + static_cast<std::size_t>(h - 1 - y) * row, row, out.rgba.data() + y * row);
+    gl.UseProgram(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
+    return out;
+}
+
+}  // namespace throng

@@ -1,0 +1,246 @@
+#include "throng/render/ImpostorAtlas.h"
+
+#include <algorithm>
+#include <fstream>
+#include <numeric>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "throng/render/ImageIO.h"
+
+namespace throng {
+namespace {
+
+std::string pageFile(int keyframe) { return "keyframe-" + std::to_string(keyframe) + ".png"; }
+
+Image blankPage(const ViewHemisphere& views, int cellSize, const std::string& name) {
+    Image page;
+    page.name = name;
+    page.width = views.azimuths() * cellSize;
+    page.height = views.elevations() * cellSize;
+    page.rgba.assign(static_cast<std::size_t>(page.width) * page.height * 4, 0);
+    return page;
+}
+
+}  // namespace
+
+ImpostorAtlas::ImpostorAtlas(std::string templateName, std::string clipName, const ViewHemisphere& views, int keyframes,
+                             double duration, int cellSize, std::vector<std::string> boneNames)
+    : templateName_(std::move(templateName)), clipName_(std::move(clipName)), views_(views), keyframes_(keyframes),
+      duration_(duration), cellSize_(cellSize), boneNames_(std::move(boneNames)) {
+    if (keyframes < 2) throw std::invalid_argument("ImpostorAtlas: at least 2 key-frames, got " + std::to_string(keyframes));
+    if (cellSize < 8 || cellSize > 4096) throw std::invalid_argument("ImpostorAtlas: cell size out of range");
+    if (!(duration > 0.0) || !std::isfinite(duration)) throw std::invalid_argument("ImpostorAtlas: duration must be positive");
+    importance_.assign(boneNames_.size(), 1.0f);
+    for (int k = 0; k < keyframes; ++k) pages_.push_back(blankPage(views_, cellSize_, templateName_ + "/" + pageFile(k)));
+    lines_.resize(static_cast<std::size_t>(keyframes) * views_.viewCount() * boneNames_.size());
+}
+
+void ImpostorAtlas::setBoneImportance(std::vector<float> importance) {
+    if (importance.size() != boneNames_.size()) throw std::invalid_argument("ImpostorAtlas: one importance per bone");
+    importance_ = std::move(importance);
+}
+
+std::vector<std::uint32_t> ImpostorAtlas::strongestBones(std::size_t count) const {
+    std::vector<std::uint32_t> order(boneNames_.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return importance_[a] > importance_[b]; });
+    order.resize(std::min(count, order.size()));
+    std::sort(order.begin(), order.end());
+    return order;
+}
+
+void ImpostorAtlas::setCell(std::uint32_t view, int keyframe, const Image& cell) {
+    if (!stored(keyframe)) throw std::invalid_argument("ImpostorAtlas::setCell: key-frame " + std::to_string(keyframe) + " is dropped");
+    if (cell.width != cellSize_ || cell.height != cellSize_ || !cell.valid())
+        throw std::invalid_argument("ImpostorAtlas::setCell: the cell is not " + std::to_string(cellSize_) + " pixels square");
+    Image& page = pages_[static_cast<std::size_t>(keyframe)];
+    const int x0 = static_cast<int>(view % static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
+    const int y0 = static_cast<int>(view / static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
+    const std::size_t row = static_cast<std::size_t>(cellSize_) * 4;
+    for (int y = 0; y < cellSize_; ++y)
+        std::copy_n(cell.rgba.data() + y * row, row,
+                    page.rgba.data() + (static_cast<std::size_t>(y0 + y) * page.width + x0) * 4);
+}
+
+Image ImpostorAtlas::cell(std::uint32_t view, int keyframe) const {
+    if (!stored(keyframe)) throw std::invalid_argument("ImpostorAtlas::cell: key-frame " + std::to_string(keyframe) + " is dropped");
+    const Image& page = pages_[static_cast<std::size_t>(keyframe)];
+    Image out;
+    out.name = templateName_ + " view " + std::to_string(view) + " key-frame " + std::to_string(keyframe);
+    out.width = out.height = cellSize_;
+    out.rgba.resize(static_cast<std::size_t>(cellSize_) * cellSize_ * 4);
+    const int x0 = static_cast<int>(view % static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
+    const int y0 = static_cast<int>(view / static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
+    const std::size_t row = static_cast<std::size_t>(cellSize_) * 4;
+    for (int y = 0; y < cellSize_; ++y)
+        std::copy_n(page.rgba.data() + (static_cast<std::size_t>(y0 + y) * page.width + x0) * 4, row,
+                    out.rgba.data() + y * row);
+    return out;
+}
+
+std::span<const FeatureLine> ImpostorAtlas::lines(std::uint32_t view, int keyframe) const {
+    const std::size_t n = boneNames_.size();
+    return {lines_.data() + (static_cast<std::size_t>(keyframe) * views_.viewCount() + view) * n, n};
+}
+
+std::span<FeatureLine> ImpostorAtlas::lines(std::uint32_t view, int keyframe) {
+    const std::size_t n = boneNames_.size();
+    return {lines_.data() + (static_cast<std::size_t>(keyframe) * views_.viewCount() + view) * n, n};
+}
+
+void ImpostorAtlas::dropOddKeyframes() {
+    for (int k = 1; k < keyframes_; k += 2)
+        if (!(keyframes_ % 2 == 1 && k == keyframes_ - 1)) pages_[static_cast<std::size_t>(k)] = Image{};
+}
+
+void ImpostorAtlas::neighbours(int keyframe, int& before, int& after, float& t) const {
+    if (stored(keyframe)) throw std::invalid_argument("ImpostorAtlas::neighbours: key-frame " + std::to_string(keyframe) + " is stored");
+    int b = keyframe, a = keyframe, db = 0, da = 0;
+    do b = (b + keyframes_ - 1) % keyframes_, ++db; while (!stored(b) && db < keyframes_);
+    do a = (a + 1) % keyframes_, ++da; while (!stored(a) && da < keyframes_);
+    if (!stored(b) || !stored(a)) throw std::invalid_argument("ImpostorAtlas::neighbours: no stored key-frame");
+    before = b, after = a;
+    t = static_cast<float>(db) / static_cast<float>(db + da);
+}
+
+std::size_t ImpostorAtlas::textureBytes() const {
+    std::size_t bytes = 0;
+    for (const Image& p : pages_) bytes += p.rgba.size();
+    return bytes;
+}
+
+std::size_t ImpostorAtlas::fullTextureBytes() const {
+    return static_cast<std::size_t>(keyframes_) * views_.viewCount() * cellSize_ * cellSize_ * 4;
+}
+
+void ImpostorAtlas::save(const std::filesystem::path& directory) const {
+    std::filesystem::create_directories(directory);
+    nlohmann::json j;
+    j["template"] = templateName_;
+    j["clip"] = clipName_;
+    j["duration"] = duration_;
+    j["cellSize"] = cellSize_;
+    j["views"] = {{"azimuths", views_.azimuths()}, {"elevations", views_.elevations()},
+                  {"topElevation", views_.elevation(views_.elevations() - 1)}};
+    nlohmann::json viewList = nlohmann::json::array();
+    for (std::uint32_t v = 0; v < views_.viewCount(); ++v) {
+        const glm::vec3 d = views_.direction(v);
+        viewList.push_back({{"index", v}, {"azimuth", views_.azimuth(static_cast<int>(v) % views_.azimuths())},
+                            {"elevation", views_.elevation(static_cast<int>(v) / views_.azimuths())},
+                            {"direction", {d.x, d.y, d.z}}});
+    }
+    j["views"]["list"] = viewList;
+    j["bounds"] = {{"centre", {centre_.x, centre_.y, centre_.z}}, {"radius", radius_}};
+    j["bones"] = boneNames_;
+    j["boneImportance"] = importance_;
+    nlohmann::json frames = nlohmann::json::array();
+    for (int k = 0; k < keyframes_; ++k) {
+        nlohmann::json f;
+        f["index"] = k;
+        f["time"] = duration_ * k / keyframes_;
+        f["stored"] = stored(k);
+        if (stored(k)) f["page"] = pageFile(k);
+        nlohmann::json segs = nlohmann::json::array();
+        for (std::uint32_t v = 0; v < views_.viewCount(); ++v) {
+            nlohmann::json cellLines = nlohmann::json::array();
+            for (const FeatureLine& l : lines(v, k)) cellLines.push_back({l.p.x, l.p.y, l.q.x, l.q.y});
+            segs.push_back(cellLines);
+        }
+        f["segments"] = segs;
+        frames.push_back(f);
+    }
+    j["keyframes"] = frames;
+    j["textureBytes"] = textureBytes();
+    j["fullTextureBytes"] = fullTextureBytes();
+    for (int k = 0; k < keyframes_; ++k)
+        if (stored(k)) writePng(pages_[static_cast<std::size_t>(k)], directory / pageFile(k));
+    std::ofstream out(directory / "impostor.json");
+    out << j.dump(1) << '\n';
+    if (!out) throw std::runtime_error("ImpostorAtlas::save: cannot write " + (directory / "impostor.json").string());
+}
+
+ImpostorAtlas ImpostorAtlas::load(const std::filesystem::path& directory) {
+    const std::filesystem::path file = directory / "impostor.json";
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error("ImpostorAtlas::load: cannot open " + file.string());
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        const auto& jv = j.at("views");
+        ViewHemisphere views(jv.at("azimuths").get<int>(), jv.at("elevations").get<int>(), jv.at("topElevation").get<float>());
+        const auto& frames = j.at("keyframes");
+        ImpostorAtlas atlas(j.at("template").get<std::string>(), j.at("clip").get<std::string>(), views,
+                            static_cast<int>(frames.size()), j.at("duration").get<double>(), j.at("cellSize").get<int>(),
+                            j.at("bones").get<std::vector<std::string>>());
+        atlas.setBoneImportance(j.at("boneImportance").get<std::vector<float>>());
+        const auto& c = j.at("bounds").at("centre");
+        atlas.setWorldBounds({c.at(0).get<float>(), c.at(1).get<float>(), c.at(2).get<float>()},
+                             j.at("bounds").at("radius").get<float>());
+        for (int k = 0; k < atlas.keyframes_; ++k) {
+            const auto& f = frames.at(static_cast<std::size_t>(k));
+            if (f.at("stored").get<bool>()) {
+                Image page = readPng(directory / f.at("page").get<std::string>());
+                if (page.width != atlas.pages_[static_cast<std::size_t>(k)].width ||
+                    page.height != atlas.pages_[static_cast<std::size_t>(k)].height)
+                    throw std::runtime_error("page " + std::to_string(k) + " has the wrong size");
+                atlas.pages_[static_cast<std::size_t>(k)] = std::move(page);
+            } else {
+                atlas.pages_[static_cast<std::size_t>(k)] = Image{};
+            }
+            const auto& segs = f.at("segments");
+            for (std::uint32_t v = 0; v < views.viewCount(); ++v) {
+                std::span<FeatureLine> out = atlas.lines(v, k);
+                const auto& cellLines = segs.at(v);
+                if (cellLines.size() != out.size()) throw std::runtime_error("wrong number of segments");
+                for (std::size_t b = 0; b < out.size(); ++b)
+                    out[b] = {{cellLines[b].at(0).get<float>(), cellLines[b].at(1).get<float>()},
+                              {cellLines[b].at(2).get<float>(), cellLines[b].at(3).get<float>()}};
+            }
+        }
+        return atlas;
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error("ImpostorAtlas::load: " + file.string() + ": " + e.what());
+    } catch (const std::exception& e) {
+        throw std::runtime_error("ImpostorAtlas::load: " + file.string() + ": " + e.what());
+    }
+}
+
+void ImpostorAtlas::applyFeatureFile(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error("ImpostorAtlas::applyFeatureFile: cannot open " + file.string());
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        if (j.contains("bones")) {
+            std::vector<std::uint32_t> keep;
+            for (const auto& name : j.at("bones")) {
+                const auto it = std::find(boneNames_.begin(), boneNames_.end(), name.get<std::string>());
+                if (it == boneNames_.end()) throw std::runtime_error("no bone named '" + name.get<std::string>() + "'");
+                keep.push_back(static_cast<std::uint32_t>(it - boneNames_.begin()));
+            }
+            std::vector<FeatureLine> lines;
+            std::vector<std::string> names;
+            std::vector<float> importance;
+            for (std::uint32_t b : keep) names.push_back(boneNames_[b]), importance.push_back(importance_[b]);
+            for (int k = 0; k < keyframes_; ++k)
+                for (std::uint32_t v = 0; v < views_.viewCount(); ++v)
+                    for (std::uint32_t b : keep) lines.push_back(this->lines(v, k)[b]);
+            boneNames_ = std::move(names), importance_ = std::move(importance), lines_ = std::move(lines);
+        }
+        if (j.contains("cells"))
+            for (const auto& c : j.at("cells")) {
+                const auto view = c.at("view").get<std::uint32_t>();
+                const int k = c.at("keyframe").get<int>();
+                if (view >= views_.viewCount() || k < 0 || k >= keyframes_) throw std::runtime_error("cell out of range");
+                std::span<FeatureLine> out = lines(view, k);
+                const auto& ls = c.at("lines");
+                if (ls.size() != out.size()) throw std::runtime_error("a cell needs one line per bone");
+                for (std::size_t b = 0; b < out.size(); ++b)
+                    out[b] = {{ls[b].at(0).get<float>(), ls[b].at(1).get<float>()}, {ls[b].at(2).get<float>(), ls[b].at(3).get<float>()}};
+            }
+    } catch (const std::exception& e) {
+        throw std::runtime_error("ImpostorAtlas::applyFeatureFile: " + file.string() + ": " + e.what());
+    }
+}
+
+}  // namespace throng

@@ -1,0 +1,54 @@
+#include "throng/render/ImpostorBatcher.h"
+
+#include <cmath>
+
+#include "throng/render/ImpostorDrawable.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Stopwatch.h"
+
+namespace throng {
+
+ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep, ClipTime clipTime)
+    : cache_(cache), smoothstep_(smoothstep), clipTime_(std::move(clipTime)) {}
+
+void ImpostorBatcher::build(const DrawList& list, const Camera& camera, double time) {
+    Stopwatch watch;
+    stats_ = {};
+    instances_.clear();
+    cache_.beginFrame();
+    const Vec3 eye = camera.eye();
+    for (const DrawItem& item : list.items()) {
+        const auto* d = dynamic_cast<const ImpostorDrawable*>(item.drawable);
+        if (!d || !item.worldMatrix) continue;
+        const ImpostorAtlas& atlas = d->atlas();
+        const Mat4& world = *item.worldMatrix;
+        ImpostorInstance inst;
+        inst.drawable = d;
+        inst.tint = item.tint;
+        inst.centre = Vec3(world * Vec4(Vec3(atlas.worldCentre()), 1.0));
+        // The eye in the actor's frame: the transpose of a rotation (scale cancels in the blend).
+        const Vec3 toEye = eye - inst.centre;
+        const glm::dmat3 r(world);
+        const glm::vec3 local(glm::dot(r[0], toEye), glm::dot(r[1], toEye), glm::dot(r[2], toEye));
+        inst.halfSize = atlas.worldRadius() * static_cast<float>(glm::length(r[0]));
+        const ViewBlend blend = atlas.views().blend(local, smoothstep_);
+        inst.views = blend.views;
+        inst.weights = blend.weights;
+        const double t = clipTime_ ? clipTime_(item, time) : time;
+        double phase = std::fmod(t / atlas.duration(), 1.0);
+        if (!(phase >= 0.0)) phase = phase < 0.0 ? phase + 1.0 : 0.0;
+        inst.keyframe = std::min(static_cast<int>(phase * atlas.keyframeCount()), atlas.keyframeCount() - 1);
+        if (!atlas.stored(inst.keyframe))
+            for (int i = 0; i < 3; ++i)
+                if (inst.weights[static_cast<std::size_t>(i)] > 0.0f) {
+                    inst.morphed[static_cast<std::size_t>(i)] = &cache_.request(atlas, inst.views[static_cast<std::size_t>(i)], inst.keyframe);
+                    ++stats_.droppedCells;
+                }
+        instances_.push_back(inst);
+    }
+    stats_.impostors = instances_.size();
+    stats_.ms = watch.elapsedMs();
+}
+
+}  // namespace throng

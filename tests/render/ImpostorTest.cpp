@@ -1,0 +1,246 @@
+// Impostors of a procedural figure: baking covers every cell, halving the key-frames halves the
+// texture, the CPU and GPU morphs agree (|difference| <= 2/255 on >= 99.9% of pixels), morphed
+// in-betweens beat showing the previous key-frame, the description round-trips through files, and
+// the morph cache makes each cell once per frame.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "ImpostorTestSupport.h"
+#include "RenderTestSupport.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/Actor.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/ImpostorBatcher.h"
+#include "throng/render/ImpostorDrawable.h"
+#include "throng/render/ImpostorRenderer.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/render/GpuMorpher.h"
+#include "throng/render/ImageCompare.h"
+#include "throng/render/ImageSimilarity.h"
+#include "throng/render/MorphCache.h"
+
+namespace throng {
+namespace {
+
+using test::BakedHumanoid;
+
+std::size_t opaquePixels(const Image& image) {
+    std::size_t n = 0;
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) n += image.rgba[i] > 0;
+    return n;
+}
+
+ImpostorAtlas halved() {
+    ImpostorAtlas atlas = *BakedHumanoid::get().full;
+    atlas.dropOddKeyframes();
+    return atlas;
+}
+
+TEST(Impostor, BakeFillsEveryCellAndStaysInside) {
+    const ImpostorAtlas& atlas = *BakedHumanoid::get().full;
+    for (int k = 0; k < atlas.keyframeCount(); ++k)
+        for (std::uint32_t v = 0; v < atlas.views().viewCount(); ++v) {
+            const Image cell = atlas.cell(v, k);
+            const std::size_t covered = opaquePixels(cell);
+            EXPECT_GT(covered, 100u) << "view " << v << " key-frame " << k;
+            EXPECT_LT(covered, cell.rgba.size() / 4 / 2) << "the figure should not fill its cell";
+            // The border stays empty: the volume holds every pose.
+            for (int x = 0; x < cell.width; ++x) EXPECT_EQ(cell.rgba[static_cast<std::size_t>(x) * 4 + 3], 0);
+            for (const FeatureLine& l : atlas.lines(v, k)) {
+                EXPECT_GE(l.p.x, 0.0f);
+                EXPECT_LE(l.p.x, static_cast<float>(atlas.cellSize()));
+            }
+        }
+}
+
+TEST(Impostor, HalfTheKeyframesHalveTheTexture) {
+    const ImpostorAtlas atlas = halved();
+    EXPECT_EQ(atlas.fullTextureBytes(), BakedHumanoid::get().full->textureBytes());
+    EXPECT_LE(static_cast<double>(atlas.textureBytes()), 0.55 * static_cast<double>(atlas.fullTextureBytes()));
+    int before = 0, after = 0;
+    float t = 0;
+    atlas.neighbours(7, before, after, t);  // the last one wraps to the first
+    EXPECT_EQ(before, 6);
+    EXPECT_EQ(after, 0);
+    EXPECT_FLOAT_EQ(t, 0.5f);
+}
+
+TEST(Impostor, CpuAndGpuMorphsAgree) {
+    const ImpostorAtlas atlas = halved();
+    GpuMorpher gpu(BakedHumanoid::get().context);
+    MorphCacheOptions options;
+    for (int k = 1; k < atlas.keyframeCount(); k += 2)
+        for (std::uint32_t v = 0; v < atlas.views().viewCount(); v += 3) {
+            const Image cpu = morphDroppedCell(atlas, v, k, options);
+            const Image onGpu = morphDroppedCell(atlas, v, k, options, &gpu);
+            const ImageDifference d = compareImages(cpu, onGpu, 2);
+            EXPECT_LE(d.fractionOverThreshold, 0.001) << "view " << v << " key-frame " << k;
+            EXPECT_GT(opaquePixels(cpu), 100u);
+        }
+}
+
+TEST(Impostor, MorphBeatsThePreviousKeyframe) {
+    const ImpostorAtlas atlas = halved();
+    const ImpostorAtlas& full = *BakedHumanoid::get().full;
+    double morphed = 0, previous = 0;
+    int n = 0;
+    for (int k = 1; k < atlas.keyframeCount(); k += 2)
+        for (std::uint32_t v = 0; v < atlas.views().viewCount(); ++v) {
+            const Image truth = full.cell(v, k);
+            morphed += normalizedCrossCorrelation(morphDroppedCell(atlas, v, k, {}), truth);
+            previous += normalizedCrossCorrelation(atlas.cell(v, k - 1), truth);
+            ++n;
+        }
+    EXPECT_GT(morphed / n, previous / n);
+    EXPECT_GT(morphed / n, 0.7);  // this coarse bake (8 key-frames, 64 px) gives about 0.78
+    std::printf("NCC morphed %.4f previous %.4f\n", morphed / n, previous / n);
+}
+
+TEST(Impostor, SavesAndLoads) {
+    const ImpostorAtlas atlas = halved();
+    const auto dir = std::filesystem::temp_directory_path() / "throng-impostor-test";
+    std::filesystem::remove_all(dir);
+    atlas.save(dir);
+    const ImpostorAtlas back = ImpostorAtlas::load(dir);
+    EXPECT_EQ(back.keyframeCount(), atlas.keyframeCount());
+    EXPECT_EQ(back.boneNames(), atlas.boneNames());
+    EXPECT_EQ(back.textureBytes(), atlas.textureBytes());
+    for (int k = 0; k < atlas.keyframeCount(); ++k) {
+        EXPECT_EQ(back.stored(k), atlas.stored(k));
+        if (atlas.stored(k)) {
+            EXPECT_EQ(back.page(k).rgba, atlas.page(k).rgba);
+        }
+        EXPECT_EQ(back.lines(5, k)[2].q, atlas.lines(5, k)[2].q);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Impostor, FeatureFileKeepsNamedBones) {
+    ImpostorAtlas atlas = halved();
+    const auto file = std::filesystem::temp_directory_path() / "throng-impostor-features.json";
+    {
+        std::FILE* f = std::fopen(file.c_str(), "w");
+        ASSERT_NE(f, nullptr);
+        std::fprintf(f, "{\"bones\": [\"%s\", \"%s\"]}", atlas.boneNames()[0].c_str(), atlas.boneNames()[3].c_str());
+        std::fclose(f);
+    }
+    const FeatureLine third = atlas.lines(2, 4)[3];
+    atlas.applyFeatureFile(file);
+    ASSERT_EQ(atlas.boneCount(), 2u);
+    EXPECT_EQ(atlas.lines(2, 4)[1].p, third.p);
+    std::filesystem::remove(file);
+}
+
+TEST(Impostor, CacheMorphsEachCellOncePerFrame) {
+    const ImpostorAtlas atlas = halved();
+    MorphCache cache;
+    for (int frame = 0; frame < 2; ++frame) {
+        cache.beginFrame();
+        for (int actor = 0; actor < 50; ++actor) cache.request(atlas, static_cast<std::uint32_t>(actor % 4), 1 + 2 * ((actor / 4) % 2));
+        EXPECT_EQ(cache.statistics().requests, 50u);
+        EXPECT_EQ(cache.statistics().synthesized, 8u);
+        EXPECT_EQ(cache.statistics().hits, 42u);
+    }
+    EXPECT_THROW(cache.request(atlas, 0, 2), std::invalid_argument);
+}
+
+TEST(Impostor, CacheRetainsUpToItsCapacity) {
+    const ImpostorAtlas atlas = halved();
+    MorphCacheOptions options;
+    options.capacity = 3;
+    MorphCache cache(options);
+    cache.beginFrame();
+    for (std::uint32_t v = 0; v < 5; ++v) cache.request(atlas, v, 1);
+    EXPECT_EQ(cache.statistics().synthesized, 5u);
+    cache.beginFrame();  // keeps the 3 most recently used: views 2, 3, 4
+    EXPECT_EQ(cache.statistics().resident, 3u);
+    for (std::uint32_t v = 0; v < 5; ++v) cache.request(atlas, v, 1);
+    EXPECT_EQ(cache.statistics().hits, 3u);
+    EXPECT_EQ(cache.statistics().synthesized, 2u);
+}
+
+}  // namespace
+}  // namespace throng
+
+namespace throng {
+namespace {
+
+// A hybrid scene: one actor near (geometry), four far (impostors) drawn by GlRenderer then
+// ImpostorRenderer; and one far actor drawn both ways covers about the same pixels.
+struct HybridScene {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    Camera camera;
+
+    explicit HybridScene(const std::vector<Vec3>& positions) {
+        auto behaviour = std::make_shared<KeyframeBehaviour>();
+        for (const Vec3& p : positions) {
+            KeyframeBehaviour::Actor a;
+            a.tmpl = BakedHumanoid::get().tmpl;
+            a.clip = a.tmpl->findClip("walk");
+            a.position = p;
+            root->addChild(crowd.makeActorNode(crowd.add(a.tmpl, behaviour, behaviour->addActor(a))));
+        }
+        camera.setPerspective(0.5, 4.0 / 3.0, 0.5, 500.0);
+        camera.setLookAt(Vec3(0, 1, 10), Vec3(0, 1, -60));
+    }
+
+    Image render(double impostorDistance, std::uint64_t* impostors = nullptr) {
+        BakedHumanoid& b = BakedHumanoid::get();
+        RendererOptions ro;
+        ro.width = 160, ro.height = 120;
+        ro.captureFrames = true;
+        GlRenderer renderer(b.context, ro);
+        ImpostorRenderer quads(b.context);
+        auto atlas = std::make_shared<ImpostorAtlas>(*b.full);
+        atlas->dropOddKeyframes();
+        auto drawable = std::make_shared<ImpostorDrawable>(atlas);
+        ActorProcessor processor(crowd);
+        processor.setImpostorDistance(impostorDistance, 1.0);
+        processor.setImpostor(*b.tmpl, drawable);
+        const double t = 0.25;  // a dropped key-frame (1 of 8 over 2 s): the morph path is drawn
+        processor.processFrame(*root, camera, t);
+        MorphCache cache;
+        ImpostorBatcher batcher(cache);
+        batcher.build(processor.drawList(), camera, t);
+        renderer.beginFrame(camera);
+        renderer.draw(processor.drawList());
+        quads.draw(camera, batcher.instances());
+        renderer.endFrame();
+        if (impostors) *impostors = quads.statistics().instances;
+        EXPECT_EQ(quads.statistics().instances, processor.statistics().impostors);
+        return renderer.lastFrame();
+    }
+};
+
+std::size_t differentFromClear(const Image& image) {
+    const RendererOptions defaults;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+        n += std::abs(image.rgba[i] - static_cast<int>(std::lround(defaults.clearColor.r * 255))) > 3 ||
+             std::abs(image.rgba[i + 2] - static_cast<int>(std::lround(defaults.clearColor.b * 255))) > 3;
+    return n;
+}
+
+TEST(Impostor, HybridSceneDrawsFarActorsAsQuads) {
+    HybridScene scene({Vec3(1.5, 0, 0), Vec3(-4, 0, -40), Vec3(0, 0, -45), Vec3(4, 0, -50), Vec3(8, 0, -55)});
+    std::uint64_t impostors = 0;
+    const Image hybrid = scene.render(20.0, &impostors);
+    EXPECT_EQ(impostors, 4u);
+    const Image geometry = scene.render(0.0);
+    const double a = static_cast<double>(differentFromClear(hybrid)), b = static_cast<double>(differentFromClear(geometry));
+    EXPECT_GT(a, 0.0);
+    // The impostors stand where the figures stand, about as big (cell filtering blurs the edges).
+    EXPECT_NEAR(a / b, 1.0, 0.35) << a << " pixels as impostors, " << b << " as geometry";
+    test::writeOutput(hybrid, "impostor-hybrid");
+    test::writeOutput(geometry, "impostor-geometry");
+}
+
+}  // namespace
+}  // namespace throng
