@@ -174,7 +174,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
     templates.anyObject();  // its keys are template names
     for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
         const Reader t(it.value(), "/templates/" + it.key(), file);
-        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod"});
+        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod", "jointMinAngle"});
         TemplateDescription d;
         if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
         if (t.has("gltf")) d.gltf = existingFile(t.at("gltf"), baseDirectory, false);
@@ -189,7 +189,12 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").positive();
         if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").positive();
         if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
-        if ((t.has("scale") || t.has("lod")) && !t.has("gltf")) t.fail("'scale' and 'lod' apply to glTF templates only");
+        if ((t.has("scale") || t.has("lod") || t.has("jointMinAngle")) && !t.has("gltf"))
+            t.fail("'scale', 'lod' and 'jointMinAngle' apply to glTF templates only");
+        if (t.has("jointMinAngle")) {
+            d.jointMinAngle = t.at("jointMinAngle").number();
+            if (!(d.jointMinAngle >= 0.0 && d.jointMinAngle < 0.1)) t.at("jointMinAngle").fail("must be in [0, 0.1) radians");
+        }
         if (t.has("scale")) d.scale = t.at("scale").positive();
         if (t.has("lod")) {
             const Reader lod = t.at("lod");

@@ -50,6 +50,7 @@ ResolvedTemplate resolve(const std::string& key, const TemplateDescription& d, c
         try {
             GltfLoadOptions options;
             options.scale = d.scale;
+            options.jointMinAngle = d.jointMinAngle;
             for (const glm::dvec2& level : d.lod) options.lodLevels.push_back({level.x, level.y});
             r.tmpl = loadCharacter(d.gltf, options).primaryTemplate();
         } catch (const std::exception& e) {

@@ -128,3 +128,30 @@ TEST(GltfLod, BadOptionsAreErrors) {
     options.lodLevels = {{20.0, 0.0}};
     EXPECT_THROW(loadCharacter(fox, options), GltfError);
 }
+
+TEST(GltfLod, SmallPartsSwitchOffNearerThanTheLimbsHoldingThem) {
+    GltfLoadOptions options;
+    options.scale = 0.36;
+    options.jointMinAngle = 0.004;
+    const auto robot = loadCharacter(kAssets + "/characters/robot.glb", options).primaryTemplate();
+    const auto nodes = robot->nodes();
+    std::size_t finite = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const double d = nodes[i].deactivationDistance;
+        EXPECT_GT(d, 0.0) << nodes[i].name;
+        finite += std::isfinite(d);
+        if (nodes[i].parent >= 0) {
+            EXPECT_LE(d, nodes[std::size_t(nodes[i].parent)].deactivationDistance) << nodes[i].name;
+        }
+    }
+    EXPECT_EQ(finite, nodes.size());  // the robot has no rigid part: every joint may switch off
+    const int finger = robot->findNode("Index2.L"), arm = robot->findNode("UpperArm.L");
+    ASSERT_GE(finger, 0);
+    ASSERT_GE(arm, 0);
+    // A finger segment of a few centimetres goes long before the whole arm.
+    EXPECT_LT(nodes[std::size_t(finger)].deactivationDistance * 4.0, nodes[std::size_t(arm)].deactivationDistance);
+    EXPECT_LT(nodes[std::size_t(finger)].deactivationDistance, 40.0);
+    // Off by default.
+    const auto full = loadCharacter(kAssets + "/characters/robot.glb").primaryTemplate();
+    for (const auto& n : full->nodes()) EXPECT_TRUE(std::isinf(n.deactivationDistance)) << n.name;
+}

@@ -136,6 +136,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "/templates/x/scale", "must be positive"},
         BadScene{"scale on a procedural template", R"({"templates": {"x": {"procedural": "bird", "scale": 2}}, "actors": []})",
                  "/templates/x", "glTF templates only"},
+        BadScene{"joint angle too wide", R"({"templates": {"x": {"gltf": "characters/Fox.glb", "jointMinAngle": 0.5}}, "actors": []})",
+                 "/templates/x/jointMinAngle", "[0, 0.1)"},
         BadScene{"lod distances not increasing",
                  R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"until": 30}, {"until": 20}]}}, "actors": []})",
                  "/templates/x/lod/1/until", "must exceed"},

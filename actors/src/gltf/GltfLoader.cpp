@@ -45,6 +45,25 @@ const LoadedCharacter* CharacterAsset::findCharacter(const std::string& name) co
 namespace gltf {
 namespace {
 
+// Skeletal LOD from the mesh: a node switches off at the distance where the part it moves (the
+// bind-pose vertices it and its descendants dominate) subtends less than `angle` radians. Nodes
+// holding rigid geometry, and their ancestors, stay on (vaLod validation would refuse otherwise).
+// A part holds its descendants' parts, so a child never outlives its parent.
+void deactivateSmallParts(std::vector<SkeletonNode>& nodes, std::vector<BoundingSphere> part, double angle) {
+    constexpr double kNearest = 0.5;  // metres: a part with no vertex is off beyond this
+    std::vector<char> keep(nodes.size(), 0);
+    for (std::size_t i = nodes.size(); i-- > 0;) {
+        keep[i] = keep[i] || !nodes[i].geometry.empty();
+        const int p = nodes[i].parent;
+        if (p < 0) continue;
+        if (part[i].valid()) part[static_cast<std::size_t>(p)].expandBy(part[i]);
+        keep[static_cast<std::size_t>(p)] = keep[static_cast<std::size_t>(p)] || keep[i];
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+        nodes[i].deactivationDistance = keep[i] ? std::numeric_limits<double>::infinity()
+                                                : std::max(kNearest, part[i].valid() ? 2.0 * part[i].radius() / angle : 0.0);
+}
+
 using glm::dmat4;
 using glm::dquat;
 using glm::dvec3;
@@ -917,6 +936,7 @@ void Loader::buildSkin(int s) {
     if (!skinned.empty()) {
         mesh = mergeSkinned(s, skinned);
         std::vector<BoundingSphere> spheres(joints.size());
+        std::vector<BoundingSphere> parts(nodes.size());  // bind space, metres: what each node moves
         for (std::size_t v = 0; v < mesh->vertexCount(); ++v) {
             int bestK = mesh->joints0[v][0];
             float bestW = mesh->weights0[v][0];
@@ -929,8 +949,11 @@ void Loader::buildSkin(int s) {
             const glm::dvec4 p = glm::dmat4(ibm_[static_cast<std::size_t>(s)][static_cast<std::size_t>(bestK)]) *
                                  glm::dvec4(dvec3(mesh->positions[v]), 1.0);
             if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) spheres[static_cast<std::size_t>(bestK)].expandBy(dvec3(p));
-            extentPoints.push_back(options_.scale * dvec3(mesh->positions[v]));  // bind space, in file units
+            extentPoints.push_back(options_.scale * dvec3(mesh->positions[v]));  // bind space, scaled
+            if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+                parts[static_cast<std::size_t>(skeletonOfJoint[static_cast<std::size_t>(bestK)])].expandBy(extentPoints.back());
         }
+        if (options_.jointMinAngle > 0.0) deactivateSmallParts(nodes, std::move(parts), options_.jointMinAngle);
         for (std::size_t k = 0; k < joints.size(); ++k)
             nodes[static_cast<std::size_t>(skeletonOfJoint[k])].geometrySphere = spheres[k];
         for (int i : skinned) ch.primitives.push_back(i);
@@ -1069,6 +1092,8 @@ CharacterAsset Loader::run() {
 void Loader::checkOptions() const {
     if (!(std::isfinite(options_.scale) && options_.scale > 0.0))
         fail("/", "GltfLoadOptions::scale must be a positive number, got " + std::to_string(options_.scale));
+    if (!(options_.jointMinAngle >= 0.0 && options_.jointMinAngle < 1.0))
+        fail("/", "GltfLoadOptions::jointMinAngle must be in [0, 1) radians, got " + std::to_string(options_.jointMinAngle));
     double previous = 0.0;
     for (std::size_t i = 0; i < options_.lodLevels.size(); ++i) {
         const GltfLodLevel& l = options_.lodLevels[i];

@@ -39,6 +39,11 @@ struct GltfLoadOptions {
     /// vaLod levels of each skinned mesh, nearest first, distances increasing; empty: the mesh as
     /// it is, at every distance. A share of 1 is the mesh itself.
     std::vector<GltfLodLevel> lodLevels;
+    /// Skeletal LOD of skinned characters: a joint switches off (its DOFs are not evaluated, its
+    /// subtree not traversed; its vertices follow the nearest active ancestor) where the part it
+    /// moves subtends less than this angle, radians. 0: every joint stays on. 0.004 is about 3
+    /// pixels of a 1280 x 720 view with a 55 degree field of view.
+    double jointMinAngle = 0.0;
 };
 
 }  // namespace throng

@@ -37,6 +37,7 @@ struct TemplateDescription {
     /// glTF: geometric levels {until distance, share of triangles}, nearest first; the last one
     /// may reach to infinity. Empty: the full mesh at every distance.
     std::vector<glm::dvec2> lod;
+    double jointMinAngle = 0.0; ///< glTF: skeletal LOD, joints off below this angle (radians; 0: off)
 };
 
 /// Where a group of actors starts: a rectangle on the ground (centre and size, metres).
