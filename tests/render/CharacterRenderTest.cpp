@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
 
@@ -26,6 +27,7 @@
 #include "throng/actors/Crowd.h"
 #include "throng/actors/GltfLoader.h"
 #include "throng/actors/KeyframeBehaviour.h"
+#include "throng/render/CpuSkinning.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/scenegraph/Group.h"
@@ -40,7 +42,8 @@ constexpr int kSize = 160;  // square frames
 // float rounding (the shader's order of operations, the renderer's fixed-function interpolation of
 // uploaded vs computed normals), which moves a few edge pixels by a level or two. A frame pair passes
 // when at most 0.3% of the pixels (76 of 160 x 160) differ by more than 8/255 in some channel and the
-// PSNR is at least 40 dB. One wrong joint or a pose 0.1 s apart fails it (checked below).
+// PSNR is at least 40 dB. One wrong joint or a pose 0.1 s apart fails it (checked below). Measured
+// with Mesa 22.3.6 llvmpipe: no pixel over the threshold, largest difference 1/255, PSNR 74.7 dB.
 const test::GoldenTolerance kSkinningAgreement{8, 0.003, 40.0};
 
 std::string assetPath(const std::string& file) { return std::string(THRONG_SHARED_ASSETS) + "/characters/" + file; }
@@ -70,17 +73,31 @@ struct Stage {
         processor.setBehaviouralLod(false);  // always interpolate: the pose depends on time alone
     }
 
-    // A camera looking at the Sklsroot sphere at `time` from `azimuth` (radians about +Y from +Z)
-    // and `elevation`, close enough that the sphere nearly fills the frame.
+    // A camera at `time` from `azimuth` (radians about +Y from +Z) and `elevation`, at a distance
+    // set by the Sklsroot sphere's radius (the same framing for a character in centimetres as in
+    // metres), looking at the middle of the posed mesh (the Skeleton Root is often at the feet).
     Camera frame(double time, double azimuth, double elevation) {
         const double r = crowd.skeletonRootRadius(id);
-        // First a frame seen from far away, to place the Skeleton Root at `time`.
+        // First a frame seen from far away, to pose the actor at `time`.
         Camera far;
         far.setPerspective(std::numbers::pi / 4.0, 1.0, 0.01 * r, 200.0 * r);
         far.setLookAt(Vec3(0.0, 0.0, 50.0 * r), Vec3(0.0));
         processor.processFrame(*root, far, time);
-        const Vec3 centre(crowd.skeletonRoot(id)[3]);
-        const double d = 1.7 * r;  // the sphere is conservative (every pose of every clip, plus a margin)
+        Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const DrawItem& item : processor.drawList().items()) {
+            const auto* drawable = dynamic_cast<const MeshDrawable*>(item.drawable);
+            if (!drawable) continue;
+            const MeshData& mesh = drawable->mesh();
+            std::vector<glm::vec3> positions(mesh.positions);
+            if (item.skinPalette) skinMesh(mesh, std::span(item.skinPalette, item.skinPaletteSize), positions, {});
+            for (const glm::vec3& p : positions) {
+                const Vec3 w(*item.worldMatrix * Vec4(Vec3(p), 1.0));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
+        }
+        const Vec3 centre = lo.x <= hi.x ? 0.5 * (lo + hi) : Vec3(crowd.skeletonRoot(id)[3]);
+        const double d = 1.6 * r;  // the sphere is conservative (every pose of every clip, plus a margin)
         const Vec3 eye = centre + d * Vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
                                            std::cos(azimuth) * std::cos(elevation));
         Camera camera;
@@ -186,6 +203,10 @@ TEST_F(CharacterRenderTest, CpuAndGpuSkinningAgreeOnCesiumMan) {
     EXPECT_EQ(renderer.statistics().cpuSkinnedVertices, skinnedVertices(*tmpl));
     EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, 0u);
     EXPECT_GT(test::coveredPixels(cpu), std::size_t(kSize * kSize) / 25);
+    const ImageDifference d = compareImages(cpu, gpu, kSkinningAgreement.threshold);
+    RecordProperty("pixels_over_threshold", std::to_string(d.pixelsOverThreshold));
+    RecordProperty("psnr_db", std::to_string(d.psnr));
+    RecordProperty("max_channel_difference", std::to_string(d.maxChannelDifference));
     const std::string failure = disagreement(cpu, gpu, kSkinningAgreement);
     EXPECT_TRUE(failure.empty()) << "CPU and GPU skinning disagree: " << failure;
     if (!failure.empty()) {
