@@ -88,12 +88,12 @@ const Model& cesiumManModel() {
         m.mesh = m.drawable->meshPtr();
         m.pose = [tmpl](int i, std::vector<glm::mat4>& palette) {
             std::vector<float> dofs(tmpl->restDofs().begin(), tmpl->restDofs().end());
-            std::vector<Affine> model(tmpl->nodeCount());
+            std::vector<Affine> transforms(tmpl->nodeCount());
             const AnimationClip& clip = *tmpl->clips()[0];
             clip.sample(*tmpl, 0.137 * i, true, {}, dofs);
-            computeModelTransforms(*tmpl, dofs, {}, model);
+            computeModelTransforms(*tmpl, dofs, {}, transforms);
             palette.resize(tmpl->skins()[0].joints.size());
-            computeSkinPalette(*tmpl, tmpl->skins()[0], model, {}, palette);
+            computeSkinPalette(*tmpl, tmpl->skins()[0], transforms, {}, palette);
         };
         m.spacing = 0.8;
         m.height = 1.5;

@@ -39,8 +39,8 @@ namespace {
 constexpr int kSize = 160;  // square frames
 
 // CPU and GPU skinning compute the same linear-blend skinning (CpuSkinning.h); they differ only by
-// float rounding (the shader's order of operations, the renderer's fixed-function interpolation of
-// uploaded vs computed normals), which moves a few edge pixels by a level or two. A frame pair passes
+// float rounding (the vertex shader's order of operations is not skinMesh's), which may move a few
+// edge pixels or shade them a level or two apart. A frame pair passes
 // when at most 0.3% of the pixels (76 of 160 x 160) differ by more than 8/255 in some channel and the
 // PSNR is at least 40 dB. One wrong joint or a pose 0.1 s apart fails it (checked below). Measured
 // with Mesa 22.3.6 llvmpipe: no pixel over the threshold, largest difference 1/255, PSNR 74.7 dB.
@@ -264,8 +264,8 @@ TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinn
     const double time = 0.55;  // mid-stride: the right knee is bent
     const Camera camera = stage.frame(time, 1.4, 0.1);
     GlRenderer renderer(context);
-    // The camera is about 2 m away: at LOD scale 1 every node is active, at 10 the knee's subtree
-    // (deactivated beyond 8 m) is not.
+    // The camera is a few metres away (1.6 Sklsroot radii): at LOD scale 1 every node is active, at
+    // 10 the knee's subtree (deactivated beyond 8 m) is not; the checks below fail otherwise.
     stage.processor.setLodScale(1.0);
     const Image full = stage.render(renderer, camera, time);
     ASSERT_EQ(stage.processor.drawList().size(), 1u);
