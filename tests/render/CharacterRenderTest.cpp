@@ -1,0 +1,309 @@
+// The renderer on real characters (issue 5): the glTF characters of the shared assets (CesiumMan,
+// Fox, robot) loaded with loadCharacter, played by a KeyframeBehaviour, processed by ActorProcessor
+// and drawn by GlRenderer, headless at 160 x 160.
+//
+//   * Golden images at fixed clip times and views, in tests/render/golden/character_*.png,
+//     compared with the project's GoldenTolerance (see GoldenImageTest.cpp; at most 0.5% of the
+//     pixels, 128 of 160 x 160, may differ by more than 8/255, PSNR >= 35 dB). Rewrite them with
+//     THRONG_UPDATE_GOLDEN=1 as the other goldens.
+//   * CPU and GPU skinning of the same posed CesiumMan give the same image within kSkinningAgreement.
+//   * Skeletal LOD: a deactivated joint is drawn with its nearest active ancestor's skinning matrix.
+//
+// The camera is framed from the template's Sklsroot sphere (the Skeleton Root's position and the
+// template's skeletonRootRadius), so a character modelled in centimetres (Fox) frames as one in
+// metres.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "RenderTestSupport.h"
+#include "throng/actors/Actor.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/GltfLoader.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/render/CpuSkinning.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/OsMesaContext.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/MeshDrawable.h"
+
+namespace throng {
+namespace {
+
+constexpr int kSize = 160;  // square frames
+
+// CPU and GPU skinning compute the same linear-blend skinning (CpuSkinning.h); they differ only by
+// float rounding (the vertex shader's order of operations is not skinMesh's), which may move a few
+// edge pixels or shade them a level or two apart. A frame pair passes
+// when at most 0.3% of the pixels (76 of 160 x 160) differ by more than 8/255 in some channel and the
+// PSNR is at least 40 dB. One wrong joint or a pose 0.1 s apart fails it (checked below). Measured
+// with Mesa 22.3.6 llvmpipe: no pixel over the threshold, largest difference 1/255, PSNR 74.7 dB.
+const test::GoldenTolerance kSkinningAgreement{8, 0.003, 40.0};
+
+std::string assetPath(const std::string& file) { return std::string(THRONG_SHARED_ASSETS) + "/characters/" + file; }
+
+// Each file is loaded once for the whole test program.
+const CharacterAsset& asset(const std::string& file) {
+    static std::map<std::string, CharacterAsset> cache;
+    auto it = cache.find(file);
+    if (it == cache.end()) it = cache.emplace(file, loadCharacter(assetPath(file))).first;
+    return it->second;
+}
+
+// One actor of `tmpl` playing clip `clip` at the origin, facing +Z, in a scene of its own.
+struct Stage {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    ActorId id{};
+    ActorProcessor processor{crowd};
+
+    Stage(std::shared_ptr<const ActorTemplate> tmpl, int clip) {
+        auto behaviour = std::make_shared<KeyframeBehaviour>();
+        KeyframeBehaviour::Actor a;
+        a.tmpl = tmpl;
+        a.clip = clip;
+        id = crowd.add(tmpl, behaviour, behaviour->addActor(a));
+        root->addChild(crowd.makeActorNode(id));
+        processor.setBehaviouralLod(false);  // always interpolate: the pose depends on time alone
+    }
+
+    // A camera at `time` from `azimuth` (radians about +Y from +Z) and `elevation`, at a distance
+    // set by the Sklsroot sphere's radius (the same framing for a character in centimetres as in
+    // metres), looking at the middle of the posed mesh (the Skeleton Root is often at the feet).
+    Camera frame(double time, double azimuth, double elevation) {
+        const double r = crowd.skeletonRootRadius(id);
+        // First a frame seen from far away, to pose the actor at `time`.
+        Camera far;
+        far.setPerspective(std::numbers::pi / 4.0, 1.0, 0.01 * r, 200.0 * r);
+        far.setLookAt(Vec3(0.0, 0.0, 50.0 * r), Vec3(0.0));
+        processor.processFrame(*root, far, time);
+        Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+        for (const DrawItem& item : processor.drawList().items()) {
+            const auto* drawable = dynamic_cast<const MeshDrawable*>(item.drawable);
+            if (!drawable) continue;
+            const MeshData& mesh = drawable->mesh();
+            std::vector<glm::vec3> positions(mesh.positions);
+            if (item.skinPalette) skinMesh(mesh, std::span(item.skinPalette, item.skinPaletteSize), positions, {});
+            for (const glm::vec3& p : positions) {
+                const Vec3 w(*item.worldMatrix * Vec4(Vec3(p), 1.0));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
+        }
+        const Vec3 centre = lo.x <= hi.x ? 0.5 * (lo + hi) : Vec3(crowd.skeletonRoot(id)[3]);
+        const double d = 1.6 * r;  // the sphere is conservative (every pose of every clip, plus a margin)
+        const Vec3 eye = centre + d * Vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                                           std::cos(azimuth) * std::cos(elevation));
+        Camera camera;
+        camera.setPerspective(std::numbers::pi / 4.0, 1.0, 0.02 * d, 10.0 * d);
+        camera.setLookAt(eye, centre);
+        return camera;
+    }
+
+    // Draws the frame at `time` seen by `camera` and reads it back.
+    Image render(GlRenderer& renderer, const Camera& camera, double time) {
+        processor.processFrame(*root, camera, time, &renderer);
+        return renderer.readFrame();
+    }
+};
+
+int clipIndex(const ActorTemplate& tmpl, const std::string& name) {
+    return name.empty() ? 0 : tmpl.findClip(name);
+}
+
+std::size_t skinnedVertices(const ActorTemplate& tmpl) {
+    std::size_t n = 0;
+    for (const VaLodLevel& level : tmpl.rootGeometry().levels())
+        if (level.skin >= 0)
+            if (const auto* mesh = dynamic_cast<const MeshDrawable*>(level.drawable.get())) n += mesh->mesh().vertexCount();
+    return n;
+}
+
+class CharacterRenderTest : public ::testing::Test {
+protected:
+    std::shared_ptr<OsMesaContext> context = std::make_shared<OsMesaContext>(kSize, kSize);
+};
+
+struct GoldenCase {
+    const char* golden;   // golden/<golden>.png
+    const char* file;     // characters/<file>
+    const char* clip;     // clip name ("" for the first)
+    double time;          // seconds into the clip
+    double azimuthDeg;    // camera direction about +Y, from +Z (the characters' front)
+    double elevationDeg;  // camera height angle
+};
+
+const GoldenCase kGoldenCases[] = {
+    {"character_cesium_man_front", "CesiumMan.glb", "", 0.40, 30.0, 10.0},
+    {"character_cesium_man_side", "CesiumMan.glb", "", 1.10, 90.0, 0.0},
+    {"character_fox_walk_front", "Fox.glb", "Walk", 0.25, 35.0, 15.0},
+    {"character_fox_walk_side", "Fox.glb", "Walk", 0.55, -90.0, 5.0},
+    {"character_robot_walk_front", "robot.glb", "Robot_Walking", 0.30, 25.0, 10.0},
+    {"character_robot_walk_back", "robot.glb", "Robot_Walking", 0.85, 160.0, 20.0},
+};
+
+TEST_F(CharacterRenderTest, GoldenImagesOfLoadedCharacters) {
+    for (const GoldenCase& c : kGoldenCases) {
+        SCOPED_TRACE(c.golden);
+        ASSERT_TRUE(std::filesystem::exists(assetPath(c.file))) << assetPath(c.file) << " is missing";
+        const auto tmpl = asset(c.file).primaryTemplate();
+        ASSERT_TRUE(tmpl);
+        const int clip = clipIndex(*tmpl, c.clip);
+        ASSERT_GE(clip, 0) << "no clip " << c.clip;
+        Stage stage(tmpl, clip);
+        GlRenderer renderer(context);
+        const double deg = std::numbers::pi / 180.0;
+        const Camera camera = stage.frame(c.time, c.azimuthDeg * deg, c.elevationDeg * deg);
+        const Image image = stage.render(renderer, camera, c.time);
+        // Independently of the golden: the whole skinned mesh went through the GPU path, and the
+        // character covers a fair part of the frame without filling it.
+        EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, skinnedVertices(*tmpl));
+        EXPECT_GT(skinnedVertices(*tmpl), 0u);
+        EXPECT_EQ(renderer.statistics().cpuSkinnedVertices, 0u);
+        const std::size_t covered = test::coveredPixels(image);
+        EXPECT_GT(covered, std::size_t(kSize * kSize) / 25) << "the character is (nearly) out of the frame";
+        EXPECT_LT(covered, std::size_t(kSize * kSize) * 3 / 4) << "the camera is inside the character";
+        // The clip is played: 0.2 s later the pose, hence the frame, is another.
+        const Image later = stage.render(renderer, camera, c.time + 0.2);
+        const ImageDifference moved = compareImages(image, later, 8);
+        EXPECT_GT(moved.pixelsOverThreshold, std::size_t(kSize * kSize) / 200) << "the pose does not change with time";
+        const std::string failure = test::compareWithGolden(image, c.golden);
+        EXPECT_TRUE(failure.empty()) << failure;
+    }
+}
+
+// Compares `a` with `b` under `t`; empty when they agree, else what differs.
+std::string disagreement(const Image& a, const Image& b, const test::GoldenTolerance& t) {
+    const ImageDifference d = compareImages(a, b, t.threshold);
+    if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
+    return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
+           "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";
+}
+
+TEST_F(CharacterRenderTest, CpuAndGpuSkinningAgreeOnCesiumMan) {
+    const auto tmpl = asset("CesiumMan.glb").primaryTemplate();
+    ASSERT_TRUE(tmpl);
+    Stage stage(tmpl, 0);
+    const double time = 0.7;
+    const Camera camera = stage.frame(time, 0.5, 0.15);
+    GlRenderer renderer(context);
+    const Image gpu = stage.render(renderer, camera, time);
+    EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, skinnedVertices(*tmpl));
+    EXPECT_EQ(renderer.statistics().cpuSkinnedVertices, 0u);
+    RendererOptions cpuOptions = renderer.options();
+    cpuOptions.forceCpuSkinning = true;
+    renderer.setOptions(cpuOptions);
+    const Image cpu = stage.render(renderer, camera, time);
+    EXPECT_EQ(renderer.statistics().cpuSkinnedVertices, skinnedVertices(*tmpl));
+    EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, 0u);
+    EXPECT_GT(test::coveredPixels(cpu), std::size_t(kSize * kSize) / 25);
+    const ImageDifference d = compareImages(cpu, gpu, kSkinningAgreement.threshold);
+    RecordProperty("pixels_over_threshold", std::to_string(d.pixelsOverThreshold));
+    RecordProperty("psnr_db", std::to_string(d.psnr));
+    RecordProperty("max_channel_difference", std::to_string(d.maxChannelDifference));
+    const std::string failure = disagreement(cpu, gpu, kSkinningAgreement);
+    EXPECT_TRUE(failure.empty()) << "CPU and GPU skinning disagree: " << failure;
+    if (!failure.empty()) {
+        test::writeOutput(cpu, "cesium_man_cpu_skinning");
+        test::writeOutput(gpu, "cesium_man_gpu_skinning");
+    }
+    // The tolerance is tight enough to see a pose 0.1 s apart.
+    const Image later = stage.render(renderer, camera, time + 0.1);
+    EXPECT_FALSE(disagreement(later, gpu, kSkinningAgreement).empty()) << "the agreement tolerance is too loose";
+}
+
+// `tmpl` rebuilt with the subtree of node `first` deactivated beyond `distance` (loaded templates keep
+// every node active at any distance).
+std::shared_ptr<const ActorTemplate> withDeactivatedSubtree(const ActorTemplate& tmpl, int first, double distance) {
+    ActorTemplateBuilder b(tmpl.name() + "-lod");
+    for (std::size_t i = 0; i < tmpl.nodeCount(); ++i) {
+        SkeletonNode node = tmpl.nodes()[i];
+        if (i >= std::size_t(first) && i < tmpl.subtreeEnd(std::size_t(first))) node.deactivationDistance = distance;
+        b.addNode(node);
+    }
+    for (const VaLodLevel& level : tmpl.rootGeometry().levels()) b.rootGeometry().addLevel(level.maxDistance, level.drawable, level.skin);
+    for (const Skin& skin : tmpl.skins()) b.addSkin(skin);
+    for (const auto& clip : tmpl.clips()) b.addClip(clip);
+    b.setSkeletonRootMargin(tmpl.skeletonRootMargin());
+    return b.build();
+}
+
+// Skeletal LOD in rendering, on CesiumMan: with the right leg from the knee down deactivated, the
+// knee and ankle joints are drawn with the hip's (their nearest active ancestor's) skinning matrix:
+// the palette says so, and the frame is the one drawn from the full-detail palette with those
+// joints' matrices replaced by the hip's.
+TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinningMatrix) {
+    const auto loaded = asset("CesiumMan.glb").primaryTemplate();
+    ASSERT_TRUE(loaded);
+    const int knee = loaded->findNode("leg_joint_R_2");
+    ASSERT_GE(knee, 0);
+    const int hip = loaded->nodes()[std::size_t(knee)].parent;
+    ASSERT_GE(hip, 0);
+    const auto tmpl = withDeactivatedSubtree(*loaded, knee, 8.0);
+    ASSERT_EQ(tmpl->skins().size(), 1u);
+    const Skin& skin = tmpl->skins()[0];
+    const auto jointOf = [&](std::size_t node) {
+        for (std::size_t k = 0; k < skin.joints.size(); ++k)
+            if (skin.joints[k] == node) return int(k);
+        return -1;
+    };
+    const int hipJoint = jointOf(std::size_t(hip));
+    ASSERT_GE(hipJoint, 0);
+    std::vector<int> deactivated;  // skin joints in the knee's subtree
+    for (std::size_t n = std::size_t(knee); n < tmpl->subtreeEnd(std::size_t(knee)); ++n)
+        if (jointOf(n) >= 0) deactivated.push_back(jointOf(n));
+    ASSERT_GE(deactivated.size(), 2u);  // knee, ankle (and toe)
+
+    Stage stage(tmpl, 0);
+    const double time = 0.55;  // mid-stride: the right knee is bent
+    const Camera camera = stage.frame(time, 1.4, 0.1);
+    GlRenderer renderer(context);
+    // The camera is a few metres away (1.6 Sklsroot radii): at LOD scale 1 every node is active, at
+    // 10 the knee's subtree (deactivated beyond 8 m) is not; the checks below fail otherwise.
+    stage.processor.setLodScale(1.0);
+    const Image full = stage.render(renderer, camera, time);
+    ASSERT_EQ(stage.processor.drawList().size(), 1u);
+    DrawItem fullItem = stage.processor.drawList().items()[0];
+    ASSERT_EQ(fullItem.skinPaletteSize, skin.joints.size());
+    const std::vector<glm::mat4> fullPalette(fullItem.skinPalette, fullItem.skinPalette + fullItem.skinPaletteSize);
+    const Mat4 world = *fullItem.worldMatrix;
+
+    stage.processor.setLodScale(10.0);
+    const Image lod = stage.render(renderer, camera, time);
+    ASSERT_EQ(stage.processor.drawList().size(), 1u);
+    const DrawItem& lodItem = stage.processor.drawList().items()[0];
+    ASSERT_EQ(lodItem.skinPaletteSize, skin.joints.size());
+    std::vector<glm::mat4> expected = fullPalette;
+    for (int k : deactivated) expected[std::size_t(k)] = fullPalette[std::size_t(hipJoint)];
+    for (std::size_t k = 0; k < expected.size(); ++k)
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                EXPECT_NEAR(lodItem.skinPalette[k][c][r], expected[k][c][r], 1e-5f) << "joint " << k;
+
+    // The leg visibly changes: deactivation is not a no-op.
+    EXPECT_GT(compareImages(full, lod, 8).pixelsOverThreshold, 30u) << "deactivating the knee did not move the leg";
+    // And the renderer draws exactly what the ancestor's matrix gives.
+    fullItem.skinPalette = expected.data();
+    fullItem.worldMatrix = &world;
+    DrawList list;
+    list.add(fullItem, fullItem.drawable->primitiveCount());
+    renderer.beginFrame(camera);
+    renderer.draw(list);
+    const Image substituted = renderer.readFrame();
+    renderer.endFrame();
+    const std::string failure = disagreement(lod, substituted, {0, 0.0, 0.0});
+    EXPECT_TRUE(failure.empty()) << failure;
+    if (!failure.empty()) {
+        test::writeOutput(lod, "cesium_man_lod");
+        test::writeOutput(substituted, "cesium_man_lod_expected");
+    }
+}
+
+}  // namespace
+}  // namespace throng
