@@ -71,6 +71,11 @@ Mat4 KeyframeBehaviour::referencePoint(std::uint32_t slot, const FrameContext& c
     return RefpointPath{a.position, a.heading, a.pathRadius, a.pathSpeed}.at(context.time, ops);
 }
 
+double KeyframeBehaviour::clipTime(std::uint32_t slot, double time) const {
+    const Actor& a = actors_[slot];
+    return time * a.timeScale + a.timeOffset;
+}
+
 RootPose KeyframeBehaviour::skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) {
     const Actor& a = actors_[slot];
     if (level >= static_cast<int>(levelEnds_.size())) return RootPose{};

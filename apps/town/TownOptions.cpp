@@ -32,6 +32,7 @@ std::string townUsage() {
            "  --every K           headless: a PNG frame every K frames (default 60; 0: none)\n"
            "  --threads N         threads for the per-actor phases (default 1)\n"
            "  --lod-scale X       multiplies every LOD distance (default: the scene's)\n"
+           "  --impostor-distance D   actors beyond D metres are drawn as impostors (0: never; default: the scene's)\n"
            "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
            "+/- LOD scale, C shrink the culling pyramid (watch culling at work), P processing, Esc quit.\n";
 }
@@ -81,6 +82,12 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
             o.lodScale = v ? std::strtod(v, &end) : 0.0;
             if (!v || *end != '\0' || !std::isfinite(o.lodScale) || o.lodScale <= 0.0)
                 throw std::invalid_argument("--lod-scale expects a positive number");
+        } else if (a == "--impostor-distance") {
+            const char* v = value();
+            char* end = nullptr;
+            o.impostorDistance = v ? std::strtod(v, &end) : -1.0;
+            if (!v || *end != '\0' || !std::isfinite(o.impostorDistance) || o.impostorDistance < 0.0)
+                throw std::invalid_argument("--impostor-distance expects a distance in metres (0: no impostors)");
         } else {
             throw std::invalid_argument("unknown option '" + a + "'");
         }

@@ -21,6 +21,7 @@ struct TownOptions {
     int every = 60;                         ///< headless: write a PNG every `every` frames (0: never)
     int threads = 1;                        ///< threads for the per-actor phases
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
+    double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
 };
 
 /// Parses argv. Prints usage and exits on --help; throws std::invalid_argument naming the option

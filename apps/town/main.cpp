@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ProgressBar.h"
+#include "TownImpostors.h"
 #include "TownOptions.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
@@ -40,17 +41,25 @@ namespace {
 class TownBackend : public DrawBackend {
 public:
     TownBackend(std::shared_ptr<GlContext> context) : renderer_(context), overlay_(context->headless() ? nullptr : new TextOverlay(*context)) {}
-    void beginFrame(const Camera& camera) override { renderer_.beginFrame(camera); }
+    void beginFrame(const Camera& camera) override {
+        camera_ = camera;
+        renderer_.beginFrame(camera);
+    }
     void draw(const DrawList& list) override {
         skinned_ = 0;
         for (const DrawItem& item : list.items()) skinned_ += item.skinPaletteSize > 0;
         renderer_.draw(list);
+        if (impostors_) impostors_->draw(list, camera_, time_);
     }
     void endFrame() override {
         if (overlay_ && !text_.empty()) overlay_->draw(text_, 12, 12, 1.6f);
         renderer_.endFrame();
     }
     GlRenderer& renderer() { return renderer_; }
+    /// Far actors as impostors from now on (null: none).
+    void setImpostors(town::TownImpostors* impostors) { impostors_ = impostors; }
+    /// The simulation time of the frame about to be drawn (impostors pick their clip frame by it).
+    void setTime(double time) { time_ = time; }
     std::uint64_t skinnedItems() const { return skinned_; }
     void setText(std::string text) { text_ = std::move(text); }
 
@@ -59,29 +68,32 @@ private:
     std::unique_ptr<TextOverlay> overlay_;
     std::uint64_t skinned_ = 0;
     std::string text_;
+    Camera camera_;
+    double time_ = 0.0;
+    town::TownImpostors* impostors_ = nullptr;
 };
 
 const char* kCsvHeader =
     "frame,time,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
-    "draw_ms,step_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
-    "primitives,draw_calls,triangles_drawn\n";
+    "draw_ms,step_ms,impostor_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
+    "impostors,cells_morphed,primitives,draw_calls,triangles_drawn\n";
 
 std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& s, std::uint64_t skinned,
-                   const RenderStatistics& r) {
+                   const RenderStatistics& r, const town::TownImpostors* impostors) {
     std::ostringstream o;
     o.precision(6);
     o << frame << ',' << time << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ',' << s.cullMs << ','
       << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ',' << s.drawMs
-      << ',' << s.stepMs << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
+      << ',' << s.stepMs << ',' << (impostors ? impostors->batchMs() : 0.0) << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
       << s.c3_1 << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.drawItems << ',' << skinned << ','
-      << s.primitives << ',' << r.drawCalls << ',' << r.triangles << '\n';
+      << s.impostors << ',' << (impostors ? impostors->cellsMorphed() : 0) << ',' << s.primitives << ',' << r.drawCalls << ',' << r.triangles << '\n';
     return o.str();
 }
 
 // Running sums of what summary.json reports as means.
 struct Sums {
     double app = 0, phases[9] = {}, draw = 0, step = 0;
-    double posed = 0, nodes = 0, items = 0, primitives = 0;
+    double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
     std::int64_t frames = 0;
     void add(const ActorFrameStatistics& s) {
         app += s.appCullMs();
@@ -93,6 +105,7 @@ struct Sums {
         nodes += double(s.skeletonNodesEvaluated);
         items += double(s.drawItems);
         primitives += double(s.primitives);
+        impostors += double(s.impostors);
         ++frames;
     }
 };
@@ -141,7 +154,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["meanMs"]["appCull"] = sums.app / n;
     j["meanMs"]["draw"] = sums.draw / n;
     j["meanMs"]["step"] = sums.step / n;  // the behaviours' shared step, outside APP+CULL
-    j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}};
+    j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight"}) {
         const auto c = world.effects().of(effect);
@@ -189,6 +202,18 @@ int main(int argc, char** argv) {
     processor.setProcessing(o.processing == "traditional" ? Processing::Traditional : Processing::Actor);
     processor.setThreads(unsigned(o.threads));
     processor.setLodScale(lodScale);
+    // Far actors as impostors when the scene asks for them (or --impostor-distance does).
+    const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
+    std::unique_ptr<town::TownImpostors> impostors;
+    if (impostorDistance > 0.0) {
+        town::ProgressBar bar("baking impostors", 1000);
+        impostors = std::make_unique<town::TownImpostors>(context, *world, 64, [&](int done, int total) {
+            bar.update(std::size_t(1000.0 * done / std::max(total, 1)), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
+        });
+        bar.finish(std::to_string(world->templates().size()) + " templates, " + std::to_string(impostors->textureBytes() >> 20) + " MiB of atlases");
+        impostors->attach(processor, impostorDistance, world->description().representation.hysteresis * impostorDistance);
+        backend.setImpostors(impostors.get());
+    }
     sim::SimulationClock clock(world->description().step);
     const double aspect = double(o.width) / double(o.height);
 
@@ -205,10 +230,11 @@ int main(int argc, char** argv) {
         if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
         for (std::int64_t f = 0; f < o.frames; ++f, clock.advance()) {
             const double t = clock.time();
+            backend.setTime(t);
             const ActorFrameStatistics& s = processor.processFrame(world->root(), world->camera().at(t, aspect), t, &backend);
             if (f == 0) firstFrame = seconds();
             sums.add(s);
-            csv << csvRow(f, t, s, backend.skinnedItems(), backend.renderer().statistics());
+            csv << csvRow(f, t, s, backend.skinnedItems(), backend.renderer().statistics(), impostors.get());
             if (o.every > 0 && f % o.every == 0) {
                 char name[64];
                 std::snprintf(name, sizeof name, "frame_%06lld.png", (long long)f);
@@ -281,9 +307,10 @@ int main(int argc, char** argv) {
             } else {
                 processor.setCullingFrustum(std::nullopt);
             }
+            backend.setTime(clock.time());
             const ActorFrameStatistics& s = processor.processFrame(world->root(), camera, clock.time(), &backend);
             sums.add(s);
-            csv << csvRow(sums.frames - 1, clock.time(), s, backend.skinnedItems(), backend.renderer().statistics());
+            csv << csvRow(sums.frames - 1, clock.time(), s, backend.skinnedItems(), backend.renderer().statistics(), impostors.get());
             const auto now = std::chrono::steady_clock::now();
             const double dt = std::chrono::duration<double>(now - last).count();
             last = now;

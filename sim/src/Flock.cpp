@@ -121,6 +121,12 @@ Mat4 Flock::referencePoint(std::uint32_t slot, const FrameContext&, OpTally* ops
     return m;
 }
 
+double Flock::clipTime(std::uint32_t slot, double time) const {
+    const Bird& b = birds_[slot];
+    const double phase = CounterRng(settings_.seed, b.stream).uniform(5);  // birds do not beat in step
+    return time + phase * b.tmpl->clips()[std::size_t(b.flapClip)]->duration();
+}
+
 void Flock::pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
                  std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) {
     if (level >= static_cast<int>(levelEnds_.size())) {  // beyond the last band: rest pose
@@ -128,9 +134,8 @@ void Flock::pose(std::uint32_t slot, double time, int level, const ActorTemplate
         return;
     }
     const Bird& b = birds_[slot];
-    const double phase = CounterRng(settings_.seed, b.stream).uniform(5);  // birds do not beat in step
     const AnimationClip& flap = *tmpl.clips()[std::size_t(b.flapClip)];
-    flap.sample(tmpl, time + phase * flap.duration(), true, active, dofs, ops, level >= 1);
+    flap.sample(tmpl, clipTime(slot, time), true, active, dofs, ops, level >= 1);
 }
 
 }  // namespace throng::sim

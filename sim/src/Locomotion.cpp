@@ -174,6 +174,12 @@ void Locomotion::advance(const FrameContext& context) {
     }
 }
 
+double Locomotion::clipTime(std::uint32_t slot, double) const {
+    // The walk cycle's phase follows the distance walked, not the clock.
+    const Actor& a = actors_[slot];
+    return state_[slot].phase * a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
+}
+
 Mat4 Locomotion::referencePoint(std::uint32_t slot, const FrameContext&, OpTally* ops) {
     const State& s = state_[slot];
     const double c = std::cos(double(s.heading)), sn = std::sin(double(s.heading));

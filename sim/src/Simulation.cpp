@@ -164,10 +164,19 @@ void Simulation::buildTown(const BuildProgress& progress) {
 void Simulation::buildActors(const BuildProgress& progress) {
     const SceneDescription& d = description_;
     const std::string file = d.file.empty() ? "scene" : d.file;
+    // A group's template copy: standing groups whose idle clip is not the walk clip get their own.
+    auto copyKey = [&](const ActorGroupDescription& g) {
+        const TemplateDescription& t = d.templates.at(g.templateName);
+        return g.behaviour == "idle" && !t.idleClip.empty() && t.idleClip != t.walkClip ? g.templateName + "#idle" : g.templateName;
+    };
     std::map<std::string, ResolvedTemplate> templates;
-    for (const ActorGroupDescription& g : d.actors)
-        if (g.count > 0 && !templates.count(g.templateName))
-            templates[g.templateName] = resolve(g.templateName, d.templates.at(g.templateName), file);
+    for (const ActorGroupDescription& g : d.actors) {
+        const std::string key = copyKey(g);
+        if (g.count == 0 || templates.count(key)) continue;
+        const ResolvedTemplate& r = templates[key] = resolve(g.templateName, d.templates.at(g.templateName), file);
+        const bool standing = key != g.templateName || (g.behaviour == "idle" && r.idleClip >= 0);
+        templates_.push_back({key, r.tmpl, standing && r.idleClip >= 0 ? r.idleClip : r.walkClip});
+    }
 
     const bool anyWalk = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "walk" && g.count > 0; });
     const bool anyIdle = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "idle" && g.count > 0; });
@@ -207,7 +216,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
             groups_.push_back(info);
             continue;
         }
-        const ResolvedTemplate& t = templates.at(g.templateName);
+        const ResolvedTemplate& t = templates.at(copyKey(g));
         const ActorLook look{float(g.priority), glm::vec4(1.0f)};
         const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
         if (g.behaviour == "walk") {

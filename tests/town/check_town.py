@@ -17,7 +17,7 @@ import sys
 
 # stats.csv columns that hold wall-clock times: they differ from run to run.
 TIMING = {"app_ms", "refpoint_ms", "matrices_bounds_ms", "cull_ms", "skeleton_root_ms", "cull2_ms", "pose_ms",
-          "cull3_ms", "draw_list_ms", "draw_ms", "step_ms"}
+          "cull3_ms", "draw_list_ms", "draw_ms", "step_ms", "impostor_ms"}
 
 
 def run(exe, out, *args):
@@ -66,6 +66,8 @@ def determinism(exe, scenes, work):
     moved = {r["skeleton_nodes"] for r in reference}
     if len(moved) < 2:
         sys.exit("the scene does not change from frame to frame: the comparison would prove nothing")
+    if not any(int(r["impostors"]) > 0 for r in reference):
+        sys.exit("no actor was drawn as an impostor: the scene should exercise them")
     for name in ("again", "two-threads"):
         other = stats_without_timing(runs[name])
         if other != reference:

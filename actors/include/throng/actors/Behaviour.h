@@ -49,6 +49,9 @@ public:
     /// Metres the behaviour's poses may reach beyond those of the template's clips (blends of
     /// clips, layers turning a head): added to the Sklsroot radius of its actors. Default 0.
     virtual double poseMargin(std::uint32_t slot) const { (void)slot; return 0.0; }
+    /// Time into its main clip (the one impostors are baked from: the walk clip of a walker) that
+    /// actor `slot` shows at `time`. Default: `time` itself.
+    virtual double clipTime(std::uint32_t slot, double time) const { (void)slot; return time; }
 
     /// Bytes of state one more actor takes in this behaviour.
     virtual std::size_t bytesPerSlot() const = 0;

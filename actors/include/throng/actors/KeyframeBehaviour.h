@@ -42,6 +42,7 @@ public:
     void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return extents_[slot]; }
+    double clipTime(std::uint32_t slot, double time) const override;
     std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(BoundingSphere); }
     bool posesFromTemplateClips() const override { return true; }
 

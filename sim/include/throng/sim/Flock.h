@@ -54,6 +54,7 @@ public:
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t) const override { return BoundingSphere(Vec3(0.0), 0.0); }
     bool posesFromTemplateClips() const override { return true; }
+    double clipTime(std::uint32_t slot, double time) const override;
     std::size_t bytesPerSlot() const override { return sizeof(Bird) + 2 * sizeof(glm::dvec3) * 2; }
 
 private:

@@ -65,6 +65,7 @@ public:
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return state_[slot].extent; }
     bool posesFromTemplateClips() const override { return true; }
     double poseMargin(std::uint32_t slot) const override { return state_[slot].blendMargin; }
+    double clipTime(std::uint32_t slot, double time) const override;
     std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(State); }
 
 private:

@@ -27,6 +27,15 @@ using BuildProgress = std::function<void(const std::string& stage, double fracti
 /// Everything a scene file asked for.
 class Simulation {
 public:
+    /// A template in use and the clip its actors mostly show (walk, idle or flap): the clip
+    /// impostors of it are baked from. A template that walks in one group and stands in another
+    /// is loaded twice, so that each copy has one main clip.
+    struct TemplateInUse {
+        std::string name;                           ///< as declared (with "#idle" for a standing copy)
+        std::shared_ptr<const ActorTemplate> tmpl;  ///< the template
+        int clip = 0;                               ///< its main clip
+    };
+
     /// One group of actors the file declared.
     struct ActorGroupInfo {
         std::string name;              ///< as declared
@@ -59,6 +68,8 @@ public:
     const TownLayout* town() const { return town_ ? &*town_ : nullptr; }
     /// The actor groups, in file order.
     std::span<const ActorGroupInfo> groups() const { return groups_; }
+    /// The templates in use, each with its main clip.
+    std::span<const TemplateInUse> templates() const { return templates_; }
     /// Triangles of the town's tiles.
     std::uint64_t townTriangles() const { return townTriangles_; }
 
@@ -75,6 +86,7 @@ private:
     std::shared_ptr<const NavMesh> nav_;
     std::unique_ptr<CameraPath> camera_;
     std::vector<ActorGroupInfo> groups_;
+    std::vector<TemplateInUse> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     NavGeometry navGeometry_;
     std::uint64_t townTriangles_ = 0;
