@@ -1,7 +1,10 @@
 // The town crowd under both processing methods (seed 002 §7: 2000 actors at 50 fps, 6000 at 25):
-// APP+CULL time per frame for several crowd sizes, traditional and actor processing run on the
-// very same frames side by side, then end-to-end headless frames per second (simulation, APP,
-// CULL, DRAW and reading the image back) at 1280 x 720. Prints a Markdown table; --csv writes one.
+// APP+CULL time per frame for several crowd sizes, traditional processing, actor processing, and
+// actor processing with far actors as impostors, run on the very same frames side by side, from
+// two cameras of the default scene's path: in a street (eye 2.5-3 m up, as in the seed's walk
+// through Performer Town) and over the town (every actor in view). Then end-to-end headless
+// frames per second (simulation, APP, CULL, DRAW and reading the image back) at 1280 x 720.
+// Prints a Markdown table; --csv writes one.
 //
 // usage: bench_town [--actors 2000,6000,10000] [--frames N] [--draw-frames N] [--csv FILE] [--scene FILE]
 
@@ -16,6 +19,10 @@
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/ImpostorBaker.h"
+#include "throng/render/ImpostorDrawable.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "TownImpostors.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
@@ -34,9 +41,17 @@ struct Options {
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
 };
 
+// The two cameras: times on the default scene's camera path.
+struct View {
+    const char* name;
+    double pathTime;
+};
+constexpr View kViews[] = {{"street", 9.0}, {"overview", 0.0}};
+
 struct Row {
     std::int64_t actors = 0;
-    double traditionalMs = 0, actorMs = 0, stepMs = 0, posed = 0, nodesTraditional = 0, nodesActor = 0;
+    const char* view = "";
+    double traditionalMs = 0, actorMs = 0, impostorMs = 0, stepMs = 0, posed = 0, posedWithImpostors = 0, impostors = 0;
 };
 
 [[noreturn]] void usage(const std::string& problem) {
@@ -80,50 +95,81 @@ std::unique_ptr<sim::Simulation> buildWorld(const Options& o, std::int64_t actor
     return sim::Simulation::build(std::move(scene));
 }
 
-// Traditional and actor processing of the same frames: at each time the traditional frame runs
-// first (it takes the behaviours' shared step, reported apart), then the actor frame.
-Row compare(const Options& o, std::int64_t actors) {
+// Impostors of every template in use (small cells: APP+CULL only refers to them), attached to
+// `processor` beyond the scene's impostor distance (40 m when it sets none).
+void attachImpostors(const sim::Simulation& world, ActorProcessor& processor, std::vector<std::shared_ptr<const Drawable>>& keep) {
+    auto context = createContext({.width = 32, .height = 32, .window = false});
+    for (const auto& t : world.templates()) {
+        ImpostorBakeOptions options;
+        options.cellSize = 32;
+        options.keyframes = 4;
+        ImpostorBaker baker(context, t.tmpl, t.clip, options);
+        auto drawable = std::make_shared<ImpostorDrawable>(std::make_shared<ImpostorAtlas>(baker.bake()));
+        processor.setImpostor(*t.tmpl, drawable);
+        keep.push_back(drawable);
+    }
+    const auto& r = world.description().representation;
+    const double distance = r.impostorDistance > 0.0 ? r.impostorDistance : 40.0;
+    processor.setImpostorDistance(distance, r.hysteresis * distance);
+}
+
+// The three methods on the same frames: at each time traditional processing runs first (it takes
+// the behaviours' shared step, reported apart), then actor processing, then actor processing with
+// impostors. The simulation runs from t = 0; the camera stays at `view`.
+Row compare(const Options& o, std::int64_t actors, const View& view) {
     auto world = buildWorld(o, actors);
-    ActorProcessor traditional(world->crowd()), actor(world->crowd());
+    ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd());
     traditional.setProcessing(Processing::Traditional);
-    actor.setProcessing(Processing::Actor);
+    std::vector<std::shared_ptr<const Drawable>> keep;
+    attachImpostors(*world, hybrid, keep);
     sim::SimulationClock clock(world->description().step);
-    const double aspect = 1280.0 / 720.0;
-    for (int f = 0; f < o.warmup; ++f, clock.advance()) actor.processFrame(world->root(), world->camera().at(clock.time(), aspect), clock.time());
+    const Camera camera = world->camera().at(view.pathTime, 1280.0 / 720.0);
+    for (int f = 0; f < o.warmup; ++f, clock.advance()) actor.processFrame(world->root(), camera, clock.time());
     Row row;
     row.actors = std::int64_t(world->crowd().size());
+    row.view = view.name;
     for (int f = 0; f < o.frames; ++f, clock.advance()) {
-        const Camera camera = world->camera().at(clock.time(), aspect);
         const ActorFrameStatistics& t = traditional.processFrame(world->root(), camera, clock.time());
         row.traditionalMs += t.appCullMs();
         row.stepMs += t.stepMs;
-        row.nodesTraditional += double(t.skeletonNodesEvaluated);
         const ActorFrameStatistics& a = actor.processFrame(world->root(), camera, clock.time());
         row.actorMs += a.appCullMs();
         row.posed += double(a.actorsPosed);
-        row.nodesActor += double(a.skeletonNodesEvaluated);
+        const ActorFrameStatistics& h = hybrid.processFrame(world->root(), camera, clock.time());
+        row.impostorMs += h.appCullMs();
+        row.posedWithImpostors += double(h.actorsPosed);
+        row.impostors += double(h.impostors);
     }
     const double n = o.frames;
-    for (double* v : {&row.traditionalMs, &row.actorMs, &row.stepMs, &row.posed, &row.nodesTraditional, &row.nodesActor}) *v /= n;
+    for (double* v : {&row.traditionalMs, &row.actorMs, &row.impostorMs, &row.stepMs, &row.posed, &row.posedWithImpostors, &row.impostors}) *v /= n;
     return row;
 }
 
-// Frames per second of the whole loop, drawn off screen at 1280 x 720 and read back.
-double endToEndFps(const Options& o, std::int64_t actors, double* appCullMs, double* drawMs) {
+// Frames per second of the whole loop as throng-town runs it (impostors beyond the scene's
+// distance), drawn off screen at 1280 x 720 and read back, the camera at `view`.
+double endToEndFps(const Options& o, std::int64_t actors, const View& view, double* appCullMs, double* drawMs) {
     auto world = buildWorld(o, actors);
     auto context = createContext({.width = 1280, .height = 720, .window = false});
+    town::TownImpostors impostors(context, *world, 64, {});
     GlRenderer renderer(context);
     ActorProcessor processor(world->crowd());
+    const auto& r = world->description().representation;
+    if (r.impostorDistance > 0.0) impostors.attach(processor, r.impostorDistance, r.hysteresis * r.impostorDistance);
     sim::SimulationClock clock(world->description().step);
-    const double aspect = 1280.0 / 720.0;
-    for (int f = 0; f < o.warmup; ++f, clock.advance()) processor.processFrame(world->root(), world->camera().at(clock.time(), aspect), clock.time());
+    const Camera camera = world->camera().at(view.pathTime, 1280.0 / 720.0);
+    for (int f = 0; f < o.warmup; ++f, clock.advance()) processor.processFrame(world->root(), camera, clock.time());
     *appCullMs = *drawMs = 0.0;
     const auto start = std::chrono::steady_clock::now();
     for (int f = 0; f < o.drawFrames; ++f, clock.advance()) {
-        const ActorFrameStatistics& s = processor.processFrame(world->root(), world->camera().at(clock.time(), aspect), clock.time(), &renderer);
+        const ActorFrameStatistics& s = processor.processFrame(world->root(), camera, clock.time());
+        Stopwatch watch;
+        renderer.beginFrame(camera);
+        renderer.draw(processor.drawList());
+        impostors.draw(processor.drawList(), camera, clock.time());
+        renderer.endFrame();
         (void)renderer.readFrame();  // waits for the frame, as writing it out would
+        *drawMs += watch.elapsedMs();
         *appCullMs += s.appCullMs();
-        *drawMs += s.drawMs;
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     *appCullMs /= o.drawFrames;
@@ -137,32 +183,39 @@ int main(int argc, char** argv) {
     const Options o = parse(argc, argv);
     std::vector<Row> rows;
     try {
-        for (std::int64_t n : o.actors) {
-            std::fprintf(stderr, "bench_town: %lld actors, %d frames of each method...\n", (long long)n, o.frames);
-            rows.push_back(compare(o, n));
-        }
+        for (std::int64_t n : o.actors)
+            for (const View& view : kViews) {
+                std::fprintf(stderr, "bench_town: %lld actors, %s camera, %d frames of each method...\n", (long long)n, view.name, o.frames);
+                rows.push_back(compare(o, n, view));
+            }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_town: %s\n", e.what());
         return 1;
     }
-    std::printf("| actors | traditional APP+CULL ms | actor APP+CULL ms | speed-up | actors posed | Skeleton nodes trad / actor | shared step ms |\n");
-    std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("APP+CULL per frame, one thread (ms); the behaviours' shared step (navigation, flocking) is the same for all and reported apart.\n\n");
+    std::printf("| actors | camera | traditional | actor | actor + impostors | speed-up (actor / + impostors) | posed (actor / + impostors) | impostors | shared step |\n");
+    std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Row& r : rows)
-        std::printf("| %lld | %.2f | %.2f | %.1f | %.0f | %.0f / %.0f | %.2f |\n", (long long)r.actors, r.traditionalMs, r.actorMs,
-                    r.traditionalMs / r.actorMs, r.posed, r.nodesTraditional, r.nodesActor, r.stepMs);
+        std::printf("| %lld | %s | %.2f | %.2f | %.2f | %.1f / %.1f | %.0f / %.0f | %.0f | %.2f |\n", (long long)r.actors, r.view, r.traditionalMs,
+                    r.actorMs, r.impostorMs, r.traditionalMs / r.actorMs, r.traditionalMs / r.impostorMs, r.posed, r.posedWithImpostors,
+                    r.impostors, r.stepMs);
     if (!o.csv.empty()) {
         std::ofstream csv(o.csv);
-        csv << "actors,traditional_app_cull_ms,actor_app_cull_ms,speedup,posed,nodes_traditional,nodes_actor,step_ms\n";
+        csv << "actors,camera,traditional_ms,actor_ms,actor_impostor_ms,posed,posed_with_impostors,impostors,step_ms\n";
         for (const Row& r : rows)
-            csv << r.actors << ',' << r.traditionalMs << ',' << r.actorMs << ',' << r.traditionalMs / r.actorMs << ',' << r.posed << ','
-                << r.nodesTraditional << ',' << r.nodesActor << ',' << r.stepMs << '\n';
+            csv << r.actors << ',' << r.view << ',' << r.traditionalMs << ',' << r.actorMs << ',' << r.impostorMs << ',' << r.posed << ','
+                << r.posedWithImpostors << ',' << r.impostors << ',' << r.stepMs << '\n';
     }
     try {
-        std::fprintf(stderr, "bench_town: end to end, %lld actors at 1280 x 720, %d frames...\n", (long long)o.actors.front(), o.drawFrames);
-        double appCull = 0, draw = 0;
-        const double fps = endToEndFps(o, o.actors.front(), &appCull, &draw);
-        std::printf("\nEnd to end, headless 1280 x 720, %lld actors (actor processing, one thread): %.1f fps "
-                    "(APP+CULL %.2f ms, DRAW %.2f ms per frame)\n", (long long)o.actors.front(), fps, appCull, draw);
+        for (const View& view : kViews) {
+            std::fprintf(stderr, "bench_town: end to end, %lld actors at 1280 x 720, %s camera, %d frames...\n", (long long)o.actors.front(),
+                         view.name, o.drawFrames);
+            double appCull = 0, draw = 0;
+            const double fps = endToEndFps(o, o.actors.front(), view, &appCull, &draw);
+            std::printf("\nEnd to end, headless 1280 x 720, %lld actors, %s camera (actor processing with impostors, one thread): "
+                        "%.1f fps (APP+CULL %.2f ms, DRAW with impostors %.1f ms per frame)\n",
+                        (long long)o.actors.front(), view.name, fps, appCull, draw);
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_town: end-to-end run failed: %s\n", e.what());
         return 1;
