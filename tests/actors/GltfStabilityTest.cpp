@@ -15,19 +15,11 @@
 
 using namespace throng;
 using throng::test::GltfTestFile;
+using throng::test::animate;
 using throng::test::twoJointRig;
 using J = nlohmann::json;
 
 namespace {
-
-void animate(GltfTestFile& f, int node, const char* path, const char* interpolation, const std::vector<float>& times,
-             const std::vector<float>& values, const char* type) {
-    const int in = f.floats(times, "SCALAR");
-    const int out = f.floats(values, type);
-    J sampler = {{"input", in}, {"output", out}, {"interpolation", interpolation}};
-    J channel = {{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}};
-    f.push("animations", {{"name", "anim"}, {"samplers", J::array({sampler})}, {"channels", J::array({channel})}});
-}
 
 bool hasWarning(const CharacterAsset& a, const std::string& text) {
     for (const auto& w : a.warnings)

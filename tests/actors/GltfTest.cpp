@@ -18,6 +18,7 @@
 
 using namespace throng;
 using throng::test::GltfTestFile;
+using throng::test::animate;
 using throng::test::twoJointRig;
 using J = nlohmann::json;
 
@@ -52,16 +53,6 @@ std::vector<Affine> modelOf(const ActorTemplate& t, std::span<const float> dofs)
 void expectNear(const Mat4& a, const Mat4& b, double tol) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tol) << "element [" << c << "][" << r << "]";
-}
-
-// Adds an animation of one channel on `node`: path, interpolation, times and values.
-void animate(GltfTestFile& f, int node, const char* path, const char* interpolation, const std::vector<float>& times,
-             const std::vector<float>& values, const char* type) {
-    const int in = f.floats(times, "SCALAR");
-    const int out = f.floats(values, type);
-    J sampler = {{"input", in}, {"output", out}, {"interpolation", interpolation}};
-    J channel = {{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}};
-    f.push("animations", {{"name", "anim"}, {"samplers", J::array({sampler})}, {"channels", J::array({channel})}});
 }
 
 }  // namespace

@@ -89,4 +89,15 @@ inline GltfTestFile twoJointRig() {
     return f;
 }
 
+/// Adds an animation of one channel on `node`: path, interpolation, times and values of `type`.
+inline void animate(GltfTestFile& f, int node, const char* path, const char* interpolation, const std::vector<float>& times,
+                    const std::vector<float>& values, const char* type) {
+    using J = nlohmann::json;
+    const int in = f.floats(times, "SCALAR");
+    const int out = f.floats(values, type);
+    J sampler = {{"input", in}, {"output", out}, {"interpolation", interpolation}};
+    J channel = {{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}};
+    f.push("animations", {{"name", "anim"}, {"samplers", J::array({sampler})}, {"channels", J::array({channel})}});
+}
+
 }  // namespace throng::test
