@@ -129,13 +129,23 @@ void GazeLayer::advance(const FrameContext& context) {
     cellActors_.resize(cellStart_.back());
     for (std::size_t j = 0; j < n; ++j)
         if (state_[j].tmpl) cellActors_[cellFill_[std::size_t(cellOf(state_[j].position))]++] = std::uint32_t(j);
-    // Each actor picks someone within range, anew every few seconds (its own period and phase).
+    // Each actor picks someone within range, anew every few seconds (its own period and phase),
+    // and keeps looking at them for the period unless they walk out of range.
+    const double range2 = settings_.range * settings_.range;
     for (std::size_t i = 0; i < n; ++i) {
         State& s = state_[i];
         if (!s.tmpl) continue;
         const CounterRng rng(settings_.seed, s.stream);
         const double period = rng.uniform(0, 2.5, 5.0);
         const auto bucket = std::uint64_t(std::floor((context.time + rng.uniform(1, 0.0, period)) / period));
+        if (bucket == s.period && s.target >= 0) {
+            const glm::dvec3 d = state_[std::size_t(s.target)].position - s.position;
+            if (d.x * d.x + d.z * d.z <= range2) {
+                s.lookAt = state_[std::size_t(s.target)].position + glm::dvec3(0, settings_.eyeHeight, 0);
+                continue;
+            }
+        }
+        s.period = bucket;
         int chosen = -1, seen = 0;
         const int c = cellOf(s.position), cx = c % nx, cz = c / nx;
         for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
@@ -144,7 +154,7 @@ void GazeLayer::advance(const FrameContext& context) {
                     const std::uint32_t j = cellActors_[k];  // reservoir sampling over the neighbours
                     if (j == i) continue;
                     const glm::dvec3 d = state_[j].position - s.position;
-                    if (d.x * d.x + d.z * d.z > settings_.range * settings_.range) continue;
+                    if (d.x * d.x + d.z * d.z > range2) continue;
                     ++seen;
                     if (rng.below(bucket * 1000003u + std::uint64_t(seen), std::uint64_t(seen)) == 0) chosen = int(j);
                 }

@@ -62,6 +62,7 @@ private:
         Joints joints;
         std::uint64_t stream = 0;
         int target = -1;
+        std::uint64_t period = ~std::uint64_t{0};  // which of its own periods chose `target`
         glm::dvec3 position{0.0};
         glm::dvec3 lookAt{0.0};
         double margin = 0.0;
