@@ -101,17 +101,30 @@ ImpostorBatcher::ClipTime clipTimes(const Scene& s) {
     };
 }
 
+// What both benchmarks run: a processor showing the baked humanoid beyond `distance`, and the
+// morph cache (8 features) and batcher that turn its impostor items into quads.
+struct ImpostorPipeline {
+    ActorProcessor processor;
+    MorphCache cache;
+    ImpostorBatcher batcher;
+
+    ImpostorPipeline(const Scene& s, double distance, double hysteresis)
+        : processor(*s.crowd), cache(options(), Baked::get().gpu.get()), batcher(cache, false, clipTimes(s)) {
+        processor.setImpostorDistance(distance, hysteresis);
+        processor.setImpostor(*Baked::get().tmpl, Baked::get().drawable);
+    }
+    static MorphCacheOptions options() {
+        MorphCacheOptions o;
+        o.features = 8;
+        return o;
+    }
+};
+
 void ImpostorCrowd(benchmark::State& state) {
-    Baked& b = Baked::get();
     const auto n = static_cast<std::size_t>(state.range(0));
     Scene s = makeScene(n, 250.0, -80.0, -900.0);
-    ActorProcessor processor(*s.crowd);
-    processor.setImpostorDistance(40.0, 2.0);
-    processor.setImpostor(*b.tmpl, b.drawable);
-    MorphCacheOptions options;
-    options.features = 8;
-    MorphCache cache(options, b.gpu.get());
-    ImpostorBatcher batcher(cache, false, clipTimes(s));
+    ImpostorPipeline p(s, 40.0, 2.0);
+    auto& [processor, cache, batcher] = p;
     double t = 0.0, morphMs = 0.0, processMs = 0.0, morphed = 0.0, impostors = 0.0, requests = 0.0;
     std::int64_t frames = 0;
     for (auto _ : state) {
@@ -137,13 +150,8 @@ void HybridScene(benchmark::State& state) {
     Baked& b = Baked::get();
     const auto n = static_cast<std::size_t>(state.range(0));
     Scene s = makeScene(n, 150.0, -5.0, -300.0);
-    ActorProcessor processor(*s.crowd);
-    processor.setImpostorDistance(60.0, 5.0);
-    processor.setImpostor(*b.tmpl, b.drawable);
-    MorphCacheOptions options;
-    options.features = 8;
-    MorphCache cache(options, b.gpu.get());
-    ImpostorBatcher batcher(cache, false, clipTimes(s));
+    ImpostorPipeline p(s, 60.0, 5.0);
+    auto& [processor, cache, batcher] = p;
     RendererOptions ro;
     ro.width = 640, ro.height = 360;
     GlRenderer renderer(b.context, ro);
