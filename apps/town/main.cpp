@@ -1,5 +1,6 @@
 // throng-town: the town-crowd example. Builds the world a scene file declares (a town of modular
-// tiles, walkers on its navigation mesh, standing groups, a flock), then runs it: in a window when
+// tiles, walkers on its navigation mesh, standing groups, a flock; far actors as impostors when the
+// scene sets an impostor distance), then runs it: in a window when
 // there is a display (free camera, pause, LOD scale, a shrunken culling pyramid to watch culling at
 // work, on-screen statistics), headless otherwise (PNG frames every K frames, stats.csv per frame,
 // summary.json, a progress bar).
