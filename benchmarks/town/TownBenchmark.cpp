@@ -14,13 +14,12 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GlRenderer.h"
-#include "throng/render/ImpostorBaker.h"
-#include "throng/render/ImpostorDrawable.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "TownImpostors.h"
 #include "throng/sim/ScaleActors.h"
@@ -95,22 +94,11 @@ std::unique_ptr<sim::Simulation> buildWorld(const Options& o, std::int64_t actor
     return sim::Simulation::build(std::move(scene));
 }
 
-// Impostors of every template in use (small cells: APP+CULL only refers to them), attached to
-// `processor` beyond the scene's impostor distance (40 m when it sets none).
-void attachImpostors(const sim::Simulation& world, ActorProcessor& processor, std::vector<std::shared_ptr<const Drawable>>& keep) {
-    auto context = createContext({.width = 32, .height = 32, .window = false});
-    for (const auto& t : world.templates()) {
-        ImpostorBakeOptions options;
-        options.cellSize = 32;
-        options.keyframes = 4;
-        ImpostorBaker baker(context, t.tmpl, t.clip, options);
-        auto drawable = std::make_shared<ImpostorDrawable>(std::make_shared<ImpostorAtlas>(baker.bake()));
-        processor.setImpostor(*t.tmpl, drawable);
-        keep.push_back(drawable);
-    }
+// The impostor distance of the scene (40 m when it sets none) and its hysteresis in metres.
+std::pair<double, double> impostorDistance(const sim::Simulation& world) {
     const auto& r = world.description().representation;
     const double distance = r.impostorDistance > 0.0 ? r.impostorDistance : 40.0;
-    processor.setImpostorDistance(distance, r.hysteresis * distance);
+    return {distance, r.hysteresis * distance};
 }
 
 // The three methods on the same frames: at each time traditional processing runs first (it takes
@@ -120,8 +108,10 @@ Row compare(const Options& o, std::int64_t actors, const View& view) {
     auto world = buildWorld(o, actors);
     ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd());
     traditional.setProcessing(Processing::Traditional);
-    std::vector<std::shared_ptr<const Drawable>> keep;
-    attachImpostors(*world, hybrid, keep);
+    // Baked as throng-town bakes them; small cells, since APP+CULL only refers to them.
+    town::TownImpostors impostors(createContext({.width = 32, .height = 32, .window = false}), *world, 32, {});
+    const auto [distance, hysteresis] = impostorDistance(*world);
+    impostors.attach(hybrid, distance, hysteresis);
     sim::SimulationClock clock(world->description().step);
     const Camera camera = world->camera().at(view.pathTime, 1280.0 / 720.0);
     for (int f = 0; f < o.warmup; ++f, clock.advance()) actor.processFrame(world->root(), camera, clock.time());
@@ -153,8 +143,8 @@ double endToEndFps(const Options& o, std::int64_t actors, const View& view, doub
     town::TownImpostors impostors(context, *world, 64, {});
     GlRenderer renderer(context);
     ActorProcessor processor(world->crowd());
-    const auto& r = world->description().representation;
-    if (r.impostorDistance > 0.0) impostors.attach(processor, r.impostorDistance, r.hysteresis * r.impostorDistance);
+    const auto [distance, hysteresis] = impostorDistance(*world);
+    impostors.attach(processor, distance, hysteresis);
     sim::SimulationClock clock(world->description().step);
     const Camera camera = world->camera().at(view.pathTime, 1280.0 / 720.0);
     for (int f = 0; f < o.warmup; ++f, clock.advance()) processor.processFrame(world->root(), camera, clock.time());
