@@ -11,6 +11,8 @@ packages=(
   # tests, benchmarks, navigation, scene files, images, GL loader, virtual display
   libgtest-dev libgmock-dev libbenchmark-dev librecast-dev nlohmann-json3-dev libstb-dev libjpeg-dev
   python3 python3-glad xvfb xauth
+  # task scheduler (per-actor phases), command lines, the OpenSceneGraph peer benchmark
+  libtbb-dev libcli11-dev libopenscenegraph-dev
 )
 
 missing=()
