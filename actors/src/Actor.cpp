@@ -25,7 +25,6 @@ Actor::Actor(Crowd& crowd, ActorId id) : crowd_(&crowd), id_(id) {
 Actor::~Actor() { crowd_->release(this, std::span<const ActorId>(&id_, 1)); }
 
 void Actor::traverseApp(AppVisitor& visitor) {
-    crowd_->beginFrame(visitor.context());
     if (actorTraversal(visitor)) return;  // actor processing runs phase 1 over the whole crowd itself
     traditionalApp(*crowd_, std::span<const ActorId>(&id_, 1), visitor.context());
     dirtyBound();

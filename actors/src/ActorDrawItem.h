@@ -1,39 +1,48 @@
 #pragma once
-// Internal to actors: the draw item of one part of an actor, and a skin palette computed into the
-// crowd's frame arena. Both processing methods make their items with these, so they agree.
+// Internal to actors: the draw items of an actor's parts. Both processing methods make their items
+// here, so they agree; each item says whose it is (actor id, clip and clip time), so DRAW never has
+// to look back into the crowd or the scene.
 
 #include <span>
 
 #include "throng/actors/Crowd.h"
-#include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Drawable.h"
 
 namespace throng::detail {
 
-/// The item drawing `drawable` for part `part` of the actor `member` of `node`.
-inline DrawItem actorPartItem(const Node* node, std::uint32_t member, const glm::vec4& tint, const Drawable& drawable,
-                              const Mat4* world, std::uint32_t part, int level, const glm::mat4* palette = nullptr,
-                              std::size_t paletteSize = 0) {
-    DrawItem item;
-    item.node = node;
-    item.instance = member;
-    item.tint = tint;
-    item.drawable = &drawable;
-    item.worldMatrix = world;
-    item.part = part;
-    item.lodLevel = static_cast<std::uint32_t>(level);
-    item.skinPalette = palette;
-    item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
-    return item;
+/// What every item of one actor shares.
+struct ActorItemBase {
+    const Node* node = nullptr;   ///< the node holding the actor
+    std::uint32_t member = 0;     ///< its index in that node
+    ActorId id = 0;               ///< the actor
+    glm::vec4 tint{1.0f};         ///< its tint
+    std::int32_t clip = -1;       ///< the clip it plays (its behaviour's main clip)
+    double clipTime = 0.0;        ///< seconds into that clip it shows at the frame's time
+};
+
+/// The shared part of actor `id`'s items at simulation time `time`.
+inline ActorItemBase actorItemBase(const Crowd::State& s, ActorId id, const Node* node, std::uint32_t member, double time) {
+    const Behaviour& b = *s.behaviour[id];
+    return ActorItemBase{node, member, id, s.tint[id], b.mainClip(s.slot[id]), b.clipTime(s.slot[id], time)};
 }
 
-/// `skin`'s palette for the pose `model` (nodes flagged in `active`; all when empty), stored in the
-/// crowd's arena until the next frame.
-inline const glm::mat4* skinPaletteOf(Crowd& crowd, const ActorTemplate& tmpl, const Skin& skin,
-                                      std::span<const Affine> model, std::span<const std::uint8_t> active, OpTally* ops) {
-    glm::mat4* palette = crowd.skinPalettes().allocate(skin.joints.size());
-    computeSkinPalette(tmpl, skin, model, active, std::span<glm::mat4>(palette, skin.joints.size()), ops);
-    return palette;
+/// The item drawing `drawable` for part `part` of the actor `a`, at vaLod level `level`; its matrix
+/// and palette are given to DrawList::add, which keeps copies.
+inline DrawItem actorPartItem(const ActorItemBase& a, const Drawable& drawable, std::uint32_t part, int level,
+                              Representation representation = Representation::Mesh) {
+    DrawItem item;
+    item.node = a.node;
+    item.instance = a.member;
+    item.tint = a.tint;
+    item.drawable = &drawable;
+    item.part = part;
+    item.lodLevel = static_cast<std::uint32_t>(level);
+    item.actor = a.id;
+    item.representation = representation;
+    item.clip = a.clip;
+    item.clipTime = a.clipTime;
+    return item;
 }
 
 }  // namespace throng::detail

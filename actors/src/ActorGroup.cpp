@@ -22,7 +22,6 @@ ActorGroup::ActorGroup(Crowd& crowd, std::vector<ActorId> ids) : crowd_(&crowd),
 ActorGroup::~ActorGroup() { crowd_->release(this, ids_); }
 
 void ActorGroup::traverseApp(AppVisitor& visitor) {
-    crowd_->beginFrame(visitor.context());
     if (actorTraversal(visitor)) return;  // actor processing runs phase 1 over the whole crowd itself
     traditionalApp(*crowd_, ids_, visitor.context());
     dirtyBound();

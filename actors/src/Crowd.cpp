@@ -9,6 +9,7 @@
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorGroup.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenegraph/Validation.h"
 
 namespace throng {
 
@@ -152,9 +153,6 @@ Crowd::TraditionalWorkspace& Crowd::traditionalWorkspace() {
         w.geometry.resize(state_.totalNodes);
         w.subtree.resize(state_.totalNodes);
         w.whole.resize(size());
-        std::size_t most = 0;
-        for (const ActorTemplate* t : state_.tmpl) most = std::max(most, t->nodeCount());
-        w.masks.resize(most);
     }
     return w;
 }
@@ -165,16 +163,17 @@ void Crowd::release(Node* node, std::span<const ActorId> ids) {
     nodes_.erase(std::remove(nodes_.begin(), nodes_.end(), node), nodes_.end());
 }
 
-void Crowd::beginFrame(const FrameContext& context) {
-    if (context.frame == frame_ && context.time == frameTime_) return;
-    frame_ = context.frame;
-    frameTime_ = context.time;
-    drawMatrices_.clear();
-    skinPalettes_.clear();
+void Crowd::step(const FrameContext& context) {
+    requireFinite(context.time, "Crowd::step", "context.time");
+    requireFinite(context.deltaTime, "Crowd::step", "context.deltaTime");
+    if (steps_ > 0 && context.time < time_)
+        throw std::invalid_argument("Crowd::step: time " + std::to_string(context.time) + " s is before the last step's " +
+                                    std::to_string(time_) + " s");
     Stopwatch watch;
     for (const auto& b : behaviours_) b->advance(context);
     lastStepMs_ = watch.elapsedMs();
-    ++framesBegun_;
+    time_ = context.time;
+    ++steps_;
 }
 
 }  // namespace throng

@@ -30,7 +30,8 @@ std::string townUsage() {
            "  --headless          never open a window (the default when there is no display)\n"
            "  --processing actor|traditional   how the scene is processed (default actor)\n"
            "  --every K           headless: a PNG frame every K frames (default 60; 0: none)\n"
-           "  --threads N         threads for the per-actor phases (default 1)\n"
+           "  --threads N         threads for the simulation step and the per-actor phases (default 1)\n"
+           "  --pipeline on|off   DRAW of frame N overlaps the step, APP and CULL of frame N+1 (default on)\n"
            "  --lod-scale X       multiplies every LOD distance (default: the scene's)\n"
            "  --impostor-distance D   actors beyond D metres are drawn as impostors (0: never; default: the scene's)\n"
            "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
@@ -76,6 +77,11 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
             o.every = int(integer(a, value(), 0, 1'000'000));
         } else if (a == "--threads") {
             o.threads = int(integer(a, value(), 1, 256));
+        } else if (a == "--pipeline") {
+            const char* v = value();
+            if (!v || (std::string(v) != "on" && std::string(v) != "off"))
+                throw std::invalid_argument("--pipeline expects 'on' or 'off'");
+            o.pipeline = std::string(v) == "on";
         } else if (a == "--lod-scale") {
             const char* v = value();
             char* end = nullptr;

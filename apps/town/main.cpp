@@ -1,9 +1,12 @@
 // throng-town: the town-crowd example. Builds the world a scene file declares (a town of modular
 // tiles, walkers on its navigation mesh, standing groups, a flock; far actors as impostors when the
-// scene sets an impostor distance), then runs it: in a window when
-// there is a display (free camera, pause, LOD scale, a shrunken culling pyramid to watch culling at
-// work, on-screen statistics), headless otherwise (PNG frames every K frames, stats.csv per frame,
-// summary.json, a progress bar).
+// scene sets an impostor distance), then runs it: in a window when there is a display (free camera,
+// pause, LOD scale, a shrunken culling pyramid to watch culling at work, on-screen statistics),
+// headless otherwise (PNG frames every K frames, stats.csv per frame, summary.json, a progress bar).
+//
+// Every frame is: step (the simulation advances once), APP/CULL (the seven phases), DRAW (meshes,
+// then impostors). With --pipeline on, DRAW of frame N runs while frame N+1 is stepped and culled,
+// from frame N's own draw list; the frames written are the same either way.
 
 #include <GLFW/glfw3.h>
 
@@ -12,82 +15,60 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "ProgressBar.h"
-#include "TownImpostors.h"
 #include "TownOptions.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
-#include "throng/render/GlRenderer.h"
+#include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlfwWindowContext.h"
 #include "throng/render/ImageIO.h"
-#include "throng/render/TextOverlay.h"
+#include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/FramePipeline.h"
+#include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
-#include "throng/sim/SimulationClock.h"
 
 using namespace throng;
 namespace fs = std::filesystem;
 
 namespace {
 
-// The renderer, plus what the town app adds to a frame: counts of items by kind and, in a window,
-// the statistics text drawn before the frame is presented.
-class TownBackend : public DrawBackend {
-public:
-    TownBackend(std::shared_ptr<GlContext> context) : renderer_(context), overlay_(context->headless() ? nullptr : new TextOverlay(*context)) {}
-    void beginFrame(const Camera& camera) override {
-        camera_ = camera;
-        renderer_.beginFrame(camera);
-    }
-    void draw(const DrawList& list) override {
-        skinned_ = 0;
-        for (const DrawItem& item : list.items()) skinned_ += item.skinPaletteSize > 0;
-        renderer_.draw(list);
-        if (impostors_) impostors_->draw(list, camera_, time_);
-    }
-    void endFrame() override {
-        if (overlay_ && !text_.empty()) overlay_->draw(text_, 12, 12, 1.6f);
-        renderer_.endFrame();
-    }
-    GlRenderer& renderer() { return renderer_; }
-    /// Far actors as impostors from now on (null: none).
-    void setImpostors(town::TownImpostors* impostors) { impostors_ = impostors; }
-    /// The simulation time of the frame about to be drawn (impostors pick their clip frame by it).
-    void setTime(double time) { time_ = time; }
-    std::uint64_t skinnedItems() const { return skinned_; }
-    void setText(std::string text) { text_ = std::move(text); }
-
-private:
-    GlRenderer renderer_;
-    std::unique_ptr<TextOverlay> overlay_;
-    std::uint64_t skinned_ = 0;
-    std::string text_;
-    Camera camera_;
-    double time_ = 0.0;
-    town::TownImpostors* impostors_ = nullptr;
+// One frame between its APP/CULL and its DRAW: what DRAW and the statistics need of it.
+struct PreparedFrame {
+    std::int64_t number = 0;           // frame number
+    double time = 0.0;                 // simulation time
+    double stepMs = 0.0;               // the simulation step
+    Camera camera;                     // the camera it was culled for
+    ActorFrameStatistics stats;        // APP and CULL
+    const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
 };
 
+// Columns ending in _ms are wall-clock times; the others depend only on the scene, seed and options.
 const char* kCsvHeader =
-    "frame,time,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
-    "draw_ms,step_ms,impostor_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,skeleton_nodes,draw_items,skinned_items,"
-    "impostors,cells_morphed,primitives,draw_calls,triangles_drawn\n";
+    "frame,time,step_ms,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
+    "draw_ms,mesh_ms,impostor_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
+    "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn\n";
 
-std::string csvRow(std::int64_t frame, double time, const ActorFrameStatistics& s, std::uint64_t skinned,
-                   const RenderStatistics& r, const town::TownImpostors* impostors) {
+std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
+    const ActorFrameStatistics& s = f.stats;
     std::ostringstream o;
     o.precision(6);
-    o << frame << ',' << time << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ',' << s.cullMs << ','
-      << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ',' << s.drawMs
-      << ',' << s.stepMs << ',' << (impostors ? impostors->batchMs() : 0.0) << ',' << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ','
-      << s.c3_1 << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.drawItems << ',' << skinned << ','
-      << s.impostors << ',' << (impostors ? impostors->cellsMorphed() : 0) << ',' << s.primitives << ',' << r.drawCalls << ',' << r.triangles << '\n';
+    o << f.number << ',' << f.time << ',' << f.stepMs << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ','
+      << s.cullMs << ',' << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ','
+      << drawMs << ',' << r.meshMs << ',' << r.impostorBatchMs << ',' << r.impostorDrawMs << ',' << frameMs << ','
+      << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ',' << s.c3_1
+      << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.eyeDistances << ',' << s.drawItems << ',' << r.skinnedItems
+      << ',' << s.impostors << ',' << r.morphs.synthesized << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
+      << ',' << r.meshes.triangles << '\n';
     return o.str();
 }
 
@@ -96,12 +77,13 @@ struct Sums {
     double app = 0, phases[9] = {}, draw = 0, step = 0;
     double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
     std::int64_t frames = 0;
-    void add(const ActorFrameStatistics& s) {
+    void add(const PreparedFrame& f, double drawMs) {
+        const ActorFrameStatistics& s = f.stats;
         app += s.appCullMs();
         const double p[9] = {s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
         for (int i = 0; i < 9; ++i) phases[i] += p[i];
-        draw += s.drawMs;
-        step += s.stepMs;
+        draw += drawMs;
+        step += f.stepMs;
         posed += double(s.actorsPosed);
         nodes += double(s.skeletonNodesEvaluated);
         items += double(s.drawItems);
@@ -112,16 +94,16 @@ struct Sums {
 };
 
 std::string statusText(const sim::Simulation& world, const ActorFrameStatistics& s, double fps, double lodScale,
-                       bool paused, bool shrunk, bool freeCamera) {
+                       bool paused, bool shrunk, bool freeCamera, bool pipelined) {
     char buf[1024];
     std::snprintf(buf, sizeof buf,
-                  "%s   %.1f fps   %s processing%s\n"
+                  "%s   %.1f fps   %s processing%s%s\n"
                   "actors %llu: culled with group %llu  A %llu  B %llu  C1 %llu  C2 %llu  C3.1 %llu  C3.2 %llu\n"
                   "posed %llu, skeleton nodes %llu, draw items %llu, triangles %llu\n"
                   "APP+CULL %.2f ms (APP %.2f, refpoints %.2f, bounds %.2f, CULL1 %.2f, roots %.2f, CULL2 %.2f, poses %.2f, CULL3 %.2f, list %.2f)\n"
                   "LOD scale %.2f (+/-)   culling pyramid %s (C)   camera %s (Tab)   %s",
                   world.description().name.c_str(), fps, s.processing == Processing::Actor ? "actor" : "traditional",
-                  paused ? "   PAUSED" : "", (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
+                  pipelined ? ", DRAW overlapped" : "", paused ? "   PAUSED" : "", (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
                   (unsigned long long)s.a, (unsigned long long)s.b, (unsigned long long)s.c1, (unsigned long long)s.c2,
                   (unsigned long long)s.c3_1, (unsigned long long)s.c3_2, (unsigned long long)s.actorsPosed,
                   (unsigned long long)s.skeletonNodesEvaluated, (unsigned long long)s.drawItems, (unsigned long long)s.primitives,
@@ -139,6 +121,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["seed"] = world.description().seed;
     j["processing"] = o.processing;
     j["threads"] = o.threads;
+    j["pipeline"] = o.pipeline;
     j["width"] = o.width;
     j["height"] = o.height;
     j["frames"] = sums.frames;
@@ -154,7 +137,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     for (int i = 0; i < 9; ++i) j["meanMs"][names[i]] = sums.phases[i] / n;
     j["meanMs"]["appCull"] = sums.app / n;
     j["meanMs"]["draw"] = sums.draw / n;
-    j["meanMs"]["step"] = sums.step / n;  // the behaviours' shared step, outside APP+CULL
+    j["meanMs"]["step"] = sums.step / n;  // the simulation step, before APP+CULL
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight"}) {
@@ -198,24 +181,28 @@ int main(int argc, char** argv) {
     auto context = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town"}, &why);
     const bool window = !context->headless();
     if (wantWindow && !window) std::fprintf(stderr, "throng-town: no window (%s): running headless\n", why.c_str());
-    TownBackend backend(context);
+    world->setThreads(unsigned(o.threads));
     ActorProcessor processor(world->crowd());
     processor.setProcessing(o.processing == "traditional" ? Processing::Traditional : Processing::Actor);
     processor.setThreads(unsigned(o.threads));
     processor.setLodScale(lodScale);
     // Far actors as impostors when the scene asks for them (or --impostor-distance does).
     const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
-    std::unique_ptr<town::TownImpostors> impostors;
+    std::unique_ptr<ImpostorSet> impostors;
     if (impostorDistance > 0.0) {
         town::ProgressBar bar("baking impostors", 1000);
-        impostors = std::make_unique<town::TownImpostors>(context, *world, 64, [&](int done, int total) {
+        std::vector<ImpostorSet::Source> sources;
+        for (const auto& t : world->templates()) sources.push_back({t.tmpl, t.clip});
+        ImpostorBakeOptions bake;
+        bake.cellSize = 64;
+        bake.progress = [&](int done, int total) {
             bar.update(std::size_t(1000.0 * done / std::max(total, 1)), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
-        });
-        bar.finish(std::to_string(world->templates().size()) + " templates, " + std::to_string(impostors->textureBytes() >> 20) + " MiB of atlases");
+        };
+        impostors = std::make_unique<ImpostorSet>(context, sources, bake);
+        bar.finish(std::to_string(impostors->size()) + " templates, " + std::to_string(impostors->textureBytes() >> 20) + " MiB of atlases");
         impostors->attach(processor, impostorDistance, world->description().representation.hysteresis * impostorDistance);
-        backend.setImpostors(impostors.get());
     }
-    sim::SimulationClock clock(world->description().step);
+    CrowdRenderer renderer(context);
     const double aspect = double(o.width) / double(o.height);
 
     fs::create_directories(o.out);
@@ -226,21 +213,57 @@ int main(int argc, char** argv) {
     double firstFrame = 0.0;
     auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
+    // The two stages of a frame. prepare: step the simulation (unless paused), then APP and CULL
+    // for `camera`. draw: DRAW from the prepared frame's own data, then its statistics.
+    PreparedFrame prepared[2];
+    auto prepare = [&](PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
+        f.number = number;
+        f.stepMs = 0.0;
+        if (step) {
+            world->step();
+            f.stepMs = world->lastStepMs();
+        }
+        f.time = world->now().time;
+        f.camera = camera;
+        f.stats = processor.processFrame(world->root(), camera, f.time);
+        f.list = &processor.drawList();
+    };
+    double lastFrameEnd = 0.0;
+    auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
+        Stopwatch watch;
+        renderer.beginFrame(f.camera);
+        renderer.draw(*f.list);
+        if (beforePresent) beforePresent();
+        renderer.endFrame();
+        const double drawMs = watch.elapsedMs();
+        const double now = seconds();
+        sums.add(f, drawMs);
+        csv << csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd), renderer.statistics());
+        lastFrameEnd = now;
+    };
+    FramePipeline pipeline(o.pipeline);
+
     if (!window) {
         town::ProgressBar bar("running", std::size_t(o.frames));
         if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
-        for (std::int64_t f = 0; f < o.frames; ++f, clock.advance()) {
-            const double t = clock.time();
-            backend.setTime(t);
-            const ActorFrameStatistics& s = processor.processFrame(world->root(), world->camera().at(t, aspect), t, &backend);
+        auto cameraAt = [&](double time) { return world->camera().at(time, aspect); };
+        // Frame f's camera follows the path at frame f's time, known before it is stepped.
+        const double step = world->description().step;
+        prepare(prepared[0], 0, cameraAt(0.0), true);
+        for (std::int64_t f = 0; f < o.frames; ++f) {
+            PreparedFrame& current = prepared[f % 2];
+            PreparedFrame& next = prepared[(f + 1) % 2];
+            pipeline.run([&] { if (f + 1 < o.frames) prepare(next, f + 1, cameraAt(double(f + 1) * step), true); },
+                         [&] {
+                             draw(current, [&] {
+                                 if (o.every > 0 && f % o.every == 0) {  // frame f: its own state, whatever the pipeline
+                                     char name[64];
+                                     std::snprintf(name, sizeof name, "frame_%06lld.png", (long long)f);
+                                     writePng(renderer.readFrame(), (fs::path(o.out) / "frames" / name).string());
+                                 }
+                             });
+                         });
             if (f == 0) firstFrame = seconds();
-            sums.add(s);
-            csv << csvRow(f, t, s, backend.skinnedItems(), backend.renderer().statistics(), impostors.get());
-            if (o.every > 0 && f % o.every == 0) {
-                char name[64];
-                std::snprintf(name, sizeof name, "frame_%06lld.png", (long long)f);
-                writePng(backend.renderer().readFrame(), (fs::path(o.out) / "frames" / name).string());
-            }
             char detail[128];
             std::snprintf(detail, sizeof detail, "frame %lld/%lld, %.1f fps", (long long)f + 1, (long long)o.frames,
                           f > 0 ? double(f) / std::max(1e-9, seconds() - firstFrame) : 0.0);
@@ -259,18 +282,9 @@ int main(int argc, char** argv) {
             held[key] = down;
             return edge;
         };
-        auto last = std::chrono::steady_clock::now();
-        double fps = 0.0;
-        while (!context->shouldClose() && !(o.framesGiven && sums.frames >= o.frames)) {
-            context->pollEvents();
-            if (glfwGetKey(glfw, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
-            if (pressed(GLFW_KEY_SPACE)) paused = !paused;
-            if (pressed(GLFW_KEY_C)) shrunk = !shrunk;
-            if (pressed(GLFW_KEY_P))
-                processor.setProcessing(processor.processing() == Processing::Actor ? Processing::Traditional : Processing::Actor);
-            if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) processor.setLodScale(scale *= 1.25);
-            if (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT)) processor.setLodScale(scale /= 1.25);
-            Camera camera = world->camera().at(clock.time(), aspect);
+        // The camera of the next frame, from the keyboard and mouse (main thread only).
+        auto nextCamera = [&](double time) {
+            Camera camera = world->camera().at(time, aspect);
             if (pressed(GLFW_KEY_TAB)) {
                 freeCamera = !freeCamera;
                 if (freeCamera) {  // start from where the path camera is
@@ -290,13 +304,13 @@ int main(int argc, char** argv) {
             if (freeCamera) {
                 const glm::dvec3 forward(std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch));
                 const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
-                const double step = glfwGetKey(glfw, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 3.0 : 0.6;
-                if (glfwGetKey(glfw, GLFW_KEY_W) == GLFW_PRESS) position += forward * step;
-                if (glfwGetKey(glfw, GLFW_KEY_S) == GLFW_PRESS) position -= forward * step;
-                if (glfwGetKey(glfw, GLFW_KEY_D) == GLFW_PRESS) position += right * step;
-                if (glfwGetKey(glfw, GLFW_KEY_A) == GLFW_PRESS) position -= right * step;
-                if (glfwGetKey(glfw, GLFW_KEY_E) == GLFW_PRESS) position.y += step;
-                if (glfwGetKey(glfw, GLFW_KEY_Q) == GLFW_PRESS) position.y -= step;
+                const double speed = glfwGetKey(glfw, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 3.0 : 0.6;
+                if (glfwGetKey(glfw, GLFW_KEY_W) == GLFW_PRESS) position += forward * speed;
+                if (glfwGetKey(glfw, GLFW_KEY_S) == GLFW_PRESS) position -= forward * speed;
+                if (glfwGetKey(glfw, GLFW_KEY_D) == GLFW_PRESS) position += right * speed;
+                if (glfwGetKey(glfw, GLFW_KEY_A) == GLFW_PRESS) position -= right * speed;
+                if (glfwGetKey(glfw, GLFW_KEY_E) == GLFW_PRESS) position.y += speed;
+                if (glfwGetKey(glfw, GLFW_KEY_Q) == GLFW_PRESS) position.y -= speed;
                 camera.setLookAt(position, position + forward, glm::dvec3(0, 1, 0));
             }
             // The shrunken pyramid culls as if the view were 60% as wide: actors vanish near the edges.
@@ -308,16 +322,31 @@ int main(int argc, char** argv) {
             } else {
                 processor.setCullingFrustum(std::nullopt);
             }
-            backend.setTime(clock.time());
-            const ActorFrameStatistics& s = processor.processFrame(world->root(), camera, clock.time(), &backend);
-            sums.add(s);
-            csv << csvRow(sums.frames - 1, clock.time(), s, backend.skinnedItems(), backend.renderer().statistics(), impostors.get());
+            return camera;
+        };
+        const double step = world->description().step;
+        auto last = std::chrono::steady_clock::now();
+        double fps = 0.0;
+        prepare(prepared[0], 0, nextCamera(0.0), true);
+        for (std::int64_t f = 0; !context->shouldClose() && !(o.framesGiven && f >= o.frames); ++f) {
+            context->pollEvents();
+            if (glfwGetKey(glfw, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
+            if (pressed(GLFW_KEY_SPACE)) paused = !paused;
+            if (pressed(GLFW_KEY_C)) shrunk = !shrunk;
+            if (pressed(GLFW_KEY_P))
+                processor.setProcessing(processor.processing() == Processing::Actor ? Processing::Traditional : Processing::Actor);
+            if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) processor.setLodScale(scale *= 1.25);
+            if (pressed(GLFW_KEY_MINUS) || pressed(GLFW_KEY_KP_SUBTRACT)) processor.setLodScale(scale /= 1.25);
+            PreparedFrame& current = prepared[f % 2];
+            PreparedFrame& next = prepared[(f + 1) % 2];
+            const bool advance = !paused;
+            const Camera camera = nextCamera(world->now().time + (advance ? step : 0.0));
+            renderer.setOverlayText(statusText(*world, current.stats, fps, scale, paused, shrunk, freeCamera, o.pipeline));
+            pipeline.run([&] { prepare(next, f + 1, camera, advance); }, [&] { draw(current, {}); });
             const auto now = std::chrono::steady_clock::now();
             const double dt = std::chrono::duration<double>(now - last).count();
             last = now;
             fps = fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fps + 0.1 / std::max(dt, 1e-6);
-            backend.setText(statusText(*world, s, fps, scale, paused, shrunk, freeCamera));
-            if (!paused) clock.advance();
         }
     }
     const double wall = seconds();

@@ -9,8 +9,7 @@
 // processing ms, impostors.
 //
 // HybridScene/10000: 10k actors from 5 m to 300 m; near ones are geometry, far ones impostors
-// (distance 60 m, hysteresis 5 m), drawn at 640x360: GlRenderer for the meshes, ImpostorRenderer
-// for the quads. Counters: impostors, actors posed, Skeleton nodes evaluated, cells morphed, and the
+// (distance 60 m, hysteresis 5 m), drawn at 640x360 by CrowdRenderer (meshes, then impostor quads). Counters: impostors, actors posed, Skeleton nodes evaluated, cells morphed, and the
 // times of processing, batching (with morphing) and drawing per frame.
 
 #include <benchmark/benchmark.h>
@@ -24,6 +23,7 @@
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/render/ContextFactory.h"
+#include "throng/render/CrowdRenderer.h"
 #include "throng/render/GpuMorpher.h"
 #include "throng/render/ImpostorBaker.h"
 #include "throng/render/ImpostorBatcher.h"
@@ -94,13 +94,6 @@ Scene makeScene(std::size_t n, double w, double zNear, double zFar) {
     return s;
 }
 
-ImpostorBatcher::ClipTime clipTimes(const Scene& s) {
-    return [&s](const DrawItem& item, double t) {
-        const auto* actor = dynamic_cast<const Actor*>(item.node);
-        return actor ? t + s.timeOffset[actor->id()] : t;
-    };
-}
-
 // What both benchmarks run: a processor showing the baked humanoid beyond `distance`, and the
 // morph cache (8 features) and batcher that turn its impostor items into quads.
 struct ImpostorPipeline {
@@ -109,7 +102,7 @@ struct ImpostorPipeline {
     ImpostorBatcher batcher;
 
     ImpostorPipeline(const Scene& s, double distance, double hysteresis)
-        : processor(*s.crowd), cache(options(), Baked::get().gpu.get()), batcher(cache, false, clipTimes(s)) {
+        : processor(*s.crowd), cache(options(), Baked::get().gpu.get()), batcher(cache, false) {
         processor.setImpostorDistance(distance, hysteresis);
         processor.setImpostor(*Baked::get().tmpl, Baked::get().drawable);
     }
@@ -129,7 +122,7 @@ void ImpostorCrowd(benchmark::State& state) {
     std::int64_t frames = 0;
     for (auto _ : state) {
         processMs += processor.processFrame(*s.root, s.camera, t).appCullMs();
-        batcher.build(processor.drawList(), s.camera, t);
+        batcher.build(processor.drawList(), s.camera);
         morphMs += batcher.statistics().ms;
         morphed += static_cast<double>(cache.statistics().synthesized);
         requests += static_cast<double>(cache.statistics().requests);
@@ -151,29 +144,25 @@ void HybridScene(benchmark::State& state) {
     const auto n = static_cast<std::size_t>(state.range(0));
     Scene s = makeScene(n, 150.0, -5.0, -300.0);
     ImpostorPipeline p(s, 60.0, 5.0);
-    auto& [processor, cache, batcher] = p;
-    RendererOptions ro;
-    ro.width = 640, ro.height = 360;
-    GlRenderer renderer(b.context, ro);
-    ImpostorRenderer quads(b.context);
+    ActorProcessor& processor = p.processor;
+    CrowdRendererOptions ro;
+    ro.meshes.width = 640, ro.meshes.height = 360;
+    ro.morph = ImpostorPipeline::options();
+    CrowdRenderer renderer(b.context, ro);
     double t = 0.0, impostors = 0.0, posed = 0.0, nodes = 0.0, morphed = 0.0, processMs = 0.0, batchMs = 0.0,
            drawMs = 0.0;
     std::int64_t frames = 0;
     for (auto _ : state) {
         const ActorFrameStatistics& st = processor.processFrame(*s.root, s.camera, t);
         processMs += st.appCullMs();
-        batcher.build(processor.drawList(), s.camera, t);
-        batchMs += batcher.statistics().ms;
         Stopwatch watch;
-        renderer.beginFrame(s.camera);
-        renderer.draw(processor.drawList());
-        quads.draw(s.camera, batcher.instances());
-        renderer.endFrame();
+        renderer.drawFrame(s.camera, processor.drawList());
         drawMs += watch.elapsedMs();
+        batchMs += renderer.statistics().impostorBatchMs;
         impostors += static_cast<double>(st.impostors);
         posed += static_cast<double>(st.actorsPosed);
         nodes += static_cast<double>(st.skeletonNodesEvaluated);
-        morphed += static_cast<double>(cache.statistics().synthesized);
+        morphed += static_cast<double>(renderer.statistics().morphs.synthesized);
         t += 1.0 / 30.0;
         ++frames;
     }

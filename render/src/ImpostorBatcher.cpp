@@ -9,18 +9,18 @@
 
 namespace throng {
 
-ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep, ClipTime clipTime)
-    : cache_(cache), smoothstep_(smoothstep), clipTime_(std::move(clipTime)) {}
+ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep) : cache_(cache), smoothstep_(smoothstep) {}
 
-void ImpostorBatcher::build(const DrawList& list, const Camera& camera, double time) {
+void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
     Stopwatch watch;
     stats_ = {};
     instances_.clear();
     cache_.beginFrame();
     const Vec3 eye = camera.eye();
     for (const DrawItem& item : list.items()) {
+        if (item.representation != Representation::Impostor || !item.worldMatrix) continue;
         const auto* d = dynamic_cast<const ImpostorDrawable*>(item.drawable);
-        if (!d || !item.worldMatrix) continue;
+        if (!d) continue;
         const ImpostorAtlas& atlas = d->atlas();
         const Mat4& world = *item.worldMatrix;
         ImpostorInstance inst;
@@ -35,8 +35,7 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera, double t
         const ViewBlend blend = atlas.views().blend(local, smoothstep_);
         inst.views = blend.views;
         inst.weights = blend.weights;
-        const double t = clipTime_ ? clipTime_(item, time) : time;
-        double phase = std::fmod(t / atlas.duration(), 1.0);
+        double phase = std::fmod(item.clipTime / atlas.duration(), 1.0);
         if (!(phase >= 0.0)) phase = phase < 0.0 ? phase + 1.0 : 0.0;
         inst.keyframe = std::min(static_cast<int>(phase * atlas.keyframeCount()), atlas.keyframeCount() - 1);
         if (!atlas.stored(inst.keyframe))

@@ -43,10 +43,17 @@ Containment CullVisitor::testSphere(const BoundingSphere& sphere, PlaneMask& mas
     return frustum_.classify(sphere, mask, ops);
 }
 
-void CullVisitor::addDrawItem(const DrawItem& item, std::uint64_t primitives) {
-    drawList_.add(item, primitives);
+void CullVisitor::addDrawItem(const DrawItem& item, std::uint64_t primitives, const Mat4& world,
+                              std::span<const glm::mat4> palette) {
+    drawList_.add(item, primitives, world, palette);
     ++stats_.drawItems;
     stats_.primitives += primitives;
+}
+
+void CullVisitor::appendDrawItems(const DrawList& items) {
+    drawList_.append(items);
+    stats_.drawItems += items.size();
+    stats_.primitives += items.primitiveCount();
 }
 
 bool CullVisitor::enter(const Node& node) {
@@ -114,10 +121,9 @@ void CullVisitor::apply(Geometry& geometry) {
         const Drawable& drawable = geometry.drawable();
         DrawItem item;
         item.drawable = &drawable;
-        item.worldMatrix = world_;
         item.node = &geometry;
         item.lodLevel = lodLevel_;
-        addDrawItem(item, drawable.primitiveCount());
+        addDrawItem(item, drawable.primitiveCount(), *world_);
     }
     mask_ = saved;
 }

@@ -13,4 +13,11 @@ void OpCounter::reset() {
     tallies_.fill(OpTally{});
 }
 
+void OpCounter::add(const OpCounter& other) {
+    for (std::size_t i = 0; i < kOpCategoryCount; ++i) {
+        operations_[i] += other.operations_[i];
+        tallies_[i] += other.tallies_[i];
+    }
+}
+
 }  // namespace throng

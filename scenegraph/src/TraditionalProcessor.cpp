@@ -42,18 +42,19 @@ const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Came
     stats_.matrices = matrices.statistics();
 
     watch.restart();
-    drawList_.clear();
-    CullVisitor cull(camera, drawList_, counter, lodScale_);
+    current_ = 1 - current_;  // the previous frame's list stays intact for a DRAW still reading it
+    DrawList& list = drawLists_[current_];
+    list.clear();
+    CullVisitor cull(camera, list, counter, lodScale_);
     if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
+    cull.setFrameTime(time);
     root.accept(cull);
     stats_.cullMs = watch.elapsedMs();
     stats_.cull = cull.statistics();
 
     if (backend) {
         watch.restart();
-        backend->beginFrame(camera);
-        backend->draw(drawList_);
-        backend->endFrame();
+        backend->drawFrame(camera, list);
         stats_.drawMs = watch.elapsedMs();
     }
     stats_.fmultTotal = counter ? counter_.totalFmult() : 0;

@@ -7,6 +7,7 @@
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CounterRng.h"
 
 namespace throng::sim {
@@ -58,49 +59,52 @@ void Flock::advance(const FrameContext& context) {
     nextPos_.resize(n);
     nextVel_.resize(n);
     const double r2 = settings_.neighbourRadius * settings_.neighbourRadius, sep2 = settings_.separation * settings_.separation;
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const glm::dvec3 p = pos_[i], v = vel_[i];
-        glm::dvec3 centre(0.0), heading(0.0), away(0.0);
-        int neighbours = 0;
-        const int cx = int(birdCell_[i] % std::uint32_t(nx)), cz = int(birdCell_[i] / std::uint32_t(nx));
-        for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
-            for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x) {
-                const std::uint32_t c = std::uint32_t(z * nx + x);
-                for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-                    const std::uint32_t j = cellBirds_[k];
-                    if (j == i) continue;
-                    const glm::dvec3 d = pos_[j] - p;
-                    const double d2 = glm::dot(d, d);
-                    if (d2 > r2) continue;
-                    centre += pos_[j];
-                    heading += vel_[j];
-                    if (d2 < sep2 && d2 > 1e-12) away -= d / d2;
-                    ++neighbours;
+    // Per bird, in parallel: each reads the last step's positions and writes only its next ones.
+    forEachChunk(n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (auto i = std::uint32_t(begin); i < end; ++i) {
+            const glm::dvec3 p = pos_[i], v = vel_[i];
+            glm::dvec3 centre(0.0), heading(0.0), away(0.0);
+            int neighbours = 0;
+            const int cx = int(birdCell_[i] % std::uint32_t(nx)), cz = int(birdCell_[i] / std::uint32_t(nx));
+            for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
+                for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x) {
+                    const std::uint32_t c = std::uint32_t(z * nx + x);
+                    for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+                        const std::uint32_t j = cellBirds_[k];
+                        if (j == i) continue;
+                        const glm::dvec3 d = pos_[j] - p;
+                        const double d2 = glm::dot(d, d);
+                        if (d2 > r2) continue;
+                        centre += pos_[j];
+                        heading += vel_[j];
+                        if (d2 < sep2 && d2 > 1e-12) away -= d / d2;
+                        ++neighbours;
+                    }
                 }
+            glm::dvec3 steer(0.0);
+            if (neighbours) {
+                steer += 0.6 * (centre / double(neighbours) - p);
+                steer += 0.8 * (heading / double(neighbours) - v);
+                steer += 6.0 * away;
             }
-        glm::dvec3 steer(0.0);
-        if (neighbours) {
-            steer += 0.6 * (centre / double(neighbours) - p);
-            steer += 0.8 * (heading / double(neighbours) - v);
-            steer += 6.0 * away;
+            // Stay over the area and within the altitude band.
+            const glm::dvec2 half = 0.5 * settings_.size;
+            if (p.x < settings_.center.x - half.x) steer.x += 4.0;
+            if (p.x > settings_.center.x + half.x) steer.x -= 4.0;
+            if (p.z < settings_.center.y - half.y) steer.z += 4.0;
+            if (p.z > settings_.center.y + half.y) steer.z -= 4.0;
+            if (p.y < settings_.altitude.x) steer.y += 3.0;
+            if (p.y > settings_.altitude.y) steer.y -= 3.0;
+            // A little wander, from the bird's own stream.
+            const CounterRng rng(settings_.seed, birds_[i].stream);
+            steer += glm::dvec3(rng.uniform(3 * steps_ + 100, -1, 1), 0.3 * rng.uniform(3 * steps_ + 101, -1, 1), rng.uniform(3 * steps_ + 102, -1, 1));
+            glm::dvec3 nv = v + steer * dt;
+            const double speed = glm::length(nv);
+            nv *= std::clamp(speed, settings_.speed.x, settings_.speed.y) / std::max(speed, 1e-9);
+            nextVel_[i] = nv;
+            nextPos_[i] = p + nv * dt;
         }
-        // Stay over the area and within the altitude band.
-        const glm::dvec2 half = 0.5 * settings_.size;
-        if (p.x < settings_.center.x - half.x) steer.x += 4.0;
-        if (p.x > settings_.center.x + half.x) steer.x -= 4.0;
-        if (p.z < settings_.center.y - half.y) steer.z += 4.0;
-        if (p.z > settings_.center.y + half.y) steer.z -= 4.0;
-        if (p.y < settings_.altitude.x) steer.y += 3.0;
-        if (p.y > settings_.altitude.y) steer.y -= 3.0;
-        // A little wander, from the bird's own stream.
-        const CounterRng rng(settings_.seed, birds_[i].stream);
-        steer += glm::dvec3(rng.uniform(3 * steps_ + 100, -1, 1), 0.3 * rng.uniform(3 * steps_ + 101, -1, 1), rng.uniform(3 * steps_ + 102, -1, 1));
-        glm::dvec3 nv = v + steer * dt;
-        const double speed = glm::length(nv);
-        nv *= std::clamp(speed, settings_.speed.x, settings_.speed.y) / std::max(speed, 1e-9);
-        nextVel_[i] = nv;
-        nextPos_[i] = p + nv * dt;
-    }
+    });
     std::swap(pos_, nextPos_);
     std::swap(vel_, nextVel_);
     ++steps_;

@@ -9,6 +9,7 @@
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CounterRng.h"
 
 namespace throng::sim {
@@ -107,8 +108,10 @@ void GazeLayer::advance(const FrameContext& context) {
     base_->advance(context);  // the layer owns its base: the crowd only knows the layer
     const std::size_t n = state_.size();
     if (n == 0) return;
-    for (std::size_t i = 0; i < n; ++i)
-        if (state_[i].tmpl) state_[i].position = Vec3(base_->referencePoint(std::uint32_t(i), context, nullptr)[3]);
+    forEachChunk(n, 512, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            if (state_[i].tmpl) state_[i].position = Vec3(base_->referencePoint(std::uint32_t(i), context, nullptr)[3]);
+    });
     // Neighbours come from a grid of cells one range wide, walked in a fixed order.
     glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const State& s : state_)
@@ -131,37 +134,40 @@ void GazeLayer::advance(const FrameContext& context) {
         if (state_[j].tmpl) cellActors_[cellFill_[std::size_t(cellOf(state_[j].position))]++] = std::uint32_t(j);
     // Each actor picks someone within range, anew every few seconds (its own period and phase),
     // and keeps looking at them for the period unless they walk out of range.
+    // Per actor, in parallel: each reads positions and writes only its own choice.
     const double range2 = settings_.range * settings_.range;
-    for (std::size_t i = 0; i < n; ++i) {
-        State& s = state_[i];
-        if (!s.tmpl) continue;
-        const CounterRng rng(settings_.seed, s.stream);
-        const double period = rng.uniform(0, 2.5, 5.0);
-        const auto bucket = std::uint64_t(std::floor((context.time + rng.uniform(1, 0.0, period)) / period));
-        if (bucket == s.period && s.target >= 0) {
-            const glm::dvec3 d = state_[std::size_t(s.target)].position - s.position;
-            if (d.x * d.x + d.z * d.z <= range2) {
-                s.lookAt = state_[std::size_t(s.target)].position + glm::dvec3(0, settings_.eyeHeight, 0);
-                continue;
-            }
-        }
-        s.period = bucket;
-        int chosen = -1, seen = 0;
-        const int c = cellOf(s.position), cx = c % nx, cz = c / nx;
-        for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
-            for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x)
-                for (std::uint32_t k = cellStart_[std::size_t(z * nx + x)]; k < cellStart_[std::size_t(z * nx + x) + 1]; ++k) {
-                    const std::uint32_t j = cellActors_[k];  // reservoir sampling over the neighbours
-                    if (j == i) continue;
-                    const glm::dvec3 d = state_[j].position - s.position;
-                    if (d.x * d.x + d.z * d.z > range2) continue;
-                    ++seen;
-                    if (rng.below(bucket * 1000003u + std::uint64_t(seen), std::uint64_t(seen)) == 0) chosen = int(j);
+    forEachChunk(n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            State& s = state_[i];
+            if (!s.tmpl) continue;
+            const CounterRng rng(settings_.seed, s.stream);
+            const double period = rng.uniform(0, 2.5, 5.0);
+            const auto bucket = std::uint64_t(std::floor((context.time + rng.uniform(1, 0.0, period)) / period));
+            if (bucket == s.period && s.target >= 0) {
+                const glm::dvec3 d = state_[std::size_t(s.target)].position - s.position;
+                if (d.x * d.x + d.z * d.z <= range2) {
+                    s.lookAt = state_[std::size_t(s.target)].position + glm::dvec3(0, settings_.eyeHeight, 0);
+                    continue;
                 }
-        s.target = chosen;
-        s.lookAt = chosen >= 0 ? state_[std::size_t(chosen)].position + glm::dvec3(0, settings_.eyeHeight, 0)
-                               : s.position + glm::dvec3(0, settings_.eyeHeight, 0);
-    }
+            }
+            s.period = bucket;
+            int chosen = -1, seen = 0;
+            const int c = cellOf(s.position), cx = c % nx, cz = c / nx;
+            for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
+                for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x)
+                    for (std::uint32_t k = cellStart_[std::size_t(z * nx + x)]; k < cellStart_[std::size_t(z * nx + x) + 1]; ++k) {
+                        const std::uint32_t j = cellActors_[k];  // reservoir sampling over the neighbours
+                        if (j == i) continue;
+                        const glm::dvec3 d = state_[j].position - s.position;
+                        if (d.x * d.x + d.z * d.z > range2) continue;
+                        ++seen;
+                        if (rng.below(bucket * 1000003u + std::uint64_t(seen), std::uint64_t(seen)) == 0) chosen = int(j);
+                    }
+            s.target = chosen;
+            s.lookAt = chosen >= 0 ? state_[std::size_t(chosen)].position + glm::dvec3(0, settings_.eyeHeight, 0)
+                                   : s.position + glm::dvec3(0, settings_.eyeHeight, 0);
+        }
+    });
     if (counters_) counters_->ticked("gaze", n);
 }
 

@@ -10,6 +10,7 @@
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/ClipBlend.h"
 #include "throng/sim/CounterRng.h"
 
@@ -150,28 +151,31 @@ void Locomotion::advance(const FrameContext& context) {
         counters_->ticked("locomotion", actors_.size());
         if (settings_.avoidance) counters_->ticked("avoidance", actors_.size());
     }
-    for (std::uint32_t slot = 0; slot < actors_.size(); ++slot) {
-        State& s = state_[slot];
-        const Actor& a = actors_[slot];
-        const dtCrowdAgent* agent = crowd_->getAgent(s.agent);
-        s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
-        const glm::vec3 v(agent->vel[0], 0.0f, agent->vel[2]);
-        s.speed = glm::length(v);
-        if (s.speed > 0.05f) {  // face the way it goes, turning at a bounded rate
-            const float want = std::atan2(v.x, v.z);
-            const float turn = std::clamp(wrapAngle(want - s.heading), -settings_.turnRate * dt, settings_.turnRate * dt);
-            s.heading = wrapAngle(s.heading + turn);
+    // Per agent, in parallel: each touches its own state only.
+    forEachChunk(actors_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t slot = begin; slot < end; ++slot) {
+            State& s = state_[slot];
+            const Actor& a = actors_[slot];
+            const dtCrowdAgent* agent = crowd_->getAgent(s.agent);
+            s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
+            const glm::vec3 v(agent->vel[0], 0.0f, agent->vel[2]);
+            s.speed = glm::length(v);
+            if (s.speed > 0.05f) {  // face the way it goes, turning at a bounded rate
+                const float want = std::atan2(v.x, v.z);
+                const float turn = std::clamp(wrapAngle(want - s.heading), -settings_.turnRate * dt, settings_.turnRate * dt);
+                s.heading = wrapAngle(s.heading + turn);
+            }
+            // Speed matching: the walk cycle advances as far as the actor walked.
+            const double walkDuration = a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
+            const double clipSpeed = a.runClip < 0 ? a.walkClipSpeed
+                                                   : a.walkClipSpeed + (a.runClipSpeed - a.walkClipSpeed) * s.runWeight;
+            if (walkDuration > 0.0) s.phase = std::fmod(s.phase + dt * s.speed / (clipSpeed * walkDuration) * 1.0, 1.0);
+            if (a.runClip >= 0) {
+                const float u = std::clamp(float((s.speed - a.walkClipSpeed) / (a.runClipSpeed - a.walkClipSpeed)), 0.0f, 1.0f);
+                s.runWeight = u * u * (3.0f - 2.0f * u);
+            }
         }
-        // Speed matching: the walk cycle advances as far as the actor walked.
-        const double walkDuration = a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
-        const double clipSpeed = a.runClip < 0 ? a.walkClipSpeed
-                                               : a.walkClipSpeed + (a.runClipSpeed - a.walkClipSpeed) * s.runWeight;
-        if (walkDuration > 0.0) s.phase = std::fmod(s.phase + dt * s.speed / (clipSpeed * walkDuration) * 1.0, 1.0);
-        if (a.runClip >= 0) {
-            const float u = std::clamp(float((s.speed - a.walkClipSpeed) / (a.runClipSpeed - a.walkClipSpeed)), 0.0f, 1.0f);
-            s.runWeight = u * u * (3.0f - 2.0f * u);
-        }
-    }
+    });
 }
 
 double Locomotion::clipTime(std::uint32_t slot, double) const {

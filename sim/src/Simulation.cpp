@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/GltfLoader.h"
@@ -89,6 +90,19 @@ Mat4 tileTransform(const TownLayout& t, const TilePlacement& p) {
 
 Simulation::~Simulation() = default;
 
+const FrameContext& Simulation::step() {
+    if (started_) clock_->advance();
+    started_ = true;
+    now_ = clock_->context();
+    team_->run([&] { crowd_.step(now_); });
+    return now_;
+}
+
+void Simulation::setThreads(unsigned threads) {
+    if (threads == 0) throw std::invalid_argument("Simulation::setThreads: argument 'threads' must be at least 1");
+    team_ = std::make_unique<ThreadTeam>(threads);
+}
+
 std::unique_ptr<Simulation> Simulation::build(SceneDescription description, const BuildProgress& progress) {
     std::unique_ptr<Simulation> sim(new Simulation());
     sim->description_ = std::move(description);
@@ -100,6 +114,8 @@ std::unique_ptr<Simulation> Simulation::build(SceneDescription description, cons
     double extent = 100.0;
     if (sim->town_) extent = std::max(sim->town_->extent().x, sim->town_->extent().y);
     sim->camera_ = std::make_unique<CameraPath>(sim->description_.camera, extent);
+    sim->clock_ = std::make_unique<SimulationClock>(sim->description_.step);
+    sim->team_ = std::make_unique<ThreadTeam>(1);
     report("ready", 1.0);
     return sim;
 }

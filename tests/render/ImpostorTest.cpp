@@ -16,6 +16,7 @@
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/Actor.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/CrowdRenderer.h"
 #include "throng/render/ImpostorBatcher.h"
 #include "throng/render/ImpostorDrawable.h"
 #include "throng/render/ImpostorRenderer.h"
@@ -193,11 +194,11 @@ struct HybridScene {
 
     Image render(double impostorDistance, std::uint64_t* impostors = nullptr) {
         BakedHumanoid& b = BakedHumanoid::get();
-        RendererOptions ro;
-        ro.width = 160, ro.height = 120;
-        ro.captureFrames = true;
-        GlRenderer renderer(b.context, ro);
-        ImpostorRenderer quads(b.context);
+        CrowdRendererOptions ro;
+        ro.meshes.width = 160, ro.meshes.height = 120;
+        ro.meshes.captureFrames = true;
+        ro.gpuMorph = false;
+        CrowdRenderer renderer(b.context, ro);
         auto atlas = std::make_shared<ImpostorAtlas>(*b.full);
         atlas->dropOddKeyframes();
         auto drawable = std::make_shared<ImpostorDrawable>(atlas);
@@ -205,17 +206,10 @@ struct HybridScene {
         processor.setImpostorDistance(impostorDistance, 1.0);
         processor.setImpostor(*b.tmpl, drawable);
         const double t = 0.25;  // a dropped key-frame (1 of 8 over 2 s): the morph path is drawn
-        processor.processFrame(*root, camera, t);
-        MorphCache cache;
-        ImpostorBatcher batcher(cache);
-        batcher.build(processor.drawList(), camera, t);
-        renderer.beginFrame(camera);
-        renderer.draw(processor.drawList());
-        quads.draw(camera, batcher.instances());
-        renderer.endFrame();
-        if (impostors) *impostors = quads.statistics().instances;
-        EXPECT_EQ(quads.statistics().instances, processor.statistics().impostors);
-        return renderer.lastFrame();
+        processor.processFrame(*root, camera, t, &renderer);
+        if (impostors) *impostors = renderer.statistics().quads.instances;
+        EXPECT_EQ(renderer.statistics().quads.instances, processor.statistics().impostors);
+        return renderer.meshes().lastFrame();
     }
 };
 

@@ -59,7 +59,9 @@ TEST(Flock, BirdsStayOverTheirAreaAndBandAndAreDeterministic) {
     p2.setThreads(2);
     SimulationClock clock;
     for (int f = 0; f < 1200; ++f, clock.advance()) {
+        one->crowd.step(clock.context());
         p1.processFrame(*one->root, overview(), clock.time());
+        two->crowd.step(clock.context());
         p2.processFrame(*two->root, overview(), clock.time());
     }
     for (std::uint32_t i = 0; i < 150; ++i) {
@@ -133,7 +135,9 @@ TEST(Gaze, PeopleTurnTowardsSomeoneWithinLimitsAndOnlyAsNearAsTheBandsAllow) {
     std::size_t turned = 0;
     SimulationClock clock;
     for (int f = 0; f < 300; ++f, clock.advance()) {
+        plain->crowd.step(clock.context());
         pp.processFrame(*plain->root, at(8.0), clock.time());
+        looking->crowd.step(clock.context());
         pl.processFrame(*looking->root, at(8.0), clock.time());
         if (f < 10) continue;
         for (std::uint32_t k = 0; k < 4; ++k) {
@@ -154,7 +158,9 @@ TEST(Gaze, PeopleTurnTowardsSomeoneWithinLimitsAndOnlyAsNearAsTheBandsAllow) {
     EXPECT_EQ(looking->counters.of("idle").ticks, 4u * 300u);
     // Beyond the gaze's last band (40 m), nothing turns: every node posed this frame has the
     // base's values (deactivated nodes keep whatever they last had, and are not drawn).
+    plain->crowd.step(clock.context());
     pp.processFrame(*plain->root, at(50.0), clock.time());
+    looking->crowd.step(clock.context());
     pl.processFrame(*looking->root, at(50.0), clock.time());
     for (std::uint32_t k = 0; k < 4; ++k) {
         const ActorId id = looking->ids[k];
@@ -178,6 +184,7 @@ TEST(Gaze, TheSklsrootBsphereGrowsToHoldATurnedHead) {
     ActorProcessor p(looking->crowd);
     SimulationClock clock;
     for (int f = 0; f < 400; ++f, clock.advance()) {
+        looking->crowd.step(clock.context());
         p.processFrame(*looking->root, at(6.0), clock.time());
         for (ActorId id : looking->ids) {
             const ActorTemplate& t = looking->crowd.templateOf(id);

@@ -1,6 +1,8 @@
 #pragma once
 // Per-frame statistics of actor or traditional processing: time per phase, where actors left the
 // culling cascade (seed 002 Table 2), and the work done on Skeleton nodes and internal spheres.
+// The simulation step is not part of them: the frame loop steps the crowd before APP and CULL
+// (Crowd::step) and times it apart.
 
 #include <cstdint>
 
@@ -29,10 +31,7 @@ struct ActorFrameStatistics {
     double poseMs = 0;            ///< phase 5: behaviour of active nodes and their matrices
     double cull3Ms = 0;           ///< phase 6: CULL 3 on internal spheres
     double drawListMs = 0;        ///< phase 7: the draw list
-    double drawMs = 0;            ///< DRAW
-    /// The behaviours' shared step (navigation, flocking), the same work under both methods:
-    /// not part of APP+CULL (traditional processing's APP has it taken out).
-    double stepMs = 0;
+    double drawMs = 0;            ///< DRAW, when the processor was given a backend
 
     // The cascade (actor processing), as in Table 2.
     std::uint64_t actorsInScene = 0;    ///< actors held by a node of the scene
@@ -50,7 +49,11 @@ struct ActorFrameStatistics {
     std::uint64_t skeletonNodesEvaluated = 0; ///< Skeleton nodes whose DOFs and matrix were computed
     std::uint64_t internalSpheresComputed = 0;///< internal spheres recomputed
     std::uint64_t spheresTested = 0;          ///< sphere-frustum tests, all kinds
-    std::uint64_t lodDistances = 0;           ///< eye distances computed for LOD
+    std::uint64_t lodDistances = 0;           ///< eye distances computed for LOD (NO_05)
+    /// Eye distances computed for actors: actor processing computes exactly one per actor that
+    /// passes CULL 2 (every LOD decision of that actor reads it); traditional processing none here
+    /// (each of its LOD nodes computes its own, counted in lodDistances).
+    std::uint64_t eyeDistances = 0;
     std::uint64_t drawItems = 0;              ///< items in the draw list
     std::uint64_t primitives = 0;             ///< their primitives
     std::uint64_t fmultTotal = 0;             ///< FMULT counted (0 when counting is off)

@@ -8,9 +8,10 @@
 //   5. behaviour of the active Skeleton nodes at the actor's behavioural level, and their matrices;
 //   6. CULL 3: internal spheres, only for actors whose Sklsroot Bsphere crosses a plane;
 //   7. the draw list, each part at its vaLod level.
-// Generic nodes of the scene are processed as TraditionalProcessor does in both methods.
+// Generic nodes of the scene are processed as TraditionalProcessor does in both methods. Each phase
+// is one function of actors/src/cascade over one reusable workspace (cascade::CascadeFrame).
 
-#include <functional>
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -19,7 +20,6 @@
 #include "throng/actors/ActorId.h"
 #include "throng/actors/ActorTraversal.h"
 #include "throng/actors/Affine.h"
-#include "throng/actors/WorkerPool.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
@@ -32,12 +32,17 @@ class Crowd;
 class DrawBackend;
 class Drawable;
 class Node;
+class ThreadTeam;
+namespace cascade {
+struct CascadeFrame;
+}
 
 /// Frame processor for scenes with actors of one Crowd.
 class ActorProcessor : private ActorTraversal {
 public:
     /// Processes scenes whose actors live in `crowd` (which must outlive the processor).
     explicit ActorProcessor(Crowd& crowd);
+    ~ActorProcessor() override;
 
     /// Chooses the method (default: actor processing).
     void setProcessing(Processing processing) { processing_ = processing; }
@@ -67,47 +72,39 @@ public:
     bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
     void setCullingFrustum(std::optional<Frustum> frustum);
-    /// Runs the per-actor phases (Reference Points, Skeleton Roots, poses) on `threads` threads
-    /// (default 1). Results are bitwise identical whatever the number; with FMULT counting on,
-    /// everything runs on the calling thread.
+    /// Runs the per-actor work of both methods on `threads` threads (default 1): every phase of
+    /// the cascade, and traditional processing's behaviours, matrices, spheres and culling. Work is
+    /// cut into fixed chunks joined in order, so results (FMULT counts included) are bitwise
+    /// identical whatever the number. Throws std::invalid_argument for 0.
     void setThreads(unsigned threads);
+    /// Threads of the per-actor work.
+    unsigned threads() const;
     /// Operation counter (disabled until counter().setEnabled(true)); shared by both methods.
     OpCounter& counter() { return traditional_.counter(); }
 
-    /// Processes one frame at `time` (seconds, finite) seen by `camera`; `backend` may be null.
+    /// Processes one frame at `time` (seconds, finite) seen by `camera`: APP and CULL, then DRAW
+    /// when `backend` is given. The simulation is not stepped here: the frame loop calls
+    /// Crowd::step (or sim::Simulation::step) first, so every processor of a frame sees one state.
     const ActorFrameStatistics& processFrame(Node& root, const Camera& camera, double time, DrawBackend* backend = nullptr);
 
-    /// The draw list of the last frame.
+    /// The draw list of the last frame. Double-buffered: it stays valid, untouched, through the
+    /// next processFrame() call, so DRAW of frame N may run while frame N+1 is processed.
     const DrawList& drawList() const;
     /// Statistics of the last frame.
     const ActorFrameStatistics& statistics() const { return stats_; }
 
 private:
-    // One actor reaching CULL 1, and what the cascade found.
-    struct Candidate {
-        ActorId id;
-        const Node* node;
-        std::uint32_t member;
-        PlaneMask mask;          // planes still crossed after the last test
-        std::uint8_t pending;    // 1: a group member whose Refpoint Bsphere is still to be tested
-    };
-
     // ActorTraversal: actor processing's handling of Actor and ActorGroup nodes.
     BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor) override;
     void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
     void culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
 
-    void processActors(Node& root, const Camera& camera, double time, DrawBackend* backend);
-    void cullRefpoints(const Frustum& frustum, const Vec3& eye);  // phase 2 for group members
-    // Phase 4, hybrid LOD: updates the actor's tier; when it is an impostor, adds its item and
-    // returns true (the actor then skips phases 5-7).
-    bool impostorTier(ActorId id, const ActorTemplate& tmpl, double detail2, const Candidate& cand);
-    // Calls body(begin, end) over [0, n): on the pool when there is one and nothing is counted.
-    void forRanges(std::size_t n, bool counting, const std::function<void(std::size_t, std::size_t)>& body);
+    void processActors(Node& root, const Camera& camera, double time);
+    void processTraditionally(Node& root, const Camera& camera, double time);
 
     Crowd& crowd_;
     TraditionalProcessor traditional_;
-    std::unique_ptr<WorkerPool> pool_;
+    std::unique_ptr<ThreadTeam> team_;
     Processing processing_ = Processing::Actor;
     double impostorDistance_ = 0.0, impostorHysteresis_ = 0.0;
     std::vector<std::pair<const ActorTemplate*, std::shared_ptr<const Drawable>>> impostors_;
@@ -119,22 +116,9 @@ private:
     std::uint64_t frame_ = 0;
     double lastTime_ = 0.0;
     ActorFrameStatistics stats_;
-    DrawList drawList_;
-
-    // Per-frame workspace (reused; grows only).
-    std::vector<Candidate> candidates_;
-    std::vector<float> cx_, cy_, cz_, cr_;
-    std::vector<Containment> containment_;
-    std::vector<std::size_t> survivors_;        // indices into candidates_
-    std::vector<double> detail2_;               // per survivor: squared detail distance
-    std::vector<int> level_;                    // per survivor: behavioural level
-    std::vector<std::uint32_t> nodeBase_;       // per survivor: first entry in the per-node arrays
-    std::vector<std::uint32_t> evaluated_;      // per survivor: Skeleton nodes evaluated
-    std::vector<std::uint8_t> active_;          // per node of each survivor
-    std::vector<std::uint8_t> visible_;         // per part of each survivor (nodes, root, held)
-    std::vector<Affine> model_;
-    std::vector<BoundingSphere> geometry_, subtree_;
-    std::vector<PlaneMask> masks_;
+    std::array<DrawList, 2> drawLists_;         // this frame's and the previous one's
+    std::size_t current_ = 0;                   // index of this frame's list
+    std::unique_ptr<cascade::CascadeFrame> cascade_;  // the cascade's workspace, reused
 };
 
 }  // namespace throng

@@ -28,8 +28,9 @@ public:
     /// distance is below levelEnds()[i]. Level 0 is the most precise.
     virtual std::span<const double> levelEnds() const = 0;
 
-    /// Called once per frame, before any referencePoint() of that frame: steps state the
-    /// behaviour's actors share (a navigation crowd, a flock). Default: nothing.
+    /// The simulation step (Crowd::step), once per frame before any referencePoint() of that
+    /// frame: advances state the behaviour's actors share (a navigation crowd, a flock) to
+    /// `context.time`. Per-actor work inside may run in parallel with forEachChunk. Default: nothing.
     virtual void advance(const FrameContext& context) { (void)context; }
     /// Phase 1: the actor's Reference Point in its parent's frame for the frame `context`.
     /// Called exactly once per frame for every actor, before anything depends on the camera.
@@ -49,6 +50,9 @@ public:
     /// Metres the behaviour's poses may reach beyond those of the template's clips (blends of
     /// clips, layers turning a head): added to the Sklsroot radius of its actors. Default 0.
     virtual double poseMargin(std::uint32_t slot) const { (void)slot; return 0.0; }
+    /// The main clip of actor `slot` (the one impostors are baked from: the walk clip of a walker),
+    /// or -1 when it plays none. Default -1.
+    virtual int mainClip(std::uint32_t slot) const { (void)slot; return -1; }
     /// Time into its main clip (the one impostors are baked from: the walk clip of a walker) that
     /// actor `slot` shows at `time`. Default: `time` itself.
     virtual double clipTime(std::uint32_t slot, double time) const { (void)slot; return time; }

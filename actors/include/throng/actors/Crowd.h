@@ -17,12 +17,14 @@
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/Affine.h"
 #include "throng/actors/Behaviour.h"
-#include "throng/actors/FrameArena.h"
 #include "throng/actors/RootPose.h"
 #include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/FrameContext.h"
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/Math.h"
+#include "throng/scenegraph/MatrixBoundsVisitor.h"
+#include "throng/scenegraph/OpCounter.h"
 
 namespace throng {
 
@@ -95,7 +97,17 @@ public:
         std::vector<BoundingSphere> geometry;        ///< geometry spheres, world
         std::vector<BoundingSphere> subtree;         ///< subtree spheres, world
         std::vector<BoundingSphere> whole;           ///< per actor: all its internal spheres, world
-        std::vector<PlaneMask> masks;                ///< scratch: plane mask per node while culling
+        /// What one chunk of a parallel loop produced, joined in chunk order.
+        struct Chunk {
+            OpCounter ops;                           ///< FMULT tallies (enabled when counting)
+            DrawList items;                          ///< draw items
+            BoundingSphere bound;                    ///< union of the chunk's actors' bounds
+            std::vector<PlaneMask> masks;            ///< scratch: plane mask per node while culling
+            MatrixBoundsStatistics matrices;         ///< matrix and sphere work
+            std::uint64_t spheresTested = 0;         ///< sphere-frustum tests
+            std::uint64_t lodDistances = 0;          ///< eye distances computed by LOD nodes
+        };
+        std::vector<Chunk> chunks;                   ///< one per chunk of the current loop
     };
 
     Crowd();
@@ -149,19 +161,17 @@ public:
     const State& state() const { return state_; }
     /// Traditional processing's workspace, sized for every actor on first use.
     TraditionalWorkspace& traditionalWorkspace();
-    /// Storage for the matrices of this frame's draw items.
-    FrameArena<Mat4>& drawMatrices() { return drawMatrices_; }
-    /// Storage for the skin palettes of this frame's draw items.
-    FrameArena<glm::mat4>& skinPalettes() { return skinPalettes_; }
-    /// Starts the frame `context` (identified by its number and time): forgets the previous
-    /// frame's draw matrices and advances every behaviour once. Idempotent within a frame, so
-    /// every node and processor may call it.
-    void beginFrame(const FrameContext& context);
-    /// Milliseconds the behaviours' shared step (navigation, flocking) took in the last frame
-    /// begun. Both processing methods pay it alike, so APP+CULL figures leave it out.
+    /// Advances the simulation once: every behaviour's shared state (navigation, flocking, gaze)
+    /// steps to `context.time`. The frame loop calls it once per frame, before APP and CULL;
+    /// nothing else advances the simulation, so every processor of a frame sees the same state.
+    /// Throws std::invalid_argument if the time is not finite or goes backwards.
+    void step(const FrameContext& context);
+    /// Milliseconds the last step() took.
     double lastStepMs() const { return lastStepMs_; }
-    /// Frames begun so far: tells a processor whether its frame began one.
-    std::uint64_t framesBegun() const { return framesBegun_; }
+    /// Steps taken so far.
+    std::uint64_t steps() const { return steps_; }
+    /// Simulation time of the last step (0 before the first).
+    double time() const { return time_; }
     /// The nodes standing for this crowd's actors (Actor and ActorGroup), in creation order.
     std::span<Node* const> nodes() const { return nodes_; }
     /// Called by a node being destroyed: its actors stay in the crowd, held by no node.
@@ -173,15 +183,12 @@ private:
 
     State state_;
     TraditionalWorkspace traditional_;
-    FrameArena<Mat4> drawMatrices_;
-    FrameArena<glm::mat4> skinPalettes_;
     std::vector<std::shared_ptr<const ActorTemplate>> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     std::vector<Node*> nodes_;
-    std::uint64_t frame_ = ~std::uint64_t{0};
-    double frameTime_ = 0.0;
+    double time_ = 0.0;
     double lastStepMs_ = 0.0;
-    std::uint64_t framesBegun_ = 0;
+    std::uint64_t steps_ = 0;
 };
 
 }  // namespace throng

@@ -43,6 +43,7 @@ public:
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return extents_[slot]; }
     double clipTime(std::uint32_t slot, double time) const override;
+    int mainClip(std::uint32_t slot) const override { return actors_[slot].clip; }
     std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(BoundingSphere); }
     bool posesFromTemplateClips() const override { return true; }
 

@@ -8,7 +8,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "throng/render/MorphCache.h"
@@ -44,15 +43,13 @@ struct ImpostorBatchStatistics {
 /// Turns impostor draw items into quad instances, morphing through a MorphCache.
 class ImpostorBatcher {
 public:
-    /// Clip time (seconds) of the actor behind an item; default: the frame time for all.
-    using ClipTime = std::function<double(const DrawItem&, double frameTime)>;
-
     /// A batcher requesting dropped cells from `cache` (which must outlive it). `smoothstep`
     /// biases view weights towards the dominant view (seed 003).
-    explicit ImpostorBatcher(MorphCache& cache, bool smoothstep = false, ClipTime clipTime = {});
-    /// Starts the cache's frame and builds the instances of `list`'s ImpostorDrawable items seen
-    /// by `camera` at `time` (other items are ignored).
-    void build(const DrawList& list, const Camera& camera, double time);
+    explicit ImpostorBatcher(MorphCache& cache, bool smoothstep = false);
+    /// Starts the cache's frame and builds the instances of `list`'s impostor items (an
+    /// ImpostorDrawable, Representation::Impostor) seen by `camera`; each shows the key-frame of
+    /// the clip time its item records. Other items are ignored.
+    void build(const DrawList& list, const Camera& camera);
     /// The instances of the last build().
     const std::vector<ImpostorInstance>& instances() const { return instances_; }
     /// Statistics of the last build().
@@ -61,7 +58,6 @@ public:
 private:
     MorphCache& cache_;
     bool smoothstep_;
-    ClipTime clipTime_;
     std::vector<ImpostorInstance> instances_;
     ImpostorBatchStatistics stats_;
 };

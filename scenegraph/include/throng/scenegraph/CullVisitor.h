@@ -3,6 +3,7 @@
 // masks, lets every LOD node compute its own eye distance, and fills the draw list.
 
 #include <cstdint>
+#include <span>
 
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Frustum.h"
@@ -33,6 +34,10 @@ public:
 
     /// Replaces the culling frustum (for example a smaller one, to watch culling at work).
     void setCullingFrustum(const Frustum& frustum);
+    /// Sets the simulation time of the frame (draw items of animated nodes record what they show).
+    void setFrameTime(double time) { time_ = time; }
+    /// The simulation time of the frame, seconds.
+    double frameTime() const { return time_; }
 
     void apply(Node& node) override;
     void apply(Group& group) override;
@@ -60,8 +65,12 @@ public:
     /// Tests `sphere` against the planes in `mask`, clearing those it is inside, and accounts the
     /// test (NO_04b) unless `mask` is already empty.
     Containment testSphere(const BoundingSphere& sphere, PlaneMask& mask);
-    /// Appends an item to the draw list and to the statistics.
-    void addDrawItem(const DrawItem& item, std::uint64_t primitives);
+    /// Appends an item to the draw list and to the statistics, with copies of its world matrix and
+    /// skin palette kept by the list.
+    void addDrawItem(const DrawItem& item, std::uint64_t primitives, const Mat4& world,
+                     std::span<const glm::mat4> palette = {});
+    /// Appends every item of `items` (made apart, for example by a chunk of a parallel loop), in order.
+    void appendDrawItems(const DrawList& items);
     /// Work counters, for nodes that cull parts themselves.
     CullStatistics& statistics() { return stats_; }
 
@@ -78,6 +87,7 @@ protected:
     PlaneMask mask_;
     const Mat4* world_;
     std::uint32_t lodLevel_ = 0;
+    double time_ = 0.0;
     CullStatistics stats_;
 };
 

@@ -17,6 +17,12 @@ public:
     virtual void draw(const DrawList& list) = 0;
     /// Finishes the frame (presents it, or reads it back).
     virtual void endFrame() = 0;
+    /// One whole frame: beginFrame, draw, endFrame.
+    void drawFrame(const Camera& camera, const DrawList& list) {
+        beginFrame(camera);
+        draw(list);
+        endFrame();
+    }
 };
 
 }  // namespace throng

@@ -1,12 +1,18 @@
 #pragma once
 // The output of CULL and the input of DRAW: what to draw, with which matrix, in traversal order.
+// A list owns copies of the matrices and skin palettes its items use, so it describes its frame
+// completely: DRAW may render it while the next frame is stepped and culled (Performer's
+// multiprocess mode), and nothing at draw time needs to look back into the scene or the crowd.
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
+#include "throng/scenegraph/FrameArena.h"
 #include "throng/scenegraph/Math.h"
 
 namespace throng {
@@ -14,10 +20,19 @@ namespace throng {
 class Drawable;
 class Node;
 
+/// How an item shows its object; DRAW dispatches on it.
+enum class Representation : std::uint8_t {
+    Mesh,      ///< a mesh (rigid, or skinned when the item has a palette)
+    Impostor,  ///< an image-based stand-in placed at the actor's Reference Point
+};
+
+/// Marks an item that belongs to no actor (generic scene geometry).
+inline constexpr std::uint32_t kNoActor = ~std::uint32_t{0};
+
 /// One thing to draw.
 struct DrawItem {
     const Drawable* drawable = nullptr;  ///< the shared drawable data
-    const Mat4* worldMatrix = nullptr;   ///< its model matrix; valid until the next matrices-and-bounds pass
+    const Mat4* worldMatrix = nullptr;   ///< its model matrix (owned by the list when added with one)
     const Node* node = nullptr;          ///< the node that produced it (a Geometry leaf, or an actor)
     std::uint32_t instance = 0;          ///< which of the node's instances (an actor of an actor group)
     std::uint32_t part = 0;              ///< index of the part within the instance (0 for a Geometry leaf)
@@ -26,19 +41,57 @@ struct DrawItem {
                                              ///< inverse bind), in the frame of `worldMatrix`; else null
     std::uint32_t skinPaletteSize = 0;   ///< number of matrices in `skinPalette`
     glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
+    std::uint32_t actor = kNoActor;      ///< the actor (its id in its crowd), or kNoActor
+    Representation representation = Representation::Mesh;  ///< how it is shown
+    std::int32_t clip = -1;              ///< the clip the actor plays (its main clip for impostors), or -1
+    double clipTime = 0.0;               ///< seconds into `clip` the actor shows this frame
 };
 
 /// An ordered list of draw items with running totals, reused from frame to frame without reallocating.
 class DrawList {
 public:
-    /// Empties the list, keeping its capacity.
-    void clear() { items_.clear(); primitives_ = 0; }
+    /// Empties the list and its matrix storage, keeping their capacity.
+    void clear() {
+        items_.clear();
+        primitives_ = 0;
+        matrices_.clear();
+        palettes_.clear();
+    }
     /// Reserves room for `n` items.
     void reserve(std::size_t n) { items_.reserve(n); }
-    /// Appends an item; `primitives` is added to primitiveCount().
+    /// Appends `item` as it is: its matrix and palette pointers must stay valid while the list is
+    /// drawn (tests and hand-made lists). `primitives` is added to primitiveCount().
     void add(const DrawItem& item, std::uint64_t primitives) {
         items_.push_back(item);
         primitives_ += primitives;
+    }
+    /// Appends `item` with copies of `world` and `palette` kept by the list (the item's pointers
+    /// are set to the copies), so the list stays valid whatever happens to the scene.
+    void add(DrawItem item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
+        item.worldMatrix = matrices_.push(world);
+        if (palette.empty()) {
+            item.skinPalette = nullptr;
+            item.skinPaletteSize = 0;
+        } else {
+            glm::mat4* copy = palettes_.allocate(palette.size());
+            std::copy(palette.begin(), palette.end(), copy);
+            item.skinPalette = copy;
+            item.skinPaletteSize = static_cast<std::uint32_t>(palette.size());
+        }
+        add(item, primitives);
+    }
+    /// Appends every item of `other` in order, with copies of their matrices and palettes.
+    void append(const DrawList& other) {
+        for (const DrawItem& item : other.items_) {
+            if (!item.worldMatrix) {
+                items_.push_back(item);
+                continue;
+            }
+            add(item, 0, *item.worldMatrix,
+                item.skinPalette ? std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize)
+                                 : std::span<const glm::mat4>());
+        }
+        primitives_ += other.primitives_;
     }
     /// The items, in the order CULL produced them.
     const std::vector<DrawItem>& items() const { return items_; }
@@ -50,6 +103,8 @@ public:
 private:
     std::vector<DrawItem> items_;
     std::uint64_t primitives_ = 0;
+    FrameArena<Mat4> matrices_;
+    FrameArena<glm::mat4> palettes_;
 };
 
 }  // namespace throng

@@ -40,6 +40,8 @@ public:
     std::uint64_t totalFmult() const;
     /// Clears all counts (keeps the enabled state).
     void reset();
+    /// Adds the counts of `other` (a chunk's or a thread's counter) to these.
+    void add(const OpCounter& other);
 
 private:
     static constexpr std::size_t index(OpCategory c) { return static_cast<std::size_t>(c); }

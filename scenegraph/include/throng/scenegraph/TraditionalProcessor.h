@@ -8,6 +8,7 @@
 #include "throng/scenegraph/FrameStatistics.h"
 #include "throng/scenegraph/OpCounter.h"
 
+#include <array>
 #include <optional>
 
 namespace throng {
@@ -33,14 +34,16 @@ public:
     const FrameStatistics& processFrame(Node& root, const Camera& camera, double time,
                                         DrawBackend* backend = nullptr);
 
-    /// The draw list of the last frame.
-    const DrawList& drawList() const { return drawList_; }
+    /// The draw list of the last frame. Double-buffered: it stays valid, untouched, through the
+    /// next processFrame() call, so DRAW of frame N may run while frame N+1 is processed.
+    const DrawList& drawList() const { return drawLists_[current_]; }
     /// Statistics of the last frame.
     const FrameStatistics& statistics() const { return stats_; }
 
 private:
     OpCounter counter_;
-    DrawList drawList_;
+    std::array<DrawList, 2> drawLists_;  // this frame's and the previous one's
+    std::size_t current_ = 0;
     FrameStatistics stats_;
     std::optional<Frustum> cullingFrustum_;
     double lodScale_ = 1.0;

@@ -55,6 +55,7 @@ public:
     BoundingSphere skeletonRootExtent(std::uint32_t) const override { return BoundingSphere(Vec3(0.0), 0.0); }
     bool posesFromTemplateClips() const override { return true; }
     double clipTime(std::uint32_t slot, double time) const override;
+    int mainClip(std::uint32_t slot) const override { return birds_[slot].flapClip; }
     std::size_t bytesPerSlot() const override { return sizeof(Bird) + 2 * sizeof(glm::dvec3) * 2; }
 
 private:

@@ -51,6 +51,7 @@ public:
     bool posesFromTemplateClips() const override { return base_->posesFromTemplateClips(); }
     double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot) + state_[slot].margin; }
     double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }
+    int mainClip(std::uint32_t slot) const override { return base_->mainClip(slot); }
     std::size_t bytesPerSlot() const override { return base_->bytesPerSlot() + sizeof(State); }
 
 private:

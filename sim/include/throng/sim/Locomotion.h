@@ -66,6 +66,7 @@ public:
     bool posesFromTemplateClips() const override { return true; }
     double poseMargin(std::uint32_t slot) const override { return state_[slot].blendMargin; }
     double clipTime(std::uint32_t slot, double time) const override;
+    int mainClip(std::uint32_t slot) const override { return actors_[slot].walkClip; }
     std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(State); }
 
 private:

@@ -12,11 +12,14 @@
 #include <vector>
 
 #include "throng/actors/Crowd.h"
+#include "throng/scenegraph/FrameContext.h"
 #include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CameraPath.h"
 #include "throng/sim/EffectCounters.h"
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/SceneDescription.h"
+#include "throng/sim/SimulationClock.h"
 #include "throng/sim/TownLayout.h"
 
 namespace throng::sim {
@@ -49,6 +52,19 @@ public:
     ~Simulation();
     Simulation(const Simulation&) = delete;
     Simulation& operator=(const Simulation&) = delete;
+
+    /// Advances the world by one fixed step (the first call starts it at time 0) and returns that
+    /// frame's context. The frame loop calls it once per frame, before APP and CULL; nothing else
+    /// advances the simulation, so every processor and renderer of the frame sees the same state.
+    /// Per-agent work runs on the threads set by setThreads.
+    const FrameContext& step();
+    /// The context of the last step (time 0, frame 0 before the first).
+    const FrameContext& now() const { return now_; }
+    /// Milliseconds the last step took.
+    double lastStepMs() const { return crowd_.lastStepMs(); }
+    /// Threads of the step's per-agent work (default 1). Results do not depend on it. Throws
+    /// std::invalid_argument for 0.
+    void setThreads(unsigned threads);
 
     /// The scene graph: the town's tiles and one node per actor group.
     Group& root() { return *root_; }
@@ -89,6 +105,10 @@ private:
     std::vector<TemplateInUse> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     NavGeometry navGeometry_;
+    std::unique_ptr<SimulationClock> clock_;
+    std::unique_ptr<ThreadTeam> team_;
+    FrameContext now_;
+    bool started_ = false;
     std::uint64_t townTriangles_ = 0;
 };
 

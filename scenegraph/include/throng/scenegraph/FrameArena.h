@@ -21,7 +21,11 @@ public:
     /// Room for `n` consecutive values, valid until clear().
     T* allocate(std::size_t n) {
         while (current_ < chunks_.size() && chunks_[current_].size - chunks_[current_].used < n) ++current_;
-        if (current_ == chunks_.size()) chunks_.push_back(Chunk{std::make_unique<T[]>(std::max(kChunk, n)), std::max(kChunk, n), 0});
+        if (current_ == chunks_.size()) {
+            // Blocks grow geometrically: small lists stay small, large ones need few blocks.
+            const std::size_t size = std::max(n, chunks_.empty() ? kFirstChunk : std::min(kLargestChunk, 2 * chunks_.back().size));
+            chunks_.push_back(Chunk{std::make_unique<T[]>(size), size, 0});
+        }
         Chunk& c = chunks_[current_];
         T* out = c.data.get() + c.used;
         c.used += n;
@@ -38,7 +42,8 @@ public:
     std::size_t size() const { return size_; }
 
 private:
-    static constexpr std::size_t kChunk = 4096;
+    static constexpr std::size_t kFirstChunk = 64;
+    static constexpr std::size_t kLargestChunk = 16384;
     struct Chunk {
         std::unique_ptr<T[]> data;
         std::size_t size = 0;

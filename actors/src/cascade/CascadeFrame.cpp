@@ -1,0 +1,44 @@
+#include "CascadeFrame.h"
+
+namespace throng::cascade {
+
+void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
+    into.actorsInScene += from.actorsInScene;
+    into.culledWithGroup += from.culledWithGroup;
+    into.a += from.a;
+    into.b += from.b;
+    into.c1 += from.c1;
+    into.c2 += from.c2;
+    into.c3_1 += from.c3_1;
+    into.c3_2 += from.c3_2;
+    into.actorsPosed += from.actorsPosed;
+    into.impostors += from.impostors;
+    into.skeletonNodesEvaluated += from.skeletonNodesEvaluated;
+    into.internalSpheresComputed += from.internalSpheresComputed;
+    into.spheresTested += from.spheresTested;
+    into.lodDistances += from.lodDistances;
+    into.eyeDistances += from.eyeDistances;
+    into.drawItems += from.drawItems;
+    into.primitives += from.primitives;
+}
+
+void CascadeFrame::prepareChunks(std::size_t count) {
+    if (chunks.size() < count) chunks.resize(count);
+    for (std::size_t c = 0; c < count; ++c) {
+        ChunkOutput& out = chunks[c];
+        out.counts = ActorFrameStatistics{};
+        out.ops.reset();
+        out.ops.setEnabled(context.counter != nullptr);
+        out.items.clear();
+        out.bound = BoundingSphere();
+    }
+}
+
+void CascadeFrame::joinChunks(std::size_t count) {
+    for (std::size_t c = 0; c < count; ++c) {
+        addCounts(*stats, chunks[c].counts);
+        if (context.counter) context.counter->add(chunks[c].ops);
+    }
+}
+
+}  // namespace throng::cascade

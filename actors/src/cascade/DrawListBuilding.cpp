@@ -1,0 +1,108 @@
+// Phase 7 of actor processing: the draw list. Impostors are placed at their Reference Point; posed
+// actors give their actor-level geometry (skinned with its palette) and each visible active node's
+// geometry at its vaLod level, and their held objects. Chunks build their own lists, joined in order.
+
+#include "../ActorDrawItem.h"
+#include "CascadeFrame.h"
+#include "HeldObjects.h"
+#include "throng/actors/Crowd.h"
+#include "throng/scenegraph/Transform.h"
+#include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/Drawable.h"
+
+namespace throng::cascade {
+namespace {
+
+const Drawable* impostorOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
+    for (const auto& [t, d] : *f.settings.impostors)
+        if (t == &tmpl) return d.get();
+    return nullptr;
+}
+
+// The items of posed actor j (its index among the posed).
+void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const detail::ActorItemBase& a, OpTally* nodeOps) {
+    const Crowd::State& s = f.crowd->state();
+    const Candidate& cand = f.candidates[f.survivors[f.posed[j]]];
+    const ActorId id = cand.id;
+    const ActorTemplate& t = *s.tmpl[id];
+    const std::size_t n = t.nodeCount();
+    const std::uint32_t base = f.nodeBase[j];
+    const std::span<const std::uint8_t> active(f.active.data() + base, n);
+    const std::span<const Affine> model(f.model.data() + base, n);
+    const Mat4& skls = s.sklsWorld[id];
+    const double d2 = f.detail2[f.posed[j]];
+    const bool all = f.visibility[j] == kAllVisible;
+    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level, std::span<const glm::mat4> palette = {}) {
+        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world, palette);
+        ++out.counts.drawItems;
+        out.counts.primitives += d.primitiveCount();
+    };
+    const int rootLevel = t.rootGeometry().selectSquared(d2);
+    if (rootLevel >= 0 && (all || f.rootVisible[j])) {
+        const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
+        if (lv.drawable && lv.skin >= 0) {
+            const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
+            out.palette.resize(skin.joints.size());
+            computeSkinPalette(t, skin, model, active, out.palette, nodeOps);
+            emit(*lv.drawable, skls, static_cast<std::uint32_t>(n), rootLevel, out.palette);
+        } else if (lv.drawable) {
+            emit(*lv.drawable, skls, static_cast<std::uint32_t>(n), rootLevel);
+        }
+    }
+    const auto tnodes = t.nodes();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!active[i]) {
+            i = t.subtreeEnd(i) - 1;
+            continue;
+        }
+        if (!all && !f.visible[base + i]) continue;
+        const int level = tnodes[i].geometry.selectSquared(d2);
+        if (level < 0) continue;
+        const auto& d = tnodes[i].geometry.levels()[static_cast<std::size_t>(level)].drawable;
+        if (!d) continue;
+        emit(*d, composeAffine(skls, model[i].toDMat4(), nodeOps), static_cast<std::uint32_t>(i), level);
+    }
+    if (s.held[id] < 0) return;
+    const auto& held = s.heldObjects[static_cast<std::size_t>(s.held[id])];
+    for (std::uint32_t k = 0; k < held.size(); ++k) {
+        const int holder = holderNode(t, active, held[k].node);
+        const Mat4 world = holder < 0 ? skls : composeAffine(skls, model[static_cast<std::size_t>(holder)].toDMat4(), nodeOps);
+        if (!all) {
+            if (holder >= 0 && f.masks[base + static_cast<std::size_t>(holder)] == kCulled) continue;
+            PlaneMask m = holder < 0 ? cand.mask : f.masks[base + static_cast<std::size_t>(holder)];
+            ++out.counts.spheresTested;
+            if (f.frustum.classify(held[k].drawable->localBound().transformed(world), m) == Containment::Outside) continue;
+        }
+        emit(*held[k].drawable, world, static_cast<std::uint32_t>(n + 1 + k), 0);
+    }
+}
+
+}  // namespace
+
+void buildDrawList(CascadeFrame& f) {
+    const Crowd::State& s = f.crowd->state();
+    const double time = f.context.time;
+    f.parallel(f.shown.size(), kHeavyGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        OpTally* nodeOps = tallyFor(f.counterOf(out), OpCategory::SkeletonMatrix);
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::uint32_t j = f.posedOf[k];
+            if (j != CascadeFrame::kNotPosed && f.visibility[j] == kNoneVisible) continue;
+            const Candidate& cand = f.candidates[f.survivors[f.shown[k]]];
+            const detail::ActorItemBase a = detail::actorItemBase(s, cand.id, cand.node, cand.member, time);
+            if (j != CascadeFrame::kNotPosed) {
+                emitPosed(f, out, j, a, nodeOps);
+                continue;
+            }
+            // An impostor: one item at the Reference Point, no Skeleton node processed.
+            const ActorTemplate& t = *s.tmpl[cand.id];
+            const Drawable& impostor = *impostorOf(f, t);
+            out.items.add(detail::actorPartItem(a, impostor, static_cast<std::uint32_t>(t.nodeCount()), 0, Representation::Impostor),
+                          impostor.primitiveCount(), s.refWorld[cand.id]);
+            ++out.counts.drawItems;
+            out.counts.primitives += impostor.primitiveCount();
+        }
+    });
+    for (std::size_t c = 0; c < chunkCount(f.shown.size(), kHeavyGrain); ++c) f.drawList->append(f.chunks[c].items);
+}
+
+}  // namespace throng::cascade

@@ -1,0 +1,53 @@
+// Phase 1 of actor processing: Reference Points of every actor (simulation state, computed whatever
+// the camera), and their placement in the world with their Refpoint Bspheres.
+
+#include <limits>
+
+#include "CascadeFrame.h"
+#include "throng/actors/Crowd.h"
+#include "throng/scenegraph/Transform.h"
+#include "throng/scenegraph/Node.h"
+
+namespace throng::cascade {
+
+void computeReferencePoints(CascadeFrame& f) {
+    Crowd::State& s = f.crowd->state();
+    f.parallel(f.crowd->size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        FrameContext context = f.context;
+        context.counter = f.counterOf(out);
+        OpTally* ops = tallyFor(context.counter, OpCategory::RefpointDofValues);
+        for (std::size_t id = begin; id < end; ++id) {
+            s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, ops);
+            s.eyeDistance[id] = std::numeric_limits<double>::infinity();
+            const bool inScene = s.owner[id] != nullptr;
+            s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;
+            out.counts.actorsInScene += inScene;
+        }
+    });
+    for (Node* node : f.crowd->nodes()) node->dirtyBound();  // every actor moved
+}
+
+BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity) {
+    Crowd::State& s = f.crowd->state();
+    const bool group = ids.size() > 1;
+    f.parallel(ids.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        OpCounter* c = f.counterOf(out);
+        OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
+        OpTally* sphereOps = tallyFor(c, OpCategory::BsphereRecompute);
+        for (std::size_t k = begin; k < end; ++k) {
+            const ActorId id = ids[k];
+            s.refWorld[id] = parentIsIdentity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
+            s.refSphereWorld[id] = s.refSphereLocal[id].transformed(s.refWorld[id], sphereOps);
+            out.bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
+        }
+        countOperations(c, OpCategory::RefpointMatrix, end - begin);
+        countOperations(c, OpCategory::BsphereRecompute, end - begin);
+    });
+    // The chunks' bounds, merged in chunk order.
+    BoundingSphere bound;
+    OpTally* sphereOps = tallyFor(f.context.counter, OpCategory::BsphereRecompute);
+    for (std::size_t c = 0; c < chunkCount(ids.size(), kLightGrain); ++c) bound.expandBy(f.chunks[c].bound, sphereOps);
+    return bound;
+}
+
+}  // namespace throng::cascade

@@ -1,0 +1,119 @@
+// Phase 4 of actor processing, CULL 2: Sklsroot Bspheres of actors whose Refpoint Bsphere crosses
+// a plane; one eye distance per actor that passes (every later LOD decision reads it); the hybrid
+// tier (impostor or geometry, with hysteresis); the behavioural level and skeletal LOD of the
+// actors that keep their geometry.
+
+#include <algorithm>
+#include <cmath>
+
+#include "CascadeFrame.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/SkeletonPose.h"
+
+namespace throng::cascade {
+namespace {
+
+// Updates the hybrid tier of actor `id` at squared detail distance `detail2`; true while it is an
+// impostor. Hysteresis works on squared distances: no square root per actor.
+bool impostorTier(const CascadeFrame& f, ActorId id, const ActorTemplate& tmpl, double detail2) {
+    std::uint8_t& tier = (*f.impostorTier)[id];
+    const Drawable* impostor = nullptr;
+    for (const auto& [t, d] : *f.settings.impostors)
+        if (t == &tmpl) impostor = d.get();
+    if (!impostor) return tier = 0, false;
+    const double out = f.settings.impostorDistance + f.settings.impostorHysteresis;
+    const double in = std::max(f.settings.impostorDistance - f.settings.impostorHysteresis, 0.0);
+    if (tier != 0 && detail2 < in * in) tier = 0;
+    else if (tier == 0 && detail2 > out * out) tier = 1;
+    return tier != 0;
+}
+
+}  // namespace
+
+void cullSkeletonRoots(CascadeFrame& f) {
+    Crowd::State& s = f.crowd->state();
+    const std::size_t n = f.survivors.size();
+    f.outcome.resize(n);
+    f.detail2.resize(n);
+    f.level.resize(n);
+    if (f.impostorTier->size() < f.crowd->size()) f.impostorTier->resize(f.crowd->size(), 0);
+    const bool impostors = f.settings.impostorDistance > 0.0;
+    f.parallel(n, kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        OpCounter* c = f.counterOf(out);
+        OpTally* testOps = tallyFor(c, OpCategory::BsphereFrustumTest);
+        OpTally* lodOps = tallyFor(c, OpCategory::LodDistance);
+        ActorFrameStatistics& counts = out.counts;
+        for (std::size_t k = begin; k < end; ++k) {
+            Candidate& cand = f.candidates[f.survivors[k]];
+            const ActorId id = cand.id;
+            if (cand.stage == kCrossing) {
+                const BoundingSphere skls(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]);
+                ++counts.spheresTested;
+                countOperations(c, OpCategory::BsphereFrustumTest);
+                const Containment r = f.frustum.classify(skls, cand.mask, testOps);
+                if (r == Containment::Outside) {
+                    s.actorClass[id] = ActorClass::C1;
+                    ++counts.c1;
+                    f.outcome[k] = kRejected;
+                    continue;
+                }
+                s.actorClass[id] = r == Containment::Inside ? ActorClass::C2 : ActorClass::C3_1;  // C3 refined in phase 6
+                if (r == Containment::Inside) ++counts.c2;
+            } else {
+                s.actorClass[id] = ActorClass::B;
+                ++counts.b;
+            }
+            // The actor's one eye distance.
+            const double d2 = detailDistanceSquared(s.sklsWorld[id], f.eye, f.settings.lodScale2, s.priority[id], lodOps);
+            s.eyeDistance[id] = glm::length(Vec3(s.sklsWorld[id][3]) - f.eye);
+            THRONG_TALLY(lodOps, 3, 5, 0, 1);
+            countOperations(c, OpCategory::LodDistance);
+            ++counts.lodDistances;
+            ++counts.eyeDistances;
+            f.detail2[k] = d2;
+            const ActorTemplate& t = *s.tmpl[id];
+            if (impostors && impostorTier(f, id, t, d2)) {
+                f.outcome[k] = kImpostor;
+                ++counts.impostors;
+                continue;
+            }
+            f.outcome[k] = kPosed;
+            f.level[k] = f.settings.behaviouralLod ? s.behaviour[id]->levelFor(std::sqrt(d2)) : 0;
+        }
+    });
+
+    // The actors shown, in candidate order; the posed ones get their room in the per-node arrays.
+    f.shown.clear();
+    f.posedOf.clear();
+    f.posed.clear();
+    f.nodeBase.clear();
+    std::uint32_t nodes = 0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+        if (f.outcome[k] == kRejected) continue;
+        f.shown.push_back(k);
+        if (f.outcome[k] == kImpostor) {
+            f.posedOf.push_back(CascadeFrame::kNotPosed);
+            continue;
+        }
+        f.posedOf.push_back(static_cast<std::uint32_t>(f.posed.size()));
+        f.level[f.posed.size()] = f.level[k];  // compacted in place: posed index <= survivor index
+        f.posed.push_back(k);
+        f.nodeBase.push_back(nodes);
+        nodes += static_cast<std::uint32_t>(s.tmpl[f.candidates[f.survivors[k]].id]->nodeCount());
+    }
+    f.level.resize(f.posed.size());
+    f.active.resize(nodes);
+    f.model.resize(nodes);
+
+    // Skeletal LOD: which Skeleton nodes each posed actor keeps.
+    f.parallel(f.posed.size(), kLightGrain, [&](ChunkOutput&, std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j) {
+            const ActorTemplate& t = *s.tmpl[f.candidates[f.survivors[f.posed[j]]].id];
+            const std::span<std::uint8_t> active(f.active.data() + f.nodeBase[j], t.nodeCount());
+            if (f.settings.skeletalLod) computeActiveNodes(t, f.detail2[f.posed[j]], active);
+            else std::fill(active.begin(), active.end(), std::uint8_t{1});
+        }
+    });
+}
+
+}  // namespace throng::cascade

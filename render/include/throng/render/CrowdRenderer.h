@@ -1,0 +1,91 @@
+#pragma once
+// DRAW of a crowd frame, the one backend throng-town, the benchmarks and the tests use: the draw
+// list's meshes (GlRenderer: instanced, GPU-skinned), then its impostors (ImpostorBatcher picks
+// views and key-frames from what each item records, a shared MorphCache morphs dropped key-frames
+// once per frame whatever the crowd, ImpostorRenderer draws the quads), then an optional text
+// overlay. Everything it needs is in the draw list: it never looks into the crowd or the scene,
+// so it can draw frame N while frame N+1 is being processed. The impostor machinery is built on
+// the first impostor item: a scene without impostors never pays for it.
+
+#include <memory>
+#include <string>
+
+#include "throng/render/ImpostorBatcher.h"
+#include "throng/render/ImpostorRenderer.h"
+#include "throng/render/MorphCache.h"
+#include "throng/render/RenderStatistics.h"
+#include "throng/render/RendererOptions.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/DrawBackend.h"
+#include "throng/scenegraph/Image.h"
+
+namespace throng {
+
+class GlContext;
+class GlRenderer;
+class GpuMorpher;
+class TextOverlay;
+
+/// How a CrowdRenderer draws.
+struct CrowdRendererOptions {
+    RendererOptions meshes;          ///< the mesh renderer's options
+    MorphCacheOptions morph = [] {   ///< the morph cache (cells kept across frames)
+        MorphCacheOptions o;
+        o.capacity = 4096;
+        return o;
+    }();
+    bool gpuMorph = true;            ///< morph dropped key-frames with the GL (else on the CPU)
+    bool smoothstepViews = false;    ///< bias view blending towards the dominant view (seed 003)
+};
+
+/// What one frame of a CrowdRenderer cost and drew.
+struct CrowdRenderStatistics {
+    RenderStatistics meshes;             ///< the mesh pass
+    ImpostorBatchStatistics impostors;   ///< impostor selection and batching (morphing included)
+    MorphCacheStatistics morphs;         ///< the morph cache's work
+    ImpostorRenderStatistics quads;      ///< the quad pass
+    std::uint64_t skinnedItems = 0;      ///< mesh items drawn with a skin palette
+    double meshMs = 0;                   ///< mesh pass (CPU side: the GL may finish later)
+    double impostorBatchMs = 0;          ///< impostor selection, batching and morphing
+    double impostorDrawMs = 0;           ///< quad pass
+    double endFrameMs = 0;               ///< overlay, finishing and presenting the frame
+};
+
+/// The DRAW stage of crowd frames.
+class CrowdRenderer final : public DrawBackend {
+public:
+    /// A renderer drawing into `context`. Throws as GlRenderer does.
+    explicit CrowdRenderer(std::shared_ptr<GlContext> context, const CrowdRendererOptions& options = {});
+    ~CrowdRenderer() override;
+    CrowdRenderer(const CrowdRenderer&) = delete;
+    CrowdRenderer& operator=(const CrowdRenderer&) = delete;
+
+    void beginFrame(const Camera& camera) override;
+    /// Draws the mesh items of `list`, then its impostor items.
+    void draw(const DrawList& list) override;
+    void endFrame() override;
+
+    /// Text drawn over the next frames (lines separated by '\n'; empty: none).
+    void setOverlayText(std::string text) { overlayText_ = std::move(text); }
+    /// Statistics of the last frame.
+    const CrowdRenderStatistics& statistics() const { return stats_; }
+    /// The mesh renderer (viewport, resources, options).
+    GlRenderer& meshes() { return *meshes_; }
+    /// Reads the framebuffer into an RGBA8 image, top row first (see GlRenderer::readFrame).
+    Image readFrame();
+
+private:
+    std::shared_ptr<GlContext> context_;
+    CrowdRendererOptions options_;
+    std::unique_ptr<GlRenderer> meshes_;
+    std::unique_ptr<GpuMorpher> gpu_;
+    std::unique_ptr<MorphCache> cache_;
+    std::unique_ptr<ImpostorBatcher> batcher_;
+    std::unique_ptr<ImpostorRenderer> quads_;
+    std::unique_ptr<TextOverlay> overlay_;
+    std::string overlayText_;
+    Camera camera_;
+    CrowdRenderStatistics stats_;
+};
+
+}  // namespace throng

@@ -1,0 +1,69 @@
+#include "throng/render/CrowdRenderer.h"
+
+#include <stdexcept>
+
+#include "throng/render/GlContext.h"
+#include "throng/render/GlRenderer.h"
+#include "throng/render/GpuMorpher.h"
+#include "throng/render/TextOverlay.h"
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Stopwatch.h"
+
+namespace throng {
+
+CrowdRenderer::CrowdRenderer(std::shared_ptr<GlContext> context, const CrowdRendererOptions& options)
+    : context_(std::move(context)), options_(options) {
+    if (!context_) throw std::invalid_argument("CrowdRenderer: argument 'context' is null");
+    meshes_ = std::make_unique<GlRenderer>(context_, options_.meshes);
+}
+
+CrowdRenderer::~CrowdRenderer() = default;
+
+void CrowdRenderer::beginFrame(const Camera& camera) {
+    camera_ = camera;
+    stats_ = CrowdRenderStatistics{};
+    meshes_->beginFrame(camera);
+}
+
+void CrowdRenderer::draw(const DrawList& list) {
+    Stopwatch watch;
+    bool impostors = false;
+    for (const DrawItem& item : list.items()) {
+        stats_.skinnedItems += item.representation == Representation::Mesh && item.skinPaletteSize > 0;
+        impostors = impostors || item.representation == Representation::Impostor;
+    }
+    meshes_->draw(list);
+    stats_.meshes = meshes_->statistics();
+    stats_.meshMs += watch.elapsedMs();
+    if (!impostors) return;
+    if (!batcher_) {  // the first impostor: build the impostor machinery
+        if (options_.gpuMorph) gpu_ = std::make_unique<GpuMorpher>(context_);
+        cache_ = std::make_unique<MorphCache>(options_.morph, gpu_.get());
+        batcher_ = std::make_unique<ImpostorBatcher>(*cache_, options_.smoothstepViews);
+        quads_ = std::make_unique<ImpostorRenderer>(context_);
+    }
+    watch.restart();
+    batcher_->build(list, camera_);
+    stats_.impostors = batcher_->statistics();
+    stats_.morphs = cache_->statistics();
+    stats_.impostorBatchMs += watch.elapsedMs();
+    watch.restart();
+    context_->makeCurrent();
+    quads_->draw(camera_, batcher_->instances());
+    stats_.quads = quads_->statistics();
+    stats_.impostorDrawMs += watch.elapsedMs();
+}
+
+void CrowdRenderer::endFrame() {
+    Stopwatch watch;
+    if (!overlayText_.empty()) {
+        if (!overlay_) overlay_ = std::make_unique<TextOverlay>(*context_);
+        overlay_->draw(overlayText_, 12, 12, 1.6f);
+    }
+    meshes_->endFrame();
+    stats_.endFrameMs = watch.elapsedMs();
+}
+
+Image CrowdRenderer::readFrame() { return meshes_->readFrame(); }
+
+}  // namespace throng
