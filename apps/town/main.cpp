@@ -55,7 +55,7 @@ struct PreparedFrame {
 // Columns ending in _ms are wall-clock times; the others depend only on the scene, seed and options.
 const char* kCsvHeader =
     "frame,time,step_ms,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
-    "draw_ms,mesh_ms,impostor_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
+    "draw_ms,scene_ms,mesh_ms,impostor_ms,morph_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn\n";
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
@@ -64,7 +64,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     o.precision(6);
     o << f.number << ',' << f.time << ',' << f.stepMs << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ','
       << s.cullMs << ',' << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ','
-      << drawMs << ',' << r.meshMs << ',' << r.impostorBatchMs << ',' << r.impostorDrawMs << ',' << frameMs << ','
+      << drawMs << ',' << r.sceneMs << ',' << r.meshMs << ',' << r.impostorBatchMs << ',' << r.morphs.morphMs << ','
+      << r.impostorDrawMs << ',' << frameMs << ','
       << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ',' << s.c3_1
       << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.eyeDistances << ',' << s.drawItems << ',' << r.skinnedItems
       << ',' << s.impostors << ',' << r.morphs.synthesized << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls

@@ -1,5 +1,7 @@
 #include "throng/render/CrowdRenderer.h"
 
+#include <glad/gl.h>
+
 #include <stdexcept>
 
 #include "throng/render/GlContext.h"
@@ -27,12 +29,31 @@ void CrowdRenderer::beginFrame(const Camera& camera) {
 
 void CrowdRenderer::draw(const DrawList& list) {
     Stopwatch watch;
+    auto finish = [&] {
+        if (!options_.finishPasses) return;
+        context_->makeCurrent();
+        context_->gl().Finish();
+    };
+    sceneItems_.clear();
+    actorItems_.clear();
     bool impostors = false;
     for (const DrawItem& item : list.items()) {
-        stats_.skinnedItems += item.representation == Representation::Mesh && item.skinPaletteSize > 0;
-        impostors = impostors || item.representation == Representation::Impostor;
+        if (item.representation == Representation::Impostor) {
+            impostors = true;
+        } else if (item.actor == kNoActor) {
+            sceneItems_.add(item, 0);
+        } else {
+            actorItems_.add(item, 0);
+            stats_.skinnedItems += item.skinPaletteSize > 0;
+        }
     }
-    meshes_->draw(list);
+    stats_.sceneItems += sceneItems_.size();
+    meshes_->draw(sceneItems_);
+    finish();
+    stats_.sceneMs += watch.elapsedMs();
+    watch.restart();
+    meshes_->draw(actorItems_);
+    finish();
     stats_.meshes = meshes_->statistics();
     stats_.meshMs += watch.elapsedMs();
     if (!impostors) return;
@@ -50,6 +71,7 @@ void CrowdRenderer::draw(const DrawList& list) {
     watch.restart();
     context_->makeCurrent();
     quads_->draw(camera_, batcher_->instances());
+    finish();
     stats_.quads = quads_->statistics();
     stats_.impostorDrawMs += watch.elapsedMs();
 }

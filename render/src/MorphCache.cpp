@@ -4,6 +4,7 @@
 #include <string>
 
 #include "throng/render/GpuMorpher.h"
+#include "throng/scenegraph/Stopwatch.h"
 
 namespace throng {
 
@@ -51,7 +52,9 @@ const Image& MorphCache::request(const ImpostorAtlas& atlas, std::uint32_t view,
     }
     if (keyframe < 0 || keyframe >= atlas.keyframeCount() || atlas.stored(keyframe))
         throw std::invalid_argument("MorphCache::request: key-frame " + std::to_string(keyframe) + " is not a dropped one");
+    Stopwatch watch;
     Image image = morphDroppedCell(atlas, view, keyframe, options_, gpu_);
+    stats_.morphMs += watch.elapsedMs();
     ++stats_.synthesized;
     lru_.push_front(key);
     Entry& e = cells_[key];

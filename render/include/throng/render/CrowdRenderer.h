@@ -17,6 +17,7 @@
 #include "throng/render/RendererOptions.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawBackend.h"
+#include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Image.h"
 
 namespace throng {
@@ -36,19 +37,25 @@ struct CrowdRendererOptions {
     }();
     bool gpuMorph = true;            ///< morph dropped key-frames with the GL (else on the CPU)
     bool smoothstepViews = false;    ///< bias view blending towards the dominant view (seed 003)
+    /// Waits for the GL after each pass, so each pass's time includes its rasterisation (for
+    /// benchmarks: a software GL otherwise rasterises when the frame ends). Slightly slower.
+    bool finishPasses = false;
 };
 
 /// What one frame of a CrowdRenderer cost and drew.
 struct CrowdRenderStatistics {
-    RenderStatistics meshes;             ///< the mesh pass
+    RenderStatistics meshes;             ///< the mesh passes (scene and actors together)
     ImpostorBatchStatistics impostors;   ///< impostor selection and batching (morphing included)
     MorphCacheStatistics morphs;         ///< the morph cache's work
     ImpostorRenderStatistics quads;      ///< the quad pass
+    std::uint64_t sceneItems = 0;        ///< items of the generic scene (no actor)
     std::uint64_t skinnedItems = 0;      ///< mesh items drawn with a skin palette
-    double meshMs = 0;                   ///< mesh pass (CPU side: the GL may finish later)
+    double sceneMs = 0;                  ///< the generic scene's meshes (a town)
+    double meshMs = 0;                   ///< the actors' meshes
     double impostorBatchMs = 0;          ///< impostor selection, batching and morphing
     double impostorDrawMs = 0;           ///< quad pass
     double endFrameMs = 0;               ///< overlay, finishing and presenting the frame
+    // Without finishPasses the GL may rasterise a pass's triangles later, in endFrame.
 };
 
 /// The DRAW stage of crowd frames.
@@ -61,7 +68,7 @@ public:
     CrowdRenderer& operator=(const CrowdRenderer&) = delete;
 
     void beginFrame(const Camera& camera) override;
-    /// Draws the mesh items of `list`, then its impostor items.
+    /// Draws `list` in three passes: the generic scene's meshes, the actors' meshes, the impostors.
     void draw(const DrawList& list) override;
     void endFrame() override;
 
@@ -86,6 +93,7 @@ private:
     std::string overlayText_;
     Camera camera_;
     CrowdRenderStatistics stats_;
+    DrawList sceneItems_, actorItems_;  // this frame's mesh items, split by pass (pointers kept)
 };
 
 }  // namespace throng

@@ -35,6 +35,7 @@ struct MorphCacheStatistics {
     std::uint64_t synthesized = 0;  ///< cells morphed
     std::uint64_t hits = 0;         ///< requests served by a cell already made
     std::size_t resident = 0;       ///< cells held
+    double morphMs = 0;             ///< time spent morphing the synthesized cells
 };
 
 /// The in-between cell of dropped key-frame `keyframe` of `atlas` seen from `view`: its stored

@@ -1,0 +1,401 @@
+// bench_frame: the whole frame of the town crowd, every method on the identical state.
+//
+// Each tick the simulation steps once, outside every processor; then traditional processing,
+// actor processing, and actor processing with far actors as impostors each run APP and CULL on
+// that same state and DRAW their own list (1280 x 720 headless, the GL finished after each pass so
+// every pass's time holds its rasterisation). The state digest (every actor's Reference Point)
+// is taken after each method and must be the same for all methods of a tick: the program stops
+// with an error if it is not. Columns: the step, APP, each CULL phase, poses, impostor selection
+// and batching, morphing, the town's draw, the actors' meshes, the impostor quads, the whole frame.
+//
+// Two more sections, on identical states too: APP+CULL and the step with 1 and 2 threads (two
+// worlds of the same seed, their digests compared), and end-to-end frames per second of the scene
+// with DRAW overlapping the next frame (Performer's multiprocess mode) and without.
+//
+// usage: bench_frame --help
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "throng/actors/ActorProcessor.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/FramePipeline.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/sim/ScaleActors.h"
+#include "throng/sim/SceneParser.h"
+#include "throng/sim/Simulation.h"
+
+using namespace throng;
+
+namespace {
+
+struct Options {
+    std::vector<std::int64_t> actors{2000, 6000, 10000};
+    std::vector<std::string> cameras{"street", "overview"};
+    int frames = 30;            // measured ticks per camera
+    int warmup = 60;            // ticks simulated first, so walkers spread along the streets
+    int width = 1280, height = 720;
+    std::int64_t scalingActors = 10000;  // actors of the thread-scaling section (0: skip)
+    int scalingFrames = 30;
+    std::int64_t pipelineActors = 0;     // actors of the pipeline section (0: the scene's own count)
+    int pipelineFrames = 120;            // frames of each pipeline run (0: skip)
+    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string csv, markdown;
+};
+
+// Times on the scene's camera path: in a street (eye 2.75 m up) and over the town.
+double cameraTime(const std::string& name) { return name == "street" ? 9.0 : 0.0; }
+
+const char* kMethods[] = {"traditional", "actor", "actor + impostors"};
+
+// Means over the measured ticks of one method.
+struct Row {
+    std::int64_t actors = 0;
+    std::string camera, method;
+    double step = 0, app = 0, cull1 = 0, roots = 0, cull2 = 0, pose = 0, cull3 = 0, list = 0, appCull = 0;
+    double batch = 0, morph = 0, town = 0, meshes = 0, quads = 0, finish = 0, draw = 0, frame = 0;
+    double posed = 0, impostors = 0, items = 0, triangles = 0;
+    void add(double stepMs, const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double drawMs) {
+        step += stepMs;
+        app += s.appMs + s.refpointMs + s.matricesBoundsMs;
+        cull1 += s.cullMs;
+        roots += s.skeletonRootMs;
+        cull2 += s.cull2Ms;
+        pose += s.poseMs;
+        cull3 += s.cull3Ms;
+        list += s.drawListMs;
+        appCull += s.appCullMs();
+        batch += r.impostorBatchMs - r.morphs.morphMs;
+        morph += r.morphs.morphMs;
+        town += r.sceneMs;
+        meshes += r.meshMs;
+        quads += r.impostorDrawMs;
+        finish += r.endFrameMs;
+        draw += drawMs;
+        frame += stepMs + s.appCullMs() + drawMs;
+        posed += double(s.actorsPosed);
+        impostors += double(s.impostors);
+        items += double(s.drawItems);
+        triangles += double(r.meshes.triangles);
+    }
+    void divide(double n) {
+        for (double* v : {&step, &app, &cull1, &roots, &cull2, &pose, &cull3, &list, &appCull, &batch, &morph, &town, &meshes,
+                          &quads, &finish, &draw, &frame, &posed, &impostors, &items, &triangles})
+            *v /= n;
+    }
+};
+
+// FNV-1a over every actor's Reference Point: the simulation state a processor sees.
+std::uint64_t stateDigest(const Crowd& crowd) {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto& ref = crowd.state().refLocal;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(ref.data());
+    for (std::size_t i = 0; i < ref.size() * sizeof(Mat4); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}
+
+std::unique_ptr<sim::Simulation> buildWorld(const Options& o, std::int64_t actors) {
+    sim::SceneDescription scene = sim::parseSceneFile(o.scene);
+    if (actors > 0) sim::scaleActors(scene, actors);
+    return sim::Simulation::build(std::move(scene));
+}
+
+// The impostors throng-town draws: every template in use from its main clip, 64 px cells.
+std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world) {
+    std::vector<ImpostorSet::Source> sources;
+    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
+    ImpostorBakeOptions bake;
+    bake.cellSize = 64;
+    return std::make_unique<ImpostorSet>(context, sources, bake);
+}
+
+std::pair<double, double> impostorDistance(const sim::Simulation& world) {
+    const auto& r = world.description().representation;
+    const double distance = r.impostorDistance > 0.0 ? r.impostorDistance : 40.0;
+    return {distance, r.hysteresis * distance};
+}
+
+[[noreturn]] void fail(const std::string& why) {
+    std::fprintf(stderr, "bench_frame: %s\n", why.c_str());
+    std::exit(1);
+}
+
+// The three methods on the same ticks, for each camera.
+std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context,
+                                std::uint64_t* ticksChecked) {
+    auto world = buildWorld(o, actors);
+    auto impostors = bakeImpostors(context, *world);
+    context->resize(o.width, o.height);
+    ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd());
+    traditional.setProcessing(Processing::Traditional);
+    const auto [distance, hysteresis] = impostorDistance(*world);
+    impostors->attach(hybrid, distance, hysteresis);
+    ActorProcessor* processors[] = {&traditional, &actor, &hybrid};
+    CrowdRendererOptions ro;
+    ro.finishPasses = true;
+    CrowdRenderer renderer(context, ro);
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    std::vector<Row> rows;
+    for (const std::string& cameraName : o.cameras) {
+        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+        Row r[3];
+        for (int m = 0; m < 3; ++m) {
+            r[m].actors = std::int64_t(world->crowd().size());
+            r[m].camera = cameraName;
+            r[m].method = kMethods[m];
+        }
+        for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks warm every method's caches
+            const FrameContext& now = world->step();
+            const double stepMs = world->lastStepMs();
+            std::uint64_t digest = 0;
+            for (int m = 0; m < 3; ++m) {
+                const ActorFrameStatistics s = processors[m]->processFrame(world->root(), camera, now.time);
+                const std::uint64_t d = stateDigest(world->crowd());
+                if (m == 0) digest = d;
+                else if (d != digest)
+                    fail("tick " + std::to_string(now.frame) + ": method '" + kMethods[m] + "' saw another state than '" +
+                         kMethods[0] + "'");
+                Stopwatch watch;
+                renderer.drawFrame(camera, processors[m]->drawList());
+                const double drawMs = watch.elapsedMs();
+                if (f >= 0) r[m].add(stepMs, s, renderer.statistics(), drawMs);
+            }
+            if (f >= 0) ++*ticksChecked;
+        }
+        for (Row& row : r) {
+            row.divide(o.frames);
+            rows.push_back(row);
+        }
+        std::fprintf(stderr, "bench_frame: %lld actors, %s camera done\n", (long long)actors, cameraName.c_str());
+    }
+    return rows;
+}
+
+// APP+CULL and the step with 1 and 2 threads, on two worlds of the same seed.
+struct Scaling {
+    std::string camera;
+    double step[2] = {}, actor[2] = {}, traditional[2] = {};
+};
+
+std::vector<Scaling> threadScaling(const Options& o) {
+    std::unique_ptr<sim::Simulation> worlds[2] = {buildWorld(o, o.scalingActors), buildWorld(o, o.scalingActors)};
+    std::unique_ptr<ActorProcessor> actor[2], traditional[2];
+    for (int k = 0; k < 2; ++k) {
+        worlds[k]->setThreads(unsigned(k + 1));
+        actor[k] = std::make_unique<ActorProcessor>(worlds[k]->crowd());
+        traditional[k] = std::make_unique<ActorProcessor>(worlds[k]->crowd());
+        actor[k]->setThreads(unsigned(k + 1));
+        traditional[k]->setThreads(unsigned(k + 1));
+        traditional[k]->setProcessing(Processing::Traditional);
+        for (int f = 0; f < o.warmup; ++f) worlds[k]->step();
+    }
+    std::vector<Scaling> out;
+    for (const std::string& cameraName : o.cameras) {
+        Scaling s;
+        s.camera = cameraName;
+        const Camera camera = worlds[0]->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+        for (int f = -2; f < o.scalingFrames; ++f) {
+            std::uint64_t digest[2] = {};
+            for (int i = 0; i < 2; ++i) {
+                const int k = (f + 2 + i) % 2;  // alternate which thread count goes first
+                const double t = worlds[k]->step().time;
+                const double stepMs = worlds[k]->lastStepMs();
+                const double a = actor[k]->processFrame(worlds[k]->root(), camera, t).appCullMs();
+                const double tr = traditional[k]->processFrame(worlds[k]->root(), camera, t).appCullMs();
+                digest[k] = stateDigest(worlds[k]->crowd());
+                if (f >= 0) {
+                    s.step[k] += stepMs / o.scalingFrames;
+                    s.actor[k] += a / o.scalingFrames;
+                    s.traditional[k] += tr / o.scalingFrames;
+                }
+            }
+            if (digest[0] != digest[1]) fail("thread scaling: 1 and 2 threads reached different states at tick " + std::to_string(f));
+        }
+        out.push_back(s);
+    }
+    return out;
+}
+
+// End-to-end frames per second as throng-town runs (step, APP/CULL, DRAW with impostors, street
+// camera following the path), with DRAW overlapping the next frame and without; two worlds of the
+// same seed run in alternating blocks.
+struct PipelineResult {
+    double fps[2] = {};  // off, on
+    std::int64_t actors = 0;
+};
+
+PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& context) {
+    struct Run {
+        std::unique_ptr<sim::Simulation> world;
+        std::unique_ptr<ActorProcessor> processor;
+        std::unique_ptr<FramePipeline> pipeline;
+        double seconds = 0;
+        std::int64_t frames = 0;
+    } runs[2];
+    auto impostors = [&] {
+        auto world = buildWorld(o, o.pipelineActors);
+        return bakeImpostors(context, *world);
+    }();
+    context->resize(o.width, o.height);
+    CrowdRenderer renderer(context);
+    const double aspect = double(o.width) / double(o.height);
+    PipelineResult result;
+    for (int k = 0; k < 2; ++k) {
+        Run& r = runs[k];
+        r.world = buildWorld(o, o.pipelineActors);
+        r.processor = std::make_unique<ActorProcessor>(r.world->crowd());
+        r.pipeline = std::make_unique<FramePipeline>(k == 1);
+        // The same templates, baked once: the processor only needs the drawables of its templates.
+        const auto [distance, hysteresis] = impostorDistance(*r.world);
+        for (std::size_t i = 0; i < r.world->templates().size(); ++i)
+            r.processor->setImpostor(*r.world->templates()[i].tmpl, impostors->drawable(i));
+        r.processor->setImpostorDistance(distance, hysteresis);
+        result.actors = std::int64_t(r.world->crowd().size());
+    }
+    // Each block: prepare the first frame, then overlap (or not) DRAW of each frame with the next.
+    auto block = [&](Run& r, int frames) {
+        const DrawList* lists[2] = {};
+        Camera cameras[2];
+        auto prepare = [&](int slot) {
+            const double t = r.world->step().time;
+            cameras[slot] = r.world->camera().at(std::min(t + 9.0, r.world->camera().duration()), aspect);
+            r.processor->processFrame(r.world->root(), cameras[slot], t);
+            lists[slot] = &r.processor->drawList();
+        };
+        const auto start = std::chrono::steady_clock::now();
+        prepare(0);
+        for (int f = 0; f < frames; ++f) {
+            r.pipeline->run([&] { if (f + 1 < frames) prepare((f + 1) % 2); },
+                            [&] { renderer.drawFrame(cameras[f % 2], *lists[f % 2]); });
+        }
+        r.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        r.frames += frames;
+    };
+    for (int k = 0; k < 2; ++k) {
+        for (int f = 0; f < o.warmup; ++f) runs[k].world->step();
+        block(runs[k], std::min(o.pipelineFrames, 10));  // first uploads, morph cache: not measured
+        runs[k].seconds = 0;
+        runs[k].frames = 0;
+    }
+    for (int b = 0; b < 4; ++b) block(runs[b % 2], std::max(o.pipelineFrames / 2, 1));
+    for (int k = 0; k < 2; ++k) result.fps[k] = double(runs[k].frames) / runs[k].seconds;
+    return result;
+}
+
+std::string methodTable(const std::vector<Row>& rows) {
+    std::ostringstream t;
+    char line[1024];
+    t << "| actors | camera | method | step | APP | CULL 1 | roots | CULL 2 | poses | CULL 3 | list | APP+CULL | impostor batch | "
+         "morph | town draw | mesh draw | impostor draw | finish | DRAW | whole frame | fps | posed | impostors | triangles |\n"
+         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows) {
+        std::snprintf(line, sizeof line,
+                      "| %lld | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f | "
+                      "%.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f |\n",
+                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.step, r.app, r.cull1, r.roots, r.cull2, r.pose, r.cull3,
+                      r.list, r.appCull, r.batch, r.morph, r.town, r.meshes, r.quads, r.finish, r.draw, r.frame, 1000.0 / r.frame,
+                      r.posed, r.impostors, r.triangles);
+        t << line;
+    }
+    return t.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{"bench_frame: the whole frame of the town crowd, traditional, actor and actor + impostor processing on "
+                 "the identical state, side by side; then APP+CULL with 1 and 2 threads, and the pipelined frame."};
+    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")->delimiter(',')->check(CLI::Range(std::int64_t{1}, std::int64_t{10'000'000}))
+        ->capture_default_str();
+    app.add_option("--cameras", o.cameras, "cameras: street, overview")->delimiter(',')->check(CLI::IsMember({"street", "overview"}))
+        ->capture_default_str();
+    app.add_option("--frames", o.frames, "measured ticks per camera")->check(CLI::Range(1, 1'000'000))->capture_default_str();
+    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->check(CLI::Range(0, 10'000'000))->capture_default_str();
+    app.add_option("--width", o.width, "image width")->check(CLI::Range(16, 8192))->capture_default_str();
+    app.add_option("--height", o.height, "image height")->check(CLI::Range(16, 8192))->capture_default_str();
+    app.add_option("--scaling-actors", o.scalingActors, "actors of the 1-versus-2-threads section (0: skip)")
+        ->check(CLI::Range(0, 10'000'000))->capture_default_str();
+    app.add_option("--scaling-frames", o.scalingFrames, "measured ticks of that section")->check(CLI::Range(1, 1'000'000))->capture_default_str();
+    app.add_option("--pipeline-actors", o.pipelineActors, "actors of the pipeline section (0: the scene's own)")
+        ->check(CLI::Range(0, 10'000'000))->capture_default_str();
+    app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")->check(CLI::Range(0, 10'000'000))
+        ->capture_default_str();
+    app.add_option("--scene", o.scene, "scene file")->check(CLI::ExistingFile)->capture_default_str();
+    app.add_option("--csv", o.csv, "also write the method rows as CSV");
+    app.add_option("--markdown", o.markdown, "also write the tables as Markdown");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    }
+
+    std::ostringstream report;
+    try {
+        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        std::vector<Row> rows;
+        std::uint64_t ticks = 0;
+        for (std::int64_t n : o.actors) {
+            std::fprintf(stderr, "bench_frame: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n,
+                         o.frames);
+            const auto part = compareMethods(o, n, context, &ticks);
+            rows.insert(rows.end(), part.begin(), part.end());
+        }
+        report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n";
+        report << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
+               << ", one thread; means over " << o.frames << " ticks (`bench_frame";
+        for (int i = 1; i < argc; ++i) report << ' ' << argv[i];
+        report << "`).\n\n" << methodTable(rows);
+        if (!o.csv.empty()) {
+            std::ofstream csv(o.csv);
+            csv << "actors,camera,method,step_ms,app_ms,cull1_ms,roots_ms,cull2_ms,pose_ms,cull3_ms,list_ms,app_cull_ms,impostor_batch_ms,"
+                   "morph_ms,town_ms,mesh_ms,impostor_draw_ms,finish_ms,draw_ms,frame_ms,posed,impostors,draw_items,triangles\n";
+            for (const Row& r : rows)
+                csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.step << ',' << r.app << ',' << r.cull1 << ',' << r.roots
+                    << ',' << r.cull2 << ',' << r.pose << ',' << r.cull3 << ',' << r.list << ',' << r.appCull << ',' << r.batch << ','
+                    << r.morph << ',' << r.town << ',' << r.meshes << ',' << r.quads << ',' << r.finish << ',' << r.draw << ','
+                    << r.frame << ',' << r.posed << ',' << r.impostors << ',' << r.items << ',' << r.triangles << '\n';
+        }
+        if (o.scalingActors > 0) {
+            std::fprintf(stderr, "bench_frame: %lld actors with 1 and 2 threads...\n", (long long)o.scalingActors);
+            const auto scaling = threadScaling(o);
+            report << "\nAPP+CULL and the step with 1 and 2 threads, " << o.scalingActors
+                   << " actors, two worlds of the same seed (identical digests on every tick):\n\n"
+                   << "| camera | step 1 / 2 threads | speed-up | actor 1 / 2 threads | speed-up | traditional 1 / 2 threads | speed-up |\n"
+                   << "|---|---:|---:|---:|---:|---:|---:|\n";
+            char line[512];
+            for (const Scaling& s : scaling) {
+                std::snprintf(line, sizeof line, "| %s | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f |\n", s.camera.c_str(),
+                              s.step[0], s.step[1], s.step[0] / s.step[1], s.actor[0], s.actor[1], s.actor[0] / s.actor[1],
+                              s.traditional[0], s.traditional[1], s.traditional[0] / s.traditional[1]);
+                report << line;
+            }
+        }
+        if (o.pipelineFrames > 0) {
+            std::fprintf(stderr, "bench_frame: the pipelined frame, %d frames each way...\n", o.pipelineFrames);
+            const PipelineResult p = pipelineFps(o, context);
+            char line[512];
+            std::snprintf(line, sizeof line,
+                          "\nEnd to end (step, APP/CULL, DRAW with impostors, the street camera following the path), %lld actors: "
+                          "%.1f fps with DRAW overlapping the next frame, %.1f fps without (%.2fx).\n",
+                          (long long)p.actors, p.fps[1], p.fps[0], p.fps[1] / p.fps[0]);
+            report << line;
+        }
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
+    std::fputs(report.str().c_str(), stdout);
+    if (!o.markdown.empty()) std::ofstream(o.markdown) << report.str();
+    return 0;
+}

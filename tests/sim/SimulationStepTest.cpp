@@ -1,0 +1,105 @@
+// The explicit simulation step: the world advances once per Simulation::step(), whatever the
+// processors of the frame do, so walkers move at the speed the scene gives them.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "throng/actors/ActorProcessor.h"
+#include "throng/sim/SceneParser.h"
+#include "throng/sim/Simulation.h"
+
+using namespace throng;
+
+namespace {
+
+// Walkers in a small town at one speed, without avoidance (nothing slows them but turns and stops).
+std::unique_ptr<sim::Simulation> walkers() {
+    const char* text = R"({
+      "name": "walkers at 1.2 m/s",
+      "seed": 3,
+      "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
+      "templates": {"person": {"procedural": "seed-humanoid", "walkClip": "walk"}},
+      "actors": [{"name": "walkers", "template": "person", "count": 60, "behaviour": "walk", "speed": [1.2, 1.2]}],
+      "camera": {"fov": 60, "near": 0.2, "far": 500, "path": [{"time": 0, "eye": [0, 40, 60], "target": [0, 0, 0]}]}
+    })";
+    return sim::Simulation::build(sim::parseScene(text, THRONG_SHARED_ASSETS));
+}
+
+// Each walker's distance covered per step over `steps` steps, with `processors` processors (of both
+// methods) processing every frame in between, as a benchmark comparing methods would.
+std::vector<double> stepLengths(int processors, int steps) {
+    auto world = walkers();
+    std::vector<std::unique_ptr<ActorProcessor>> p;
+    for (int k = 0; k < processors; ++k) {
+        p.push_back(std::make_unique<ActorProcessor>(world->crowd()));
+        p.back()->setProcessing(k % 2 ? Processing::Traditional : Processing::Actor);
+    }
+    const Camera camera = world->camera().at(0.0, 1.5);
+    std::vector<Vec3> last;
+    std::vector<double> lengths;
+    for (int f = 0; f < steps; ++f) {
+        const double t = world->step().time;
+        for (auto& processor : p) processor->processFrame(world->root(), camera, t);
+        // Reference Points as the simulation has them (phase 1 of any processor reads the same).
+        const Crowd::State& s = world->crowd().state();
+        std::vector<Vec3> now;
+        for (ActorId id = 0; id < world->crowd().size(); ++id)
+            now.push_back(Vec3(s.behaviour[id]->referencePoint(s.slot[id], world->now(), nullptr)[3]));
+        if (!last.empty())
+            for (std::size_t i = 0; i < now.size(); ++i) {
+                const Vec3 d = now[i] - last[i];  // on the ground: kerbs and slopes move walkers up and down too
+                lengths.push_back(std::sqrt(d.x * d.x + d.z * d.z));
+            }
+        last = now;
+    }
+    return lengths;
+}
+
+}  // namespace
+
+TEST(SimulationStep, WalkersMoveAtTheScenesSpeedHoweverManyProcessorsRun) {
+    const double dt = 1.0 / 60.0, speed = 1.2;
+    const int steps = 600;
+    const std::vector<double> alone = stepLengths(0, steps);
+    const std::vector<double> withThree = stepLengths(3, steps);
+    ASSERT_EQ(alone.size(), withThree.size());
+    std::vector<double> sorted = alone;
+    std::sort(sorted.begin(), sorted.end());
+    auto quantile = [&](double q) { return sorted[std::size_t(q * double(sorted.size() - 1))] / dt; };
+    double sum = 0.0;
+    for (double l : alone) sum += l;
+    const double mean = sum / double(alone.size()) / dt;
+    // Walkers walk at the speed they were given (DetourCrowd never sets a velocity above it) ...
+    EXPECT_NEAR(quantile(0.5), speed, 0.01 * speed);
+    // ... except for the rare step where overlapping agents are pushed apart or a corner is cut.
+    EXPECT_LE(quantile(0.99), 1.01 * speed);
+    // Turns and new destinations slow them a little on average.
+    EXPECT_GT(mean, 0.9 * speed);
+    EXPECT_LE(mean, 1.01 * speed);
+    // Processors do not advance the simulation: the same steps, to the bit, with three of them.
+    for (std::size_t i = 0; i < alone.size(); ++i) ASSERT_EQ(alone[i], withThree[i]) << "step length " << i;
+}
+
+TEST(SimulationStep, TimeAdvancesByTheFixedStepFromZero) {
+    auto world = walkers();
+    EXPECT_EQ(world->step().time, 0.0);
+    EXPECT_EQ(world->step().time, world->description().step);
+    for (int i = 0; i < 998; ++i) world->step();
+    EXPECT_EQ(world->now().frame, 1000u - 1u);
+    EXPECT_EQ(world->now().time, 999.0 * world->description().step);  // computed, never accumulated
+    EXPECT_EQ(world->crowd().steps(), 1000u);
+    EXPECT_THROW(world->setThreads(0), std::invalid_argument);
+}
+
+TEST(SimulationStep, ACrowdRefusesToStepBackInTime) {
+    auto world = walkers();
+    world->step();
+    world->step();
+    FrameContext back = world->now();
+    back.time -= 1.0;
+    EXPECT_THROW(world->crowd().step(back), std::invalid_argument);
+    back.time = std::nan("");
+    EXPECT_THROW(world->crowd().step(back), std::invalid_argument);
+}
