@@ -155,3 +155,101 @@ TEST(BehaviouralLod, HoldingKeysIsCheaperAndStillAKeyPose) {
     EXPECT_EQ(held, atKey) << "0.1 s holds the key at 0 s";
     EXPECT_NE(interpolated, atKey);
 }
+
+// An oracle written apart from the production functions (no detailDistanceSquared, levelFor,
+// computeActiveNodes or clip sampling): from where each Skeleton Root stands, the test works out
+// the eye distance, the behavioural level of its own band list and the active nodes, then checks
+// what the processor left in each actor's DOFs against the template's data alone: the rest pose
+// beyond the last band, one of the clip's own key values where keys are held, values between keys
+// where they are interpolated; and that exactly the active nodes were evaluated.
+TEST(BehaviouralLod, LevelsAndActiveNodesMatchAnIndependentOracle) {
+    const auto tmpl = makeSeedHumanoid();
+    const std::vector<double> bands{20.0, 50.0};  // level 0 below 20 m, level 1 below 50 m, off beyond
+    auto keyframes = std::make_shared<KeyframeBehaviour>(bands);
+    Crowd crowd;
+    auto root = std::make_shared<Group>();
+    const int walk = tmpl->findClip("walk");
+    std::vector<ActorId> ids;
+    for (int i = 0; i < 40; ++i) {  // in a line straight ahead of the camera, 4 m to 82 m away
+        KeyframeBehaviour::Actor a;
+        a.tmpl = tmpl;
+        a.clip = walk;
+        a.position = Vec3(0.0, 0.0, -4.0 - 2.0 * i);
+        ids.push_back(crowd.add(tmpl, keyframes, keyframes->addActor(a)));
+        root->addChild(crowd.makeActorNode(ids.back()));
+    }
+    Camera camera;
+    camera.setPerspective(1.0, 1.0, 0.1, 1000.0);
+    camera.setLookAt(Vec3(0, 1, 0), Vec3(0, 1, -10), Vec3(0, 1, 0));
+    ActorProcessor p(crowd);
+    const AnimationClip& clip = *tmpl->clips()[std::size_t(walk)];
+    const double time = 0.37;  // between keys of the walk clip
+    const ActorFrameStatistics& s = p.processFrame(*root, camera, time);
+
+    std::size_t expectedNodes = 0, seen[3] = {};
+    for (ActorId id : ids) {
+        // The eye distance, from the Skeleton Root's position.
+        const Vec3 d = Vec3(crowd.skeletonRoot(id)[3]) - camera.eye();
+        const double distance = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        const int level = distance < bands[0] ? 0 : distance < bands[1] ? 1 : 2;
+        ++seen[level];
+        // Active nodes: a node is on while nearer than its deactivation distance and its parent is on.
+        std::vector<bool> active(tmpl->nodeCount());
+        for (std::size_t i = 0; i < tmpl->nodeCount(); ++i) {
+            const SkeletonNode& n = tmpl->nodes()[i];
+            active[i] = distance < n.deactivationDistance && (n.parent < 0 || active[std::size_t(n.parent)]);
+            expectedNodes += active[i];
+        }
+        const auto dofs = crowd.dofs(id);
+        std::size_t between = 0;
+        for (const ClipChannel& c : clip.channels()) {
+            if (c.target != ClipChannel::Target::NodeDof || !active[c.node]) continue;
+            const SkeletonNode& n = tmpl->nodes()[c.node];
+            const auto width = std::size_t(dofValueCount(n.dofs[c.dof].kind));
+            const std::uint32_t at = tmpl->dofValueOffset(c.node, c.dof);
+            const std::span<const float> value = dofs.subspan(at, width);
+            const std::span<const float> rest = tmpl->restDofs().subspan(at, width);
+            const std::size_t stride = c.interpolation == Interpolation::CubicSpline ? 3 * width : width;
+            const std::size_t valueOffset = c.interpolation == Interpolation::CubicSpline ? width : 0;
+            bool isKey = false;
+            for (std::size_t k = 0; k < c.times.size(); ++k)
+                isKey = isKey || std::equal(value.begin(), value.end(), c.values.begin() + long(k * stride + valueOffset));
+            if (level == 2) {
+                EXPECT_TRUE(std::equal(value.begin(), value.end(), rest.begin())) << "actor " << id << " at " << distance << " m: rest pose";
+            } else if (level == 1) {
+                EXPECT_TRUE(isKey) << "actor " << id << " at " << distance << " m, node " << n.name << ": a held key";
+            } else {
+                between += !isKey;
+            }
+        }
+        if (level == 0) {
+            EXPECT_GT(between, 0u) << "actor " << id << " at " << distance << " m interpolates between keys";
+        }
+    }
+    EXPECT_GT(seen[0], 3u);
+    EXPECT_GT(seen[1], 3u);
+    EXPECT_GT(seen[2], 3u);
+    EXPECT_EQ(s.skeletonNodesEvaluated, expectedNodes);
+    EXPECT_EQ(s.actorsPosed, ids.size());
+}
+
+// One eye distance per actor that passes CULL 2, however many LOD nodes it has; traditional
+// processing computes one per LOD node instead.
+TEST(SkeletalLod, OneEyeDistancePerActorThatPassesCull2) {
+    auto scene = makeRandomCrowd(21, 800, 60.0);
+    ActorProcessor p(scene->crowd);
+    Camera camera;
+    camera.setPerspective(1.0, 1.5, 0.1, 300.0);
+    camera.setLookAt(Vec3(0, 20, 80), Vec3(0.0), Vec3(0, 1, 0));
+    const ActorFrameStatistics& s = p.processFrame(*scene->root, camera, 1.0);
+    std::uint64_t withDistance = 0;
+    for (ActorId id : scene->ids) withDistance += std::isfinite(scene->crowd.eyeDistance(id));
+    EXPECT_GT(s.eyeDistances, 100u);
+    EXPECT_EQ(s.eyeDistances, s.b + s.c2 + s.c3_1 + s.c3_2) << "every actor past CULL 2, and no other";
+    EXPECT_EQ(s.eyeDistances, withDistance);
+    EXPECT_EQ(s.lodDistances, s.eyeDistances) << "no LOD node computes a distance of its own";
+    p.setProcessing(Processing::Traditional);
+    const ActorFrameStatistics& t = p.processFrame(*scene->root, camera, 1.0);
+    EXPECT_EQ(t.eyeDistances, 0u);
+    EXPECT_GT(t.lodDistances, 10 * s.eyeDistances) << "one per LOD node, for every actor inside the frustum";
+}

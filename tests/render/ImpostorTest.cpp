@@ -236,5 +236,45 @@ TEST(Impostor, HybridSceneDrawsFarActorsAsQuads) {
     test::writeOutput(geometry, "impostor-geometry");
 }
 
+// Where impostors are drawn: each actor alone, as an impostor, from several places in the view;
+// every pixel its quad covers must lie inside the screen rectangle of its actor's Sklsroot
+// Bsphere (the sphere holds every pose the actor takes), and it must cover some.
+TEST(Impostor, EachImpostorIsDrawnInsideItsActorsSklsrootSphere) {
+    const Vec3 places[] = {Vec3(0, 0, -30), Vec3(-9, 0, -40), Vec3(7, 0, -25), Vec3(3, 0, -45), Vec3(-4, 0, -18)};
+    std::size_t drawn = 0;
+    for (const Vec3& where : places) {
+        HybridScene scene({where});
+        std::uint64_t impostors = 0;
+        const Image image = scene.render(1.0, &impostors);
+        ASSERT_EQ(impostors, 1u);
+        // The screen rectangle of the Sklsroot Bsphere: the corners of its bounding cube, projected.
+        const Vec3 centre(scene.crowd.skeletonRoot(0)[3]);
+        const double r = scene.crowd.skeletonRootRadius(0);
+        double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+        for (int k = 0; k < 8; ++k) {
+            const Vec4 clip = scene.camera.viewProjection() * Vec4(centre + r * Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1), 1.0);
+            ASSERT_GT(clip.w, 0.0);
+            const double x = (clip.x / clip.w * 0.5 + 0.5) * image.width, y = (0.5 - clip.y / clip.w * 0.5) * image.height;
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+        const RendererOptions defaults;
+        std::size_t inside = 0, outside = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const std::size_t i = 4 * (std::size_t(y) * std::size_t(image.width) + std::size_t(x));
+                const bool covered = std::abs(image.rgba[i] - int(std::lround(defaults.clearColor.r * 255))) > 3 ||
+                                     std::abs(image.rgba[i + 2] - int(std::lround(defaults.clearColor.b * 255))) > 3;
+                if (!covered) continue;
+                // A pixel is inside when its centre is (one pixel of slack for filtering at the edge).
+                const bool in = x + 0.5 >= x0 - 1 && x + 0.5 <= x1 + 1 && y + 0.5 >= y0 - 1 && y + 0.5 <= y1 + 1;
+                (in ? inside : outside) += 1;
+            }
+        EXPECT_EQ(outside, 0u) << "actor at (" << where.x << ", " << where.z << "): " << outside << " pixels outside its sphere";
+        EXPECT_GT(inside, 10u) << "actor at (" << where.x << ", " << where.z << ") is drawn";
+        drawn += inside;
+    }
+    EXPECT_GT(drawn, 100u);
+}
+
 }  // namespace
 }  // namespace throng

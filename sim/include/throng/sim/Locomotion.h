@@ -7,6 +7,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "throng/actors/Behaviour.h"
@@ -39,6 +40,9 @@ public:
         glm::vec3 start{0.0f};         ///< where it starts (moved onto the mesh)
         double speed = 1.4;            ///< preferred speed, m/s
         std::uint64_t stream = 0;      ///< its random stream (for example its index in the scene)
+        /// A fixed destination (moved onto the mesh): the actor walks there and stays. Without one
+        /// it walks between random destinations drawn from its stream.
+        std::optional<glm::vec3> goal;
     };
 
     /// Locomotion on `navMesh`, with the given level bands, counting into `counters` (may be null).
