@@ -7,6 +7,7 @@
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkDataObjectTreeIterator.h>
+#include <vtkExecutive.h>
 #include <vtkGLTFReader.h>
 #include <vtkIdList.h>
 #include <vtkMultiBlockDataSet.h>
@@ -48,8 +49,8 @@ vtkSmartPointer<vtkGLTFReader> openReader(const std::string& path) {
     // TIME_STEPS are advertised at this rate; UPDATE_TIME_STEP may ask for any time in between
     // (the reader samples the animation at the requested time itself).
     reader->SetFrameRate(60);
-    reader->UpdateInformation();
-    if (reader->GetNumberOfScenes() < 1) throw std::runtime_error(path + ": vtkGLTFReader could not read the file");
+    if (!reader->GetExecutive()->UpdateInformation() || reader->GetNumberOfScenes() < 1)
+        throw std::runtime_error(path + ": vtkGLTFReader could not read the file");
     return reader;
 }
 
@@ -82,7 +83,8 @@ vtkGLTFReader& VtkGltfPoser::reader(int a) {
             if (a >= r->GetNumberOfAnimations())
                 throw std::runtime_error(path_ + ": no animation " + std::to_string(a));
             r->EnableAnimation(a);
-            r->UpdateInformation();  // the time range follows the enabled animations
+            if (!r->GetExecutive()->UpdateInformation())  // the time range follows the enabled animations
+                throw std::runtime_error(path_ + ": vtkGLTFReader failed with animation " + std::to_string(a) + " enabled");
         }
         it = readers_.emplace(a, r).first;
     }

@@ -28,7 +28,9 @@ struct VtkPosedMesh {
 /// A glTF file read by vtkGLTFReader.
 class VtkGltfPoser {
 public:
-    /// Reads the metadata of `path`. Throws std::runtime_error naming the file if VTK cannot.
+    /// Reads the metadata of `path`. Throws std::runtime_error naming the file if VTK's pipeline
+    /// fails to read it. (VTK's glTF loader only logs some problems, such as a sampler input
+    /// without min and max, and skips what they concern: callers compare the counts.)
     explicit VtkGltfPoser(const std::string& path);
     ~VtkGltfPoser();
     VtkGltfPoser(const VtkGltfPoser&) = delete;
@@ -42,8 +44,8 @@ public:
     double duration(int a) const;
 
     /// The deformed mesh with only animation `a` enabled, at time `t` seconds (UPDATE_TIME_STEP),
-    /// or at rest when `a` is -1. Throws std::runtime_error if VTK reports an error or reads no
-    /// triangle.
+    /// or at rest when `a` is -1. Throws std::runtime_error if the update fails, the reader reports
+    /// an error, or no triangle comes out.
     VtkPosedMesh pose(int a, double t);
 
 private:
