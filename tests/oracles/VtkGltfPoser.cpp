@@ -56,10 +56,10 @@ vtkSmartPointer<vtkGLTFReader> openReader(const std::string& path) {
 
 }  // namespace
 
-// vtkGLTFReader 9.1 replaces a path that is not absolute and collapsed ("a/../b") by its collapsed
-// form while it reads the metadata; the next update then sees a new file name, reloads the
-// metadata and forgets which animations were enabled, so every pose comes out at rest. Hence the
-// canonical path.
+// Given a path that is not collapsed ("a/../b", as the shared assets' path is), vtkGLTFReader 9.1
+// applies no animation: every pose comes out at rest (measured). Its RequestInformation replaces
+// the name by the collapsed path, which, by its source, makes it reload the metadata and rebuild
+// the animation selection with every animation disabled. Hence the canonical path.
 VtkGltfPoser::VtkGltfPoser(const std::string& path)
     : path_(std::filesystem::weakly_canonical(path).string()), info_(openReader(path_)) {}
 
