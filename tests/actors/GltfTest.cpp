@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -154,6 +155,53 @@ TEST(Gltf, NonUniformScaleAboveAJointBecomesADoflessNodeWithAWarning) {
     EXPECT_TRUE(hasWarning(a, "non-uniform scale"));
     const auto m = modelOf(t, t.restDofs());
     expectNear(m[2].toDMat4(), glm::scale(glm::dmat4(1), glm::dvec3(1, 2, 1)) * glm::translate(glm::dmat4(1), glm::dvec3(0, 1.5, 0)), 1e-6);
+}
+
+// An animated node above the skeleton (an armature carrying root motion) moves the joints: glTF
+// defines a joint's global transform through its ancestors. It becomes a Skeleton node with DOFs
+// (not a skin joint) instead of being folded as a constant, and its channels are loaded.
+TEST(Gltf, AnimatedNodeAboveTheSkeletonMovesTheSkin) {
+    GltfTestFile f = twoJointRig();
+    const int arm = f.push("nodes", {{"name", "Armature"}, {"translation", {1, 2, 3}}, {"scale", {0.5, 0.5, 0.5}},
+                                     {"children", J::array({0})}});
+    f.doc["scenes"][0]["nodes"] = J::array({arm, 2});
+    const double h = std::sqrt(0.5);
+    const int times = f.floats({0, 1}, "SCALAR");
+    f.doc["accessors"][std::size_t(times)]["min"] = {0};
+    f.doc["accessors"][std::size_t(times)]["max"] = {1};
+    const int moves = f.floats({1, 2, 3, 3, 2, 3}, "VEC3");
+    const int turns = f.floats({0, 0, 0, 1, 0, float(h), 0, float(h)}, "VEC4");  // 0 -> 90 degrees about Y
+    f.push("animations", {{"name", "walk"},
+                          {"samplers", J::array({{{"input", times}, {"output", moves}}, {{"input", times}, {"output", turns}}})},
+                          {"channels", J::array({{{"sampler", 0}, {"target", {{"node", arm}, {"path", "translation"}}}},
+                                                 {{"sampler", 1}, {"target", {{"node", arm}, {"path", "rotation"}}}}})}});
+    GltfLoadOptions options;
+    options.scale = 2.0;  // folded into the armature's Skeleton node as into a joint
+    const CharacterAsset a = load(f, options);
+    EXPECT_FALSE(hasWarning(a, "not a joint"));
+    const LoadedCharacter& c = a.characters[0];
+    const ActorTemplate& t = *c.tmpl;
+    ASSERT_EQ(t.nodeCount(), 3u);
+    EXPECT_EQ(t.nodes()[0].name, "Armature");
+    EXPECT_EQ(t.nodes()[0].dofs.size(), 3u);
+    EXPECT_EQ(c.nodeSource, (std::vector<int>{arm, 0, 1}));
+    EXPECT_EQ(c.jointCount, 2);
+    EXPECT_EQ(t.skins()[0].joints, (std::vector<std::uint32_t>{1, 2}));
+    EXPECT_EQ(a.animations[0].channelsLoaded, 2);
+    ASSERT_EQ(t.clips().size(), 1u);
+    // At t = 0.5 the armature stands at (2, 2, 3), turned by 45 degrees about Y.
+    std::vector<float> dofs(t.restDofs().begin(), t.restDofs().end());
+    t.clips()[0]->sample(t, 0.5, false, {}, dofs);
+    const auto m = modelOf(t, dofs);
+    const glm::dmat4 armature = glm::scale(glm::dmat4(1), glm::dvec3(2.0)) * glm::translate(glm::dmat4(1), glm::dvec3(2, 2, 3)) *
+                                glm::rotate(glm::dmat4(1), std::numbers::pi / 4, glm::dvec3(0, 1, 0)) *
+                                glm::scale(glm::dmat4(1), glm::dvec3(0.5));
+    expectNear(m[1].toDMat4(), armature * glm::translate(glm::dmat4(1), glm::dvec3(0, 1, 0)), 1e-5);
+    expectNear(m[2].toDMat4(), armature * glm::translate(glm::dmat4(1), glm::dvec3(0, 1.5, 0)), 1e-5);
+    // And the skin follows: hip's skinning matrix is its model transform times its inverse bind.
+    std::vector<glm::mat4> palette(2);
+    computeSkinPalette(t, t.skins()[0], m, {}, palette);
+    expectNear(glm::dmat4(palette[0]), armature, 1e-5);  // the hip is bound at (0, 1, 0)
 }
 
 TEST(Gltf, StepHoldsThePreviousKeyAndClipEndsClamp) {

@@ -197,6 +197,7 @@ private:
     };
     std::vector<std::vector<Channel>> channels_;
     std::vector<std::set<int>> loadedChannels_;
+    std::set<int> animatedNodes_;  // nodes some loaded channel drives
 };
 
 void Loader::readNodes() {
@@ -639,9 +640,12 @@ void Loader::readPrimitives() {
 }
 
 void Loader::readAnimations() {
-    std::vector<char> isJoint(m_.nodes.size(), 0);
+    // Joints, and the nodes above them: their transforms are part of the joints' global transforms.
+    std::vector<char> drivesJoint(m_.nodes.size(), 0);
     for (const auto& joints : skinJoints_)
-        for (int j : joints) isJoint[static_cast<std::size_t>(j)] = 1;
+        for (int j : joints)
+            for (int a = j; a >= 0 && !drivesJoint[static_cast<std::size_t>(a)]; a = parent_[static_cast<std::size_t>(a)])
+                drivesJoint[static_cast<std::size_t>(a)] = 1;
     channels_.resize(m_.animations.size());
     loadedChannels_.resize(m_.animations.size());
     for (std::size_t a = 0; a < m_.animations.size(); ++a) {
@@ -672,9 +676,10 @@ void Loader::readAnimations() {
             } else {
                 fail(cw + "/target/path", "unknown path '" + ch.target_path + "'");
             }
-            if (!isJoint[static_cast<std::size_t>(ch.target_node)]) {
-                // Only joints become Skeleton nodes; the data of such channels is not even read.
-                warn(cw, "animates node " + std::to_string(ch.target_node) + ", which is not a joint of any skin: ignored");
+            if (!drivesJoint[static_cast<std::size_t>(ch.target_node)]) {
+                // Only joints and the nodes above them become Skeleton nodes; the data of such
+                // channels is not even read.
+                warn(cw, "animates node " + std::to_string(ch.target_node) + ", which is not a joint of any skin nor above one: ignored");
                 continue;
             }
             const tinygltf::AnimationSampler& s = anim.samplers[static_cast<std::size_t>(ch.sampler)];
@@ -722,6 +727,7 @@ void Loader::readAnimations() {
             out.times = cached.first;
             out.values = cached.second;
             channels_[a].push_back(out);
+            animatedNodes_.insert(out.node);
         }
         asset_.animations.push_back(info);
     }
@@ -826,6 +832,12 @@ void Loader::buildSkin(int s) {
     };
     std::vector<JointFold> fold(m_.nodes.size());
     std::vector<int> skeletonOfJoint(joints.size(), -1);
+    // An animated node above a joint moves the joint (glTF: a joint's global transform includes
+    // its ancestors'): it becomes a Skeleton node with DOFs, as a joint, instead of being folded.
+    std::vector<char> aboveJoint(m_.nodes.size(), 0);
+    for (int j : joints)
+        for (int a = parent_[static_cast<std::size_t>(j)]; a >= 0; a = parent_[static_cast<std::size_t>(a)])
+            aboveJoint[static_cast<std::size_t>(a)] = 1;
     // Rigid primitives below each glTF joint node (the nearest joint ancestor-or-self).
     std::map<int, std::vector<int>> rigidUnder;
     std::vector<int> skinned;
@@ -861,7 +873,8 @@ void Loader::buildSkin(int s) {
         const auto n = static_cast<std::size_t>(it.node);
         int skeletonHere = it.skeletonParent;
         dmat4 above = it.above * local_[n];
-        if (jointIndex.count(it.node)) {
+        const bool joint = jointIndex.count(it.node) > 0;
+        if (joint || (aboveJoint[n] && animatedNodes_.count(it.node))) {
             Trs b = decompose(it.above);
             int parent = it.skeletonParent;
             if (!nearIdentity(it.above) && !b.uniform) {
@@ -869,7 +882,7 @@ void Loader::buildSkin(int s) {
                 const int holder = parent_[n];
                 warn(ptr("/nodes", static_cast<std::size_t>(holder)),
                      std::string("non-uniform scale") + (b.exact ? "" : " with shear (approximated)") +
-                         " above joint '" + nodeName(it.node) + "' kept as a Skeleton node without DOFs");
+                         " above '" + nodeName(it.node) + "' kept as a Skeleton node without DOFs");
                 SkeletonNode keep;
                 keep.name = unique(nodeName(holder));
                 keep.parent = parent;
@@ -893,12 +906,12 @@ void Loader::buildSkin(int s) {
             Dof orientation{DofKind::Orientation, glm::vec3(0), -INFINITY, INFINITY, {float(j.r.x), float(j.r.y), float(j.r.z), float(j.r.w)}};
             Dof scale{DofKind::Scale, glm::vec3(0), -INFINITY, INFINITY, {float(j.s.x), float(j.s.y), float(j.s.z), 0}};
             sn.dofs = {position, orientation, scale};
-            const int k = jointIndex[it.node];
-            sn.inverseBind = ibm_[static_cast<std::size_t>(s)][static_cast<std::size_t>(k)];
+            const int k = joint ? jointIndex[it.node] : -1;
+            if (joint) sn.inverseBind = ibm_[static_cast<std::size_t>(s)][static_cast<std::size_t>(k)];
             nodes.push_back(sn);
             ch.nodeSource.push_back(it.node);
             skeletonHere = static_cast<int>(nodes.size()) - 1;
-            skeletonOfJoint[static_cast<std::size_t>(k)] = skeletonHere;
+            if (joint) skeletonOfJoint[static_cast<std::size_t>(k)] = skeletonHere;
             fold[n] = JointFold{skeletonHere, b.s.x, b.r};
             above = dmat4(1.0);
             extentPoints.push_back(dvec3(world_[n][3]));
@@ -994,8 +1007,8 @@ void Loader::buildSkin(int s) {
         std::vector<ClipChannel> out;
         for (std::size_t c = 0; c < channels_[a].size(); ++c) {
             const Channel& in = channels_[a][c];
-            if (!jointIndex.count(in.node)) continue;
             const JointFold& f = fold[static_cast<std::size_t>(in.node)];
+            if (f.skeleton < 0) continue;  // not a Skeleton node of this template
             ClipChannel cc;
             cc.target = ClipChannel::Target::NodeDof;
             cc.node = static_cast<std::uint32_t>(f.skeleton);
