@@ -24,13 +24,17 @@ PeerScene buildPeerScene(const std::string& name, std::size_t actors) {
         s.camera = built.camera;
         s.startTime = built.time;
         s.holdTime = true;
-    } else if (name == "town") {
-        // As bench_actor_processing: density kept constant as the crowd grows.
-        scenes::TownSpread town = scenes::buildTownSpread(*s.crowd, actors, 40.0 * std::sqrt(double(actors)));
+    } else if (name == "town" || name == "town-dense") {
+        // As bench_actor_processing: density kept constant as the crowd grows (one actor per
+        // 1600 m^2, or per 16 m^2 when dense).
+        const double spacing = name == "town" ? 40.0 : 4.0;
+        scenes::TownSpread town = scenes::buildTownSpread(*s.crowd, actors, spacing * std::sqrt(double(actors)));
         s.root = town.root;
         s.camera = town.camera;
+        // The dense crowd is for the check: near and far planes that cut through it decide too.
+        if (name == "town-dense") s.camera.setPerspective(1.0, 16.0 / 9.0, 5.0, 60.0);
     } else {
-        throw std::invalid_argument("buildPeerScene: unknown scene '" + name + "' (known: table2, town)");
+        throw std::invalid_argument("buildPeerScene: unknown scene '" + name + "' (known: table2, town, town-dense)");
     }
     return s;
 }

@@ -1,7 +1,9 @@
 #pragma once
 // The two scenes bench_actor_processing measures, built the same way for the OpenSceneGraph
 // comparison: Table 2's proportions (the cost model's Table 3 actors placed class by class relative
-// to a camera) and a town-like spread of walking seed humanoids, one actor group per block.
+// to a camera) and a town-like spread of walking seed humanoids, one actor group per block; and,
+// for the visibility check, the town spread 100 times as dense and seen between near and far planes
+// at 5 m and 60 m, where many actors stand near a frustum plane or an LOD threshold.
 
 #include <memory>
 #include <string>
@@ -14,7 +16,7 @@ namespace throng::peers {
 
 /// A scene, its camera and the time of each measured frame.
 struct PeerScene {
-    std::string name;                                         ///< "table2" or "town"
+    std::string name;                                         ///< "table2", "town" or "town-dense"
     std::unique_ptr<Crowd> crowd = std::make_unique<Crowd>();  ///< the actors' state
     std::shared_ptr<Group> root;                              ///< one ActorGroup node, or one per block
     Camera camera;                                            ///< fixed for every frame
@@ -29,8 +31,8 @@ struct PeerScene {
     }
 };
 
-/// Builds scene `name` ("table2" or "town") with `actors` actors. Throws std::invalid_argument for
-/// another name or zero actors.
+/// Builds scene `name` ("table2", "town" or "town-dense") with `actors` actors. Throws
+/// std::invalid_argument for another name or zero actors.
 PeerScene buildPeerScene(const std::string& name, std::size_t actors);
 
 }  // namespace throng::peers
