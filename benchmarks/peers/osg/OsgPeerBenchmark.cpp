@@ -50,7 +50,9 @@ struct Row {
     double osgUpdateMs = 0, osgCullMs = 0, osgMs = 0, traditionalMs = 0, actorMs = 0;
     std::size_t framesDiffering = 0;     // frames where OSG or full-precision actor processing differ from traditional
     std::size_t framesLodDiffering = 0;  // frames where the timed actor processing differs, by its behavioural LOD only
-    std::size_t lodPartsMax = 0, lodActorsMax = 0;  // the most parts and whole actors that differed so in one frame
+    std::size_t lodPartsMax = 0;    // the most parts that differed so in one frame
+    std::size_t lodDroppedMax = 0;  // the most actors traditional processing drew and actor processing did not, in one frame
+    std::size_t lodAddedMax = 0;    // the most actors actor processing drew and traditional processing did not, in one frame
 };
 
 // How two sets of visible parts differ.
@@ -148,7 +150,8 @@ Row run(const std::string& sceneName, std::size_t actors, std::size_t frames, co
             if (!failed) {
                 ++row.framesLodDiffering;
                 row.lodPartsMax = std::max(row.lodPartsMax, actorVsTraditional.parts.onlyInFirst.size() + actorVsTraditional.parts.onlyInSecond.size());
-                row.lodActorsMax = std::max(row.lodActorsMax, actorVsTraditional.actors.onlyInFirst.size() + actorVsTraditional.actors.onlyInSecond.size());
+                row.lodDroppedMax = std::max(row.lodDroppedMax, actorVsTraditional.actors.onlyInSecond.size());
+                row.lodAddedMax = std::max(row.lodAddedMax, actorVsTraditional.actors.onlyInFirst.size());
             }
         }
         row.framesDiffering += failed;
@@ -177,8 +180,9 @@ Row run(const std::string& sceneName, std::size_t actors, std::size_t frames, co
         std::printf("  visible-set check: OSG, traditional and actor processing identical in all %zu frames (median %.0f actors, %.0f parts visible)\n",
                     frames + 1, row.visibleActors, row.visibleParts);
         if (row.framesLodDiffering)
-            std::printf("  (with its default behavioural LOD, actor processing differed in %zu frames, by at most %zu part(s) and %zu whole actor(s))\n",
-                        row.framesLodDiffering, row.lodPartsMax, row.lodActorsMax);
+            std::printf("  (with its default behavioural LOD, actor processing differed in %zu frames, by at most %zu part(s); "
+                        "whole actors it dropped / added: at most %zu / %zu)\n",
+                        row.framesLodDiffering, row.lodPartsMax, row.lodDroppedMax, row.lodAddedMax);
     }
     std::fflush(stdout);
     return row;
@@ -240,7 +244,8 @@ int main(int argc, char** argv) {
         same = same && r.framesDiffering == 0;
         std::string check = r.framesDiffering ? "differ" : "identical";
         if (!r.framesDiffering && r.framesLodDiffering)
-            check += " (behavioural LOD: " + std::to_string(r.lodPartsMax) + " part(s), " + std::to_string(r.lodActorsMax) + " actor(s))";
+            check += " (behavioural LOD: " + std::to_string(r.lodPartsMax) + " part(s), actors dropped / added " +
+                     std::to_string(r.lodDroppedMax) + " / " + std::to_string(r.lodAddedMax) + ")";
         std::printf("| %s | %zu | %.0f | %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.3f ms | %.2f | %.2f | %s |\n", r.scene.c_str(), r.actors,
                     r.visibleActors, r.osgUpdateMs, r.osgCullMs, r.osgMs, r.traditionalMs, r.actorMs, r.osgMs / r.traditionalMs,
                     r.osgMs / r.actorMs, check.c_str());
@@ -248,12 +253,12 @@ int main(int argc, char** argv) {
     if (csv.is_open()) {
         csv << "scene,actors,frames,osg_nodes,visible_actors,visible_parts,osg_update_ms,osg_cull_ms,osg_ms,traditional_ms,actor_ms,"
                "osg_over_traditional,osg_over_actor,frames_differing,frames_behavioural_lod_differing,behavioural_lod_parts_max,"
-               "behavioural_lod_actors_max\n";
+               "behavioural_lod_actors_dropped_max,behavioural_lod_actors_added_max\n";
         for (const Row& r : rows)
             csv << r.scene << ',' << r.actors << ',' << r.frames << ',' << r.osgNodes << ',' << r.visibleActors << ','
                 << r.visibleParts << ',' << r.osgUpdateMs << ',' << r.osgCullMs << ',' << r.osgMs << ',' << r.traditionalMs << ','
                 << r.actorMs << ',' << r.osgMs / r.traditionalMs << ',' << r.osgMs / r.actorMs << ',' << r.framesDiffering << ','
-                << r.framesLodDiffering << ',' << r.lodPartsMax << ',' << r.lodActorsMax << '\n';
+                << r.framesLodDiffering << ',' << r.lodPartsMax << ',' << r.lodDroppedMax << ',' << r.lodAddedMax << '\n';
         if (!csv) {
             std::cerr << "bench_osg_peer: error: --csv: writing '" << csvPath << "' failed\n";
             return 1;
