@@ -17,7 +17,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ProgressBar.h"
 #include "TownImpostors.h"
 #include "TownOptions.h"
 #include "throng/actors/ActorProcessor.h"
@@ -31,6 +30,7 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/sim/SimulationClock.h"
+#include "throng/support/ProgressBar.h"
 
 using namespace throng;
 namespace fs = std::filesystem;
@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
 
     std::unique_ptr<sim::Simulation> world;
     try {
-        town::ProgressBar bar("building", 100);
+        support::ProgressBar bar("building", 100);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
     } catch (const std::exception& e) {
@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
     const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
     std::unique_ptr<town::TownImpostors> impostors;
     if (impostorDistance > 0.0) {
-        town::ProgressBar bar("baking impostors", 1000);
+        support::ProgressBar bar("baking impostors", 1000);
         impostors = std::make_unique<town::TownImpostors>(context, *world, 64, [&](int done, int total) {
             bar.update(std::size_t(1000.0 * done / std::max(total, 1)), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
         });
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
     auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
     if (!window) {
-        town::ProgressBar bar("running", std::size_t(o.frames));
+        support::ProgressBar bar("running", std::size_t(o.frames));
         if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
         for (std::int64_t f = 0; f < o.frames; ++f, clock.advance()) {
             const double t = clock.time();
