@@ -2,8 +2,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
-#include <stdexcept>
 
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
