@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,6 +20,8 @@
 #include "ModelTables.h"
 #include "TextTable.h"
 #include "throng/actors/CostModel.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 #include "throng/vtk/Chart.h"
 
 using namespace throng;
@@ -36,61 +37,42 @@ struct Options {
     CostModelFactors factors;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-    if (!error.empty()) std::fprintf(stderr, "throng-costmodel: %s\n", error.c_str());
-    std::fprintf(stderr,
-                 "usage: throng-costmodel [options]\n"
-                 "  --model            Tables 5 and 6, the cost expressions and Eq. 3 (default with --measure)\n"
-                 "  --fig6 FILE.csv    Fig. 6 data: improvement factor against AverageCost for (fTrack, fCoh)\n"
-                 "  --plot FILE.png    Fig. 6 as a chart (needs an X display; xvfb-run is used when there is none)\n"
-                 "  --measure          count one frame of the example scene (Tables 2-3) under both methods\n"
-                 "  --wallclock        time both methods on scenes of 100 ... --max-actors actors\n"
-                 "  --max-actors N     largest wall-clock scene (default 1000000; sizes that do not fit in memory are skipped)\n"
-                 "  --accuracy         sweep the LOD scale: frame time against joint error and draw-list identity\n"
-                 "  --json             print everything asked for as one JSON object\n"
-                 "  --report DIR       all of the above into DIR: report.md, CSV files, PNG charts, costmodel.json\n"
-                 "  --nActors X --fRefpointBsphsIn X --fSklsrootBsphsOut X --fSklsrootBsphsIn X\n"
-                 "  --fSklsrootBsphsIsect X --fCheckIntBsphs X --nSkelsPerActor X --nBsphsPerActor X --fLODtopo X\n"
-                 "                     Table 4 factors for --model (default: the example scene)\n");
-    std::exit(error.empty() ? 0 : 2);
-}
-
-double number(const std::string& flag, const char* value) {
-    if (!value) usage(flag + " needs a value");
-    char* end = nullptr;
-    const double v = std::strtod(value, &end);
-    if (*end != '\0' || !std::isfinite(v) || v < 0) usage(flag + " expects a non-negative number, got '" + value + "'");
-    return v;
-}
-
-Options parse(int argc, char** argv) {
-    Options o;
-    std::map<std::string, double*> factors = {
-        {"--nActors", &o.factors.nActors}, {"--fRefpointBsphsIn", &o.factors.fRefpointBsphsIn},
-        {"--fSklsrootBsphsOut", &o.factors.fSklsrootBsphsOut}, {"--fSklsrootBsphsIn", &o.factors.fSklsrootBsphsIn},
-        {"--fSklsrootBsphsIsect", &o.factors.fSklsrootBsphsIsect}, {"--fCheckIntBsphs", &o.factors.fCheckIntBsphs},
-        {"--nSkelsPerActor", &o.factors.nSkelsPerActor}, {"--nBsphsPerActor", &o.factors.nBsphsPerActor},
-        {"--fLODtopo", &o.factors.fLODtopo}};
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-        if (a == "--model") o.model = true;
-        else if (a == "--measure") o.measure = true;
-        else if (a == "--wallclock") o.wallclock = true;
-        else if (a == "--accuracy") o.accuracy = true;
-        else if (a == "--json") o.json = true;
-        else if (a == "--fig6") { const char* v = value(); if (!v) usage("--fig6 needs a file"); o.fig6Csv = v; }
-        else if (a == "--plot") { const char* v = value(); if (!v) usage("--plot needs a file"); o.plotPng = v; }
-        else if (a == "--report") { const char* v = value(); if (!v) usage("--report needs a folder"); o.reportDir = v; }
-        else if (a == "--max-actors") o.maxActors = static_cast<std::size_t>(number(a, value()));
-        else if (factors.count(a)) *factors[a] = number(a, value());
-        else if (a == "--help" || a == "-h") usage("");
-        else usage("unknown option '" + a + "'");
-    }
-    if (!o.model && !o.measure && !o.wallclock && !o.accuracy && !o.json && o.fig6Csv.empty() && o.plotPng.empty() &&
-        o.reportDir.empty())
-        o.model = o.measure = true;
-    return o;
+// Declares every option of throng-costmodel on `cl`, bound to `o`.
+void declare(support::CommandLine& cl, Options& o) {
+    using namespace support;
+    CLI::App& app = cl.app();
+    app.add_flag("--model", o.model, "Tables 5 and 6, the cost expressions and Eq. 3 (default with --measure)");
+    app.add_option("--fig6", o.fig6Csv, "Fig. 6 data: improvement factor against AverageCost for (fTrack, fCoh)")
+        ->type_name("FILE.csv");
+    app.add_option("--plot", o.plotPng, "Fig. 6 as a chart (needs an X display; xvfb-run is used when there is none)")
+        ->type_name("FILE.png");
+    app.add_flag("--measure", o.measure, "count one frame of the example scene (Tables 2-3) under both methods");
+    app.add_flag("--wallclock", o.wallclock, "time both methods on scenes of 100 ... --max-actors actors");
+    app.add_option("--max-actors", o.maxActors, "largest wall-clock scene (sizes that do not fit in memory are skipped)")
+        ->type_name("N")
+        ->check(wholeNumber(0, 1'000'000'000));
+    app.add_flag("--accuracy", o.accuracy, "sweep the LOD scale: frame time against joint error and draw-list identity");
+    app.add_flag("--json", o.json, "print everything asked for as one JSON object");
+    app.add_option("--report", o.reportDir, "all of the above into DIR: report.md, CSV files, PNG charts, costmodel.json")
+        ->type_name("DIR");
+    // Table 4: counts are numbers of things, the f... factors shares of the actors or nodes.
+    const char* group = "Table 4 factors for --model (defaults: the example scene)";
+    auto count = [&](const char* name, double& v, const char* what) {
+        app.add_option(name, v, what)->type_name("X")->check(nonNegativeNumber())->group(group);
+    };
+    auto share = [&](const char* name, double& v, const char* what) {
+        app.add_option(name, v, what)->type_name("X")->check(number(0.0, 1.0))->group(group);
+    };
+    CostModelFactors& f = o.factors;
+    count("--nActors", f.nActors, "actors");
+    share("--fRefpointBsphsIn", f.fRefpointBsphsIn, "share with the Refpoint Bsphere inside the frustum (B)");
+    share("--fSklsrootBsphsOut", f.fSklsrootBsphsOut, "share with the Sklsroot Bsphere outside (C1)");
+    share("--fSklsrootBsphsIn", f.fSklsrootBsphsIn, "share with the Sklsroot Bsphere inside (C2)");
+    share("--fSklsrootBsphsIsect", f.fSklsrootBsphsIsect, "share crossing, internal spheres wholly in or out (C3.1)");
+    share("--fCheckIntBsphs", f.fCheckIntBsphs, "share needing culling with internal spheres (C3.2)");
+    count("--nSkelsPerActor", f.nSkelsPerActor, "Skeleton nodes per actor");
+    count("--nBsphsPerActor", f.nBsphsPerActor, "internal bounding spheres per actor");
+    share("--fLODtopo", f.fLODtopo, "share of Skeleton nodes left by skeletal LOD");
 }
 
 // VTK (Debian's) renders through X only. Without a display, run again under xvfb-run, or explain.
@@ -429,7 +411,15 @@ void report(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Options o = parse(argc, argv);
+    Options o;
+    support::CommandLine cl("throng-costmodel",
+                            "The FMULT cost model of Rodriguez et al. 2010 (Tables 4-6, Eq. 1-3, Fig. 6) reproduced,\n"
+                            "and Throng's pipeline measured against it. With no option: --model --measure.");
+    declare(cl, o);
+    if (const auto code = cl.parse(argc, argv)) return *code;
+    if (!o.model && !o.measure && !o.wallclock && !o.accuracy && !o.json && o.fig6Csv.empty() && o.plotPng.empty() &&
+        o.reportDir.empty())
+        o.model = o.measure = true;
     try {
         if (!o.plotPng.empty() || !o.reportDir.empty()) ensureDisplay(argc, argv);
         if (!o.reportDir.empty()) {

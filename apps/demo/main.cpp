@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -17,6 +15,8 @@
 #include "throng/scenegraph/RecordingBackend.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
 #include "throng/scenes/FigureField.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 
 using namespace throng;
 
@@ -26,36 +26,6 @@ struct Options {
     int figures = 1000;
     int frames = 300;
 };
-
-[[noreturn]] void usage(const char* message) {
-    if (message) std::fprintf(stderr, "throng-demo: %s\n", message);
-    std::fprintf(stderr,
-                 "usage: throng-demo [--figures N] [--frames N]\n"
-                 "  --figures N  animated figures on the field (default 1000; each is 14 nodes)\n"
-                 "  --frames N   frames to run (default 300)\n");
-    std::exit(message ? 2 : 0);
-}
-
-int parsePositive(const char* flag, const char* value) {
-    if (!value) usage((std::string(flag) + " needs a value").c_str());
-    char* end = nullptr;
-    const long v = std::strtol(value, &end, 10);
-    if (*end != '\0' || v <= 0 || v > 10'000'000)
-        usage((std::string(flag) + " expects a positive integer, got '" + value + "'").c_str());
-    return static_cast<int>(v);
-}
-
-Options parse(int argc, char** argv) {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const char* a = argv[i];
-        if (!std::strcmp(a, "--figures")) o.figures = parsePositive(a, argv[++i]);
-        else if (!std::strcmp(a, "--frames")) o.frames = parsePositive(a, argv[++i]);
-        else if (!std::strcmp(a, "--help") || !std::strcmp(a, "-h")) usage(nullptr);
-        else usage((std::string("unknown option '") + a + "'").c_str());
-    }
-    return o;
-}
 
 std::size_t countNodes(const Node& node) {
     std::size_t n = 1;
@@ -79,7 +49,15 @@ struct PhaseSummary {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Options opt = parse(argc, argv);
+    Options opt;
+    support::CommandLine cl("throng-demo",
+                            "A headless scenegraph demo: animated figures on a field under traditional processing,\n"
+                            "with per-phase statistics and the FMULT accounting of the last frame.");
+    cl.app().add_option("--figures", opt.figures, "animated figures on the field (each is 14 nodes)")
+        ->type_name("N")
+        ->check(support::wholeNumber(1, 10'000'000));
+    cl.app().add_option("--frames", opt.frames, "frames to run")->type_name("N")->check(support::wholeNumber(1, 10'000'000));
+    if (const auto code = cl.parse(argc, argv)) return *code;
     auto scene = scenes::buildFigureField(opt.figures);
     const double extent = scenes::figureFieldExtent(opt.figures);
     std::printf("throng-demo: %d figures, %zu nodes, %d frames (traditional processing, headless)\n",

@@ -1,11 +1,14 @@
 // throng-inspect FILE: what the glTF loader makes of a file (templates, joint tree, clips,
-// primitives, bounding spheres, warnings). Exit 1 with "file: where: problem" when it cannot load.
+// primitives, bounding spheres, warnings). Exit 1 with "file: where: problem" when it cannot load,
+// 2 on a bad command line (no file, a file that does not exist, an unknown option).
 
 #include <cstdio>
 #include <iostream>
 #include <string>
 
 #include "throng/actors/GltfLoader.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 
 using namespace throng;
 
@@ -44,18 +47,20 @@ void printCharacter(const CharacterAsset& asset, const LoadedCharacter& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-        std::fprintf(stderr, "usage: throng-inspect FILE.gltf|FILE.glb\n");
-        return argc == 2 ? 0 : 2;
-    }
+    std::string file;
+    support::CommandLine cl("throng-inspect",
+                            "What the glTF loader makes of a character file: templates, the joint tree, clips,\n"
+                            "primitives, bounding spheres and warnings.");
+    cl.app().add_option("FILE", file, "a .gltf or .glb file")->required()->check(support::existingFile());
+    if (const auto code = cl.parse(argc, argv)) return *code;
     CharacterAsset asset;
     try {
-        asset = loadCharacter(argv[1]);
+        asset = loadCharacter(file);
     } catch (const GltfError& e) {
         std::cerr << e.what() << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << argv[1] << ": /: " << e.what() << "\n";
+        std::cerr << file << ": /: " << e.what() << "\n";
         return 1;
     }
     std::printf("file: %s\n", asset.source.c_str());

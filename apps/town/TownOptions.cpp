@@ -1,104 +1,83 @@
 #include "TownOptions.h"
 
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
+
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 
 namespace throng::town {
 namespace {
 
-std::int64_t integer(const std::string& flag, const char* v, std::int64_t lo, std::int64_t hi) {
-    if (!v) throw std::invalid_argument(flag + " needs a value");
-    char* end = nullptr;
-    const long long x = std::strtoll(v, &end, 10);
-    if (*end != '\0' || x < lo || x > hi)
-        throw std::invalid_argument(flag + " expects a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" + v + "'");
-    return x;
+constexpr const char* kName = "throng-town";
+
+// Declares every option of throng-town on `cl`, bound to `o`.
+void declare(support::CommandLine& cl, TownOptions& o) {
+    using namespace support;
+    CLI::App& app = cl.app();
+    app.add_option("--scene", o.scene, "scene file (JSON)")->type_name("FILE")->check(existingFile());
+    app.add_option("--actors", o.actors, "total actors, the scene's groups scaled to it")
+        ->type_name("N")
+        ->check(wholeNumber(0, 2'000'000))
+        ->default_str("the scene's");
+    app.add_option("--frames", o.frames, "frames to run headless; in a window, quit after N")
+        ->type_name("N")
+        ->check(wholeNumber(1, 100'000'000));
+    app.add_option("--seed", o.seed, "random seed")->type_name("N")->check(wholeNumberFrom(0))->default_str("the scene's");
+    app.add_option("--out", o.out, "frames, stats.csv and summary.json go here")->type_name("DIR");
+    app.add_option("--width", o.width, "image width in pixels")->type_name("W")->check(wholeNumber(16, 8192));
+    app.add_option("--height", o.height, "image height in pixels")->type_name("H")->check(wholeNumber(16, 8192));
+    app.add_flag("--headless", o.headless, "never open a window (the default when there is no display)");
+    app.add_option("--processing", o.processing, "how the scene is processed")
+        ->type_name("MODE")
+        ->check(oneOf({"actor", "traditional"}));
+    app.add_option("--every", o.every, "headless: a PNG frame every K frames (0: none)")
+        ->type_name("K")
+        ->check(wholeNumber(0, 1'000'000));
+    app.add_option("--threads", o.threads, "threads for the simulation step and the per-actor phases")
+        ->type_name("N")
+        ->check(wholeNumber(1, 256));
+    app.add_option("--pipeline", o.pipeline, "DRAW of frame N overlaps the step, APP and CULL of frame N+1")
+        ->type_name("on|off")
+        ->check(oneOf({"on", "off"}))
+        ->default_str("on");
+    app.add_option("--lod-scale", o.lodScale, "multiplies every LOD distance")
+        ->type_name("X")
+        ->check(positiveNumber())
+        ->default_str("the scene's");
+    app.add_option("--impostor-distance", o.impostorDistance,
+                   "actors beyond D metres are drawn as impostors (0: never)")
+        ->type_name("D")
+        ->check(nonNegativeNumber())
+        ->default_str("the scene's");
+    app.footer(
+        "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
+        "+/- LOD scale, C shrink the culling pyramid (watch culling at work), P processing, Esc quit.");
 }
 
 }  // namespace
 
-std::string townUsage() {
-    return "usage: throng-town [options]\n"
-           "  --scene FILE        scene file (JSON; default: the town example's default scene)\n"
-           "  --actors N          total actors, the scene's groups scaled to it\n"
-           "  --frames N          frames to run headless (default 600 = 10 s); in a window, quit after N\n"
-           "  --seed N            overrides the scene's seed\n"
-           "  --out DIR           frames, stats.csv and summary.json go here (default town-out)\n"
-           "  --width W --height H   image size (default 1280 x 720)\n"
-           "  --headless          never open a window (the default when there is no display)\n"
-           "  --processing actor|traditional   how the scene is processed (default actor)\n"
-           "  --every K           headless: a PNG frame every K frames (default 60; 0: none)\n"
-           "  --threads N         threads for the simulation step and the per-actor phases (default 1)\n"
-           "  --pipeline on|off   DRAW of frame N overlaps the step, APP and CULL of frame N+1 (default on)\n"
-           "  --lod-scale X       multiplies every LOD distance (default: the scene's)\n"
-           "  --impostor-distance D   actors beyond D metres are drawn as impostors (0: never; default: the scene's)\n"
-           "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
-           "+/- LOD scale, C shrink the culling pyramid (watch culling at work), P processing, Esc quit.\n";
-}
+std::string townUsage() { return support::CommandLine::hint(kName); }
 
 TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene) {
     TownOptions o;
     o.scene = defaultScene;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-        if (a == "--help" || a == "-h") {
-            std::fputs(townUsage().c_str(), stdout);
-            std::exit(0);
-        } else if (a == "--scene") {
-            const char* v = value();
-            if (!v) throw std::invalid_argument("--scene needs a file");
-            o.scene = v;
-        } else if (a == "--actors") {
-            o.actors = integer(a, value(), 0, 2'000'000);
-        } else if (a == "--frames") {
-            o.frames = integer(a, value(), 1, 100'000'000);
-            o.framesGiven = true;
-        } else if (a == "--seed") {
-            o.seed = std::uint64_t(integer(a, value(), 0, INT64_MAX));
-        } else if (a == "--out") {
-            const char* v = value();
-            if (!v) throw std::invalid_argument("--out needs a folder");
-            o.out = v;
-        } else if (a == "--width") {
-            o.width = int(integer(a, value(), 16, 8192));
-        } else if (a == "--height") {
-            o.height = int(integer(a, value(), 16, 8192));
-        } else if (a == "--headless") {
-            o.headless = true;
-        } else if (a == "--processing") {
-            const char* v = value();
-            if (!v || (std::string(v) != "actor" && std::string(v) != "traditional"))
-                throw std::invalid_argument("--processing expects 'actor' or 'traditional'");
-            o.processing = v;
-        } else if (a == "--every") {
-            o.every = int(integer(a, value(), 0, 1'000'000));
-        } else if (a == "--threads") {
-            o.threads = int(integer(a, value(), 1, 256));
-        } else if (a == "--pipeline") {
-            const char* v = value();
-            if (!v || (std::string(v) != "on" && std::string(v) != "off"))
-                throw std::invalid_argument("--pipeline expects 'on' or 'off'");
-            o.pipeline = std::string(v) == "on";
-        } else if (a == "--lod-scale") {
-            const char* v = value();
-            char* end = nullptr;
-            o.lodScale = v ? std::strtod(v, &end) : 0.0;
-            if (!v || *end != '\0' || !std::isfinite(o.lodScale) || o.lodScale <= 0.0)
-                throw std::invalid_argument("--lod-scale expects a positive number");
-        } else if (a == "--impostor-distance") {
-            const char* v = value();
-            char* end = nullptr;
-            o.impostorDistance = v ? std::strtod(v, &end) : -1.0;
-            if (!v || *end != '\0' || !std::isfinite(o.impostorDistance) || o.impostorDistance < 0.0)
-                throw std::invalid_argument("--impostor-distance expects a distance in metres (0: no impostors)");
-        } else {
-            throw std::invalid_argument("unknown option '" + a + "'");
+    std::string help;
+    {
+        support::CommandLine cl(kName,
+                                "The town-crowd example: builds the world a scene file declares (a town, walkers on its\n"
+                                "navigation mesh, standing groups, a flock) and runs it: in a window when there is a\n"
+                                "display, headless otherwise (PNG frames, stats.csv, summary.json).");
+        declare(cl, o);
+        if (cl.parseOrThrow(argc, argv)) {
+            o.framesGiven = cl.app().count("--frames") > 0;
+            return o;
         }
+        help = cl.help();
     }
-    return o;
+    std::fputs(help.c_str(), stdout);
+    std::fflush(stdout);
+    std::exit(0);
 }
 
 }  // namespace throng::town

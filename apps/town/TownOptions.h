@@ -25,10 +25,11 @@ struct TownOptions {
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
 };
 
-/// Parses argv. Prints usage and exits on --help; throws std::invalid_argument naming the option
-/// on a bad one.
+/// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the
+/// help and exits with 0 on --help; throws std::invalid_argument naming the option on a bad one,
+/// before anything is built or written.
 TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene);
-/// The usage text.
+/// What follows the error message of a bad command line: where the options are listed (--help).
 std::string townUsage();
 
 }  // namespace throng::town

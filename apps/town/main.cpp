@@ -22,7 +22,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "ProgressBar.h"
 #include "TownOptions.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
@@ -36,6 +35,7 @@
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/ProgressBar.h"
 
 using namespace throng;
 namespace fs = std::filesystem;
@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
 
     std::unique_ptr<sim::Simulation> world;
     try {
-        town::ProgressBar bar("building", 100);
+        support::ProgressBar bar("building", 100);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
     } catch (const std::exception& e) {
@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
     std::unique_ptr<ImpostorSet> impostors;
     if (impostorDistance > 0.0) {
-        town::ProgressBar bar("baking impostors", 1000);
+        support::ProgressBar bar("baking impostors", 1000);
         std::vector<ImpostorSet::Source> sources;
         for (const auto& t : world->templates()) sources.push_back({t.tmpl, t.clip});
         ImpostorBakeOptions bake;
@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
     FramePipeline pipeline(o.pipeline);
 
     if (!window) {
-        town::ProgressBar bar("running", std::size_t(o.frames));
+        support::ProgressBar bar("running", std::size_t(o.frames));
         if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
         auto cameraAt = [&](double time) { return world->camera().at(time, aspect); };
         // Frame f's camera follows the path at frame f's time, known before it is stepped.

@@ -12,6 +12,7 @@
 //
 //   throng-impostor-quality [--out DIR] [--size 128] [--keyframes 16] [--views 16x4]
 //                           [--a A --b B --p P] [--asset NAME=SOURCE:CLIP ...]
+// Exit codes: 0 done, 1 a measurement failed (the message says why), 2 a bad command line.
 
 #include <algorithm>
 #include <chrono>
@@ -20,13 +21,13 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "../../apps/bake/CharacterSource.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GpuMorpher.h"
@@ -35,6 +36,10 @@
 #include "throng/render/ImageSimilarity.h"
 #include "throng/render/ImpostorBaker.h"
 #include "throng/render/MorphCache.h"
+#include "throng/support/CharacterSource.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
+#include "throng/support/ViewGrid.h"
 #include "throng/vtk/Chart.h"
 
 namespace {
@@ -44,6 +49,26 @@ using namespace throng;
 struct Asset {
     std::string name, source, clip;
 };
+
+// "NAME=SOURCE:CLIP" (CLIP may be empty: the first clip); std::nullopt when not of that form.
+std::optional<Asset> parseAsset(const std::string& text) {
+    const auto eq = text.find('='), colon = text.rfind(':');
+    if (eq == std::string::npos || eq == 0 || colon == std::string::npos || colon < eq + 2) return std::nullopt;
+    return Asset{text.substr(0, eq), text.substr(eq + 1, colon - eq - 1), text.substr(colon + 1)};
+}
+
+// Checks --asset values: their form, and that the source is the seed humanoid or an existing file.
+CLI::Validator assetValidator() {
+    const CLI::Validator source = support::existingFileOr(support::kSeedHumanoid);
+    return CLI::Validator(
+        [source](std::string& text) -> std::string {
+            const auto a = parseAsset(text);
+            if (!a) return "expects NAME=SOURCE:CLIP (CLIP may be empty), got '" + text + "'";
+            std::string path = a->source;
+            return source(path);
+        },
+        "");
+}
 
 struct Row {
     std::string asset, clip, method;
@@ -131,8 +156,8 @@ void measureViews(const Asset& asset, ImpostorBaker& baker, const ImpostorAtlas&
 
 void measure(const Asset& asset, const ImpostorBakeOptions& options, const MorphParameters& parameters, const std::filesystem::path& out,
              std::vector<Row>& rows, std::vector<Memory>& memory, std::vector<ViewRow>& viewRows) {
-    const auto tmpl = bake::loadTemplate(asset.source);
-    const int clip = bake::findClipOrThrow(*tmpl, asset.clip);
+    const auto tmpl = support::loadTemplate(asset.source);
+    const int clip = support::findClipOrThrow(*tmpl, asset.clip);
     auto context = createContext(ContextOptions{options.cellSize, options.cellSize, false});
     ImpostorBaker baker(context, tmpl, clip, options);
     std::fprintf(stderr, "%s: baking...\n", asset.name.c_str());
@@ -218,35 +243,40 @@ int main(int argc, char** argv) {
     MorphParameters parameters;
     std::vector<Asset> assets;
     const std::string shared = THRONG_SHARED_ASSETS;
+    std::string outText = out.string();
+    support::ViewGrid views{options.azimuths, options.elevations};
+    std::vector<std::string> assetTexts;
+    support::CommandLine cl("throng-impostor-quality",
+                            "How good morphed impostor key-frames are and what they cost: NCC, PSNR and SSIM of morphed\n"
+                            "against truly rendered cells, texture memory, morph time, view blending. Writes\n"
+                            "impostor-quality.md, .csv and .png (the plot through VTK: without a display, run under\n"
+                            "xvfb-run -a).");
+    CLI::App& app = cl.app();
+    app.add_option("--out", outText, "folder for the report")->type_name("DIR");
+    app.add_option("--size", options.cellSize, "cell side")->type_name("PIXELS")->check(support::wholeNumber(8, 4096));
+    app.add_option("--keyframes", options.keyframes, "key-frames over the clip (odd ones are dropped and morphed)")
+        ->type_name("N")
+        ->check(support::wholeNumber(2, 1024));
+    app.add_option("--views", views, "azimuths x elevations on the hemisphere")->type_name("AxE")->check(support::viewGrid());
+    app.add_option("--a", parameters.a, "Beier-Neely a, pixels")->type_name("X")->check(support::nonNegativeNumber());
+    app.add_option("--b", parameters.b, "Beier-Neely b: how fast weight falls with distance")
+        ->type_name("X")
+        ->check(support::nonNegativeNumber());
+    app.add_option("--p", parameters.p, "Beier-Neely p: how much longer lines weigh more")
+        ->type_name("X")
+        ->check(support::nonNegativeNumber());
+    app.add_option("--asset", assetTexts, "a character to measure, once per character (SOURCE: a file or seed-humanoid)")
+        ->type_name("NAME=SOURCE:CLIP")
+        ->check(assetValidator())
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false)
+        ->default_str("CesiumMan, robot and seed-humanoid");
+    if (const auto code = cl.parse(argc, argv)) return *code;
+    out = outText;
+    options.azimuths = views.azimuths;
+    options.elevations = views.elevations;
+    for (const std::string& text : assetTexts) assets.push_back(*parseAsset(text));
     try {
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            const auto next = [&]() -> std::string {
-                if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-                return argv[++i];
-            };
-            if (a == "--out") out = next();
-            else if (a == "--size") options.cellSize = std::stoi(next());
-            else if (a == "--a") parameters.a = std::stof(next());
-            else if (a == "--b") parameters.b = std::stof(next());
-            else if (a == "--p") parameters.p = std::stof(next());
-            else if (a == "--keyframes") options.keyframes = std::stoi(next());
-            else if (a == "--views") {
-                const std::string v = next();
-                options.azimuths = std::stoi(v.substr(0, v.find('x')));
-                options.elevations = std::stoi(v.substr(v.find('x') + 1));
-            } else if (a == "--asset") {
-                const std::string v = next();
-                const auto eq = v.find('='), colon = v.rfind(':');
-                if (eq == std::string::npos || colon == std::string::npos || colon < eq)
-                    throw std::runtime_error("--asset wants NAME=SOURCE:CLIP");
-                assets.push_back({v.substr(0, eq), v.substr(eq + 1, colon - eq - 1), v.substr(colon + 1)});
-            } else {
-                std::fprintf(stderr, "usage: throng-impostor-quality [--out DIR] [--size N] [--keyframes N] [--views AxE] "
-                                     "[--asset NAME=SOURCE:CLIP ...]\n");
-                return a == "--help" ? 0 : 2;
-            }
-        }
         if (assets.empty())
             assets = {{"CesiumMan", shared + "/characters/CesiumMan.glb", ""},
                       {"robot", shared + "/characters/robot.glb", "Robot_Walking"},

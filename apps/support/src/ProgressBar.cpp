@@ -1,10 +1,10 @@
-#include "ProgressBar.h"
+#include "throng/support/ProgressBar.h"
 
 #include <unistd.h>
 
 #include <algorithm>
 
-namespace throng::town {
+namespace throng::support {
 
 ProgressBar::ProgressBar(std::string label, std::size_t total)
     : label_(std::move(label)), total_(std::max<std::size_t>(total, 1)), terminal_(isatty(fileno(stderr)) != 0) {}
@@ -28,4 +28,4 @@ void ProgressBar::finish(const std::string& detail) {
     if (terminal_) std::fprintf(stderr, "\n");
 }
 
-}  // namespace throng::town
+}  // namespace throng::support

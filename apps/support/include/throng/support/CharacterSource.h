@@ -1,6 +1,6 @@
 #pragma once
-// Where the impostor tools get a character: a glTF file through the loader (when the build has
-// it), or a procedural template by name ("seed-humanoid") so that the tools run without assets.
+// Where the tools get a character: a glTF file through the loader, or the procedural template
+// "seed-humanoid" so that the tools run without assets.
 
 #include <memory>
 #include <string>
@@ -9,15 +9,17 @@ namespace throng {
 class ActorTemplate;
 }
 
-namespace throng::bake {
+namespace throng::support {
+
+/// The name of the procedural figure every tool accepts in place of a file.
+inline constexpr const char* kSeedHumanoid = "seed-humanoid";
 
 /// The template of `source`: "seed-humanoid", or a .glb/.gltf file (its primary character).
-/// Throws std::runtime_error naming the source when it cannot be loaded or this build has no
-/// glTF loader.
+/// Throws GltfError for a bad file, std::runtime_error for a file that holds no character.
 std::shared_ptr<const ActorTemplate> loadTemplate(const std::string& source);
 
 /// Index of the clip named `name` in `tmpl` (the first clip when `name` is empty). Throws
 /// std::runtime_error listing the template's clips when there is no such clip.
 int findClipOrThrow(const ActorTemplate& tmpl, const std::string& name);
 
-}  // namespace throng::bake
+}  // namespace throng::support

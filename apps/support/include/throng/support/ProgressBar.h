@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-namespace throng::town {
+namespace throng::support {
 
 /// Progress of `total` steps, written to stderr.
 class ProgressBar {
@@ -24,4 +24,4 @@ private:
     int lastTenth_ = -1;
 };
 
-}  // namespace throng::town
+}  // namespace throng::support
