@@ -14,8 +14,6 @@
 //
 // usage: bench_frame --help
 
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -35,6 +33,8 @@
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 
 using namespace throng;
 
@@ -315,31 +315,30 @@ std::string methodTable(const std::vector<Row>& rows) {
 
 int main(int argc, char** argv) {
     Options o;
-    CLI::App app{"bench_frame: the whole frame of the town crowd, traditional, actor and actor + impostor processing on "
-                 "the identical state, side by side; then APP+CULL with 1 and 2 threads, and the pipelined frame."};
-    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")->delimiter(',')->check(CLI::Range(std::int64_t{1}, std::int64_t{10'000'000}))
-        ->capture_default_str();
-    app.add_option("--cameras", o.cameras, "cameras: street, overview")->delimiter(',')->check(CLI::IsMember({"street", "overview"}))
-        ->capture_default_str();
-    app.add_option("--frames", o.frames, "measured ticks per camera")->check(CLI::Range(1, 1'000'000))->capture_default_str();
-    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->check(CLI::Range(0, 10'000'000))->capture_default_str();
-    app.add_option("--width", o.width, "image width")->check(CLI::Range(16, 8192))->capture_default_str();
-    app.add_option("--height", o.height, "image height")->check(CLI::Range(16, 8192))->capture_default_str();
+    support::CommandLine cl("bench_frame",
+                            "The whole frame of the town crowd: traditional, actor and actor + impostor processing on the\n"
+                            "identical state, side by side; then APP+CULL with 1 and 2 threads, and the pipelined frame.");
+    CLI::App& app = cl.app();
+    using support::wholeNumber;
+    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")
+        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--cameras", o.cameras, "cameras")->delimiter(',')->type_name("NAME,...")
+        ->check(support::oneOf({"street", "overview"}));
+    app.add_option("--frames", o.frames, "measured ticks per camera")->type_name("N")->check(wholeNumber(1, 1'000'000));
+    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->type_name("N")->check(wholeNumber(0, 1'000'000));
+    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
+    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
     app.add_option("--scaling-actors", o.scalingActors, "actors of the 1-versus-2-threads section (0: skip)")
-        ->check(CLI::Range(0, 10'000'000))->capture_default_str();
-    app.add_option("--scaling-frames", o.scalingFrames, "measured ticks of that section")->check(CLI::Range(1, 1'000'000))->capture_default_str();
+        ->type_name("N")->check(wholeNumber(0, 10'000'000));
+    app.add_option("--scaling-frames", o.scalingFrames, "measured ticks of that section")->type_name("N")->check(wholeNumber(1, 1'000'000));
     app.add_option("--pipeline-actors", o.pipelineActors, "actors of the pipeline section (0: the scene's own)")
-        ->check(CLI::Range(0, 10'000'000))->capture_default_str();
-    app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")->check(CLI::Range(0, 10'000'000))
-        ->capture_default_str();
-    app.add_option("--scene", o.scene, "scene file")->check(CLI::ExistingFile)->capture_default_str();
-    app.add_option("--csv", o.csv, "also write the method rows as CSV");
-    app.add_option("--markdown", o.markdown, "also write the tables as Markdown");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? 0 : 2;
-    }
+        ->type_name("N")->check(wholeNumber(0, 10'000'000));
+    app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")
+        ->type_name("N")->check(wholeNumber(0, 1'000'000));
+    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
+    app.add_option("--csv", o.csv, "also write the method rows as CSV")->type_name("FILE");
+    app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
+    if (const auto code = cl.parse(argc, argv)) return *code;
 
     std::ostringstream report;
     try {
