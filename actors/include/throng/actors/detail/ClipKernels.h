@@ -84,7 +84,7 @@ W clipLocalTime(W duration, W t, bool loop, OpTally* ops) {
         return u;
     }
     THRONG_TALLY(ops, 0, 2, 0, 0);
-    return std::min(std::max(t, W(0)), duration);
+    return std::clamp(t, W(0), duration);
 }
 
 /// Writes channel `c`'s value at local time `t` into `out` (`width` values).

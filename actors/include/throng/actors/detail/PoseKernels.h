@@ -2,7 +2,7 @@
 // The pose jobs of SkeletonPose.h (local and model transforms, internal spheres, skin palettes,
 // detail distance, Skeleton Root matrix), written once over the scalar type: SkeletonPose.cpp
 // compiles them for float (actor space) and double (world space), the FMULT tests for a counting
-// type. Comparisons are counted as additions; a clamp is two comparisons (as compiled: a max and a
+// type. Comparisons are counted as additions (std::clamp makes two: libstdc++ takes a max, then a
 // min); sine and cosine are priced as square roots.
 
 #include <algorithm>
@@ -20,13 +20,6 @@
 #include "throng/scenegraph/detail/TransformKernels.h"
 
 namespace throng::detail {
-
-/// `value` limited to [lo, hi]: always two comparisons (std::clamp may skip one in the abstract,
-/// the compiled code never does).
-template <class S>
-inline S clampOf(S value, S lo, S hi) {
-    return std::min(std::max(value, lo), hi);
-}
 
 /// Skinning matrices (see throng::computeSkinPalette): 64 mults, 48 adds per joint with an active
 /// node.
@@ -93,7 +86,7 @@ BasicAffine<S> nodeLocalTransform(const SkeletonNode& node, const S* v, OpTally*
     for (const Dof& d : node.dofs) {
         switch (d.kind) {
             case DofKind::RotateAxis: {
-                const S angle = clampOf(v[0], S(d.min), S(d.max));
+                const S angle = std::clamp(v[0], S(d.min), S(d.max));
                 const S half = S(0.5f) * angle;
                 const S sn = sinOf(half);
                 r = r * Q(cosOf(half), convertTo<V>(d.axis) * sn);
@@ -101,7 +94,7 @@ BasicAffine<S> nodeLocalTransform(const SkeletonNode& node, const S* v, OpTally*
                 break;
             }
             case DofKind::TranslateAxis:
-                t += convertTo<V>(d.axis) * clampOf(v[0], S(d.min), S(d.max));
+                t += convertTo<V>(d.axis) * std::clamp(v[0], S(d.min), S(d.max));
                 THRONG_TALLY(ops, 3, 5, 0, 0);
                 break;
             case DofKind::Orientation:
