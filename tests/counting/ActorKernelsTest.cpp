@@ -12,11 +12,13 @@
 
 #include "KernelCheck.h"
 #include "throng/actors/AnimationClip.h"
+#include "throng/actors/ProceduralGait.h"
 #include "throng/actors/RefpointPath.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/actors/Table3Template.h"
 #include "throng/actors/detail/ClipKernels.h"
+#include "throng/actors/detail/GaitKernels.h"
 #include "throng/actors/detail/PoseKernels.h"
 #include "throng/actors/detail/RefpointKernel.h"
 #include "throng/scenegraph/MeshDrawable.h"
@@ -278,6 +280,35 @@ TEST(CountedKernels, ReferencePointPaths) {
             });
             expectSameMatrix(m, p.at(time), "RefpointPath::at");
         }
+}
+
+TEST(CountedKernels, ProceduralGaitEveryLevel) {
+    THRONG_SKIP_WITHOUT_COUNTING();
+    ProceduralGait::Actor actor;
+    actor.phase = 0.7;
+    actor.stepFrequency = 1.9;
+    ProceduralGait gait;
+    const std::uint32_t slot = gait.addActor(actor);
+    for (const auto& t : templates())
+        for (int level : {0, 1, 2})
+            for (double time : {0.3, 123.4})
+                for (const auto& active : activeSets(*t)) {
+                    const std::string what = t->name() + " level " + std::to_string(level) + " at " + std::to_string(time);
+                    std::vector<float> dofs(t->restDofs().begin(), t->restDofs().end());
+                    std::vector<CFloat> cdofs = counted(dofs);
+                    expectTallyMatchesExecuted("ProceduralGait::pose " + what, [&](OpTally* hand) {
+                        detail::gaitPose(actor, CDouble(time), level, *t, active, std::span<CFloat>(cdofs), hand);
+                    });
+                    gait.pose(slot, time, level, *t, active, dofs, nullptr);
+                    for (std::size_t i = 0; i < dofs.size(); ++i) EXPECT_EQ(cdofs[i].value(), dofs[i]) << what << " value " << i;
+                }
+    for (double time : {0.0, 0.41, 1e5}) {
+        CDouble bob;
+        expectTallyMatchesExecuted("ProceduralGait::skeletonRoot", [&](OpTally* hand) {
+            bob = detail::gaitBob(CDouble(actor.stepFrequency), CDouble(actor.phase), CDouble(time), hand);
+        });
+        EXPECT_EQ(static_cast<float>(bob.value()), gait.skeletonRoot(slot, time, 0, nullptr).translation.y);
+    }
 }
 
 namespace {
