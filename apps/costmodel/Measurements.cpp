@@ -24,6 +24,7 @@ CategoryFigures read(const OpCounter& c) {
     for (std::size_t i = 0; i < kOpCategoryCount; ++i) {
         f.operations[i] = c.operations(static_cast<OpCategory>(i));
         f.fmult[i] = c.fmult(static_cast<OpCategory>(i));
+        f.ops[i] = c.ops(static_cast<OpCategory>(i));
     }
     return f;
 }
@@ -68,6 +69,7 @@ ExampleSceneFigures measureExampleScene() {
     f.skeletonRootCost = double(at(f.traditional, OpCategory::SkeletonRootDofValues)) / actors;
     const double posedNodes = double(count(f.actor, OpCategory::SkeletonMatrix));
     f.averageCostActor = posedNodes > 0 ? double(at(f.actor, OpCategory::SkeletonDofValues)) / posedNodes : 0.0;
+    f.kernels = measureKernels(scene, crowd, ProcessorSettings{}, p.drawList(), f.traditionalStats, f.actorStats);
     return f;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "KernelCosts.h"
 #include "throng/actors/ActorFrameStatistics.h"
 #include "throng/scenegraph/OpCategory.h"
 
@@ -18,6 +19,7 @@ namespace throng::costmodel {
 struct CategoryFigures {
     std::array<std::uint64_t, kOpCategoryCount> operations{};  ///< NO_xx counts
     std::array<std::uint64_t, kOpCategoryCount> fmult{};       ///< FMULT
+    std::array<OpTally, kOpCategoryCount> ops{};               ///< elementary operations behind the FMULT
 };
 
 /// The example scene (Tables 2-3) measured under both methods.
@@ -30,6 +32,7 @@ struct ExampleSceneFigures {
     double refpointCost = 0;              ///< measured CO_02a per actor (traditional)
     double skeletonRootCost = 0;          ///< measured CO_03a per actor (traditional)
     double averageCostActor = 0;          ///< measured CO_01a per posed node under actor processing
+    KernelFigures kernels;                ///< what the verified kernels predict (per-invocation costs, invocations)
 };
 
 /// One size of the wall-clock comparison.

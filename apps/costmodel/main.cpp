@@ -276,6 +276,26 @@ json measuredJson(const ExampleSceneFigures& m) {
     j["averageCost"] = {{"CO_01a", m.averageCost}, {"CO_02a", m.refpointCost}, {"CO_03a", m.skeletonRootCost},
                         {"CO_01a_actor", m.averageCostActor}};
     j["reasons"] = reasons(m);
+    // For check_costmodel.py: the elementary operations behind each counter category, and what the
+    // verified kernels predict (per-invocation costs and the invocations the cascade calls for).
+    auto opsJson = [](const OpTally& t) {
+        return json{{"mults", t.mults}, {"adds", t.adds}, {"divs", t.divs}, {"sqrts", t.sqrts}, {"fmult", t.fmult()}};
+    };
+    for (const char* method : {"trad", "act"}) {
+        const CategoryFigures& f = std::strcmp(method, "trad") == 0 ? m.traditional : m.actor;
+        for (std::size_t i = 0; i < kOpCategoryCount; ++i)
+            j["counters"][method][std::string(opCategoryName(static_cast<OpCategory>(i)))] = opsJson(f.ops[i]);
+    }
+    const CostModel model;
+    const OperationCounts tn = model.traditionalCounts(), an = model.actorCounts();
+    const OperationCosts tc = CostModel::traditionalCosts(m.averageCost), ac = CostModel::actorCosts(m.averageCost, 1, 1);
+    for (int i = 0; i < 6; ++i) {
+        j["modelFmult"]["trad"][kCategories[i].name] = modelFmult(tn, tc, i);
+        j["modelFmult"]["act"][kCategories[i].name] = modelFmult(an, ac, i);
+    }
+    for (const auto& [name, t] : m.kernels.kernels) j["kernels"][name] = opsJson(t);
+    j["structure"]["trad"] = m.kernels.traditional;
+    j["structure"]["act"] = m.kernels.actor;
     return j;
 }
 

@@ -6,6 +6,7 @@
 #include "throng/scenegraph/OpCounter.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/scenegraph/Validation.h"
+#include "throng/scenegraph/detail/LodKernels.h"
 
 #include <stdexcept>
 
@@ -93,18 +94,14 @@ void CullVisitor::apply(LOD& lod) {
     const PlaneMask saved = mask_;
     if (enter(lod)) {
         // Traditional LOD: this node finds its own centre in world space and its own distance.
-        const Mat4& m = *world_;
-        const Vec3& c = lod.center();
-        const Vec3 worldCenter = Vec3(m[0]) * c.x + Vec3(m[1]) * c.y + Vec3(m[2]) * c.z + Vec3(m[3]);
-        const Vec3 d = worldCenter - eye_;
-        const double scaled2 = glm::dot(d, d) * lodScale2_;
-        const int index = lod.selectChildSquared(scaled2);
-        ++stats_.lodDistances;
+        OpTally* ops = nullptr;
         if (counter_) {
             counter_->countOperations(OpCategory::LodDistance);
-            [[maybe_unused]] const std::size_t compares = index < 0 ? lod.childCount() : static_cast<std::size_t>(index) + 1;
-            THRONG_TALLY(counter_->tally(OpCategory::LodDistance), 13, 14 + compares, 0, 0);
+            ops = counter_->tally(OpCategory::LodDistance);
         }
+        const double scaled2 = detail::lodDistanceSquared(*world_, lod.center(), eye_, lodScale2_, ops);
+        const int index = lod.selectChildSquared(scaled2, ops);
+        ++stats_.lodDistances;
         if (index >= 0) {
             const std::uint32_t savedLevel = lodLevel_;
             lodLevel_ = static_cast<std::uint32_t>(index);

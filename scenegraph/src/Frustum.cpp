@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "throng/scenegraph/Validation.h"
+#include "throng/scenegraph/detail/FrustumKernel.h"
 
 namespace throng {
 
@@ -40,20 +41,7 @@ Frustum Frustum::fromViewProjection(const Mat4& m) {
 }
 
 Containment Frustum::classify(const BoundingSphere& s, PlaneMask& mask, OpTally* ops) const {
-    if (!s.valid()) return Containment::Outside;
-    const Vec3& c = s.center();
-    const double r = s.radius();
-    for (int i = 0; i < kPlaneCount; ++i) {
-        const PlaneMask bit = static_cast<PlaneMask>(1u << i);
-        if (!(mask & bit)) continue;
-        const Vec4& p = planes_[i];
-        const double dist = p.x * c.x + p.y * c.y + p.z * c.z + p.w;
-        THRONG_TALLY(ops, 3, 4, 0, 0);  // signed distance, compare with -r
-        if (dist < -r) return Containment::Outside;
-        THRONG_TALLY(ops, 0, 1, 0, 0);  // compare with r
-        if (dist >= r) mask = static_cast<PlaneMask>(mask & ~bit);
-    }
-    return mask == 0 ? Containment::Inside : Containment::Intersects;
+    return detail::classifySphere(planes_, s, mask, ops);
 }
 
 bool Frustum::contains(const Vec3& point) const {

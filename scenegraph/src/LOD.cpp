@@ -5,6 +5,7 @@
 
 #include "throng/scenegraph/NodeVisitor.h"
 #include "throng/scenegraph/Validation.h"
+#include "throng/scenegraph/detail/LodKernels.h"
 
 namespace throng {
 
@@ -36,10 +37,8 @@ int LOD::selectChild(double distance) const {
     return -1;
 }
 
-int LOD::selectChildSquared(double distance2) const {
-    for (std::size_t i = 0; i < maxDistances2_.size(); ++i)
-        if (distance2 < maxDistances2_[i]) return static_cast<int>(i);
-    return -1;
+int LOD::selectChildSquared(double distance2, OpTally* ops) const {
+    return detail::selectRangeSquared(std::span<const double>(maxDistances2_), distance2, ops);
 }
 
 }  // namespace throng

@@ -147,11 +147,12 @@ TEST(Frustum, PlaneMaskSkipsPlanesAParentIsInside) {
     EXPECT_EQ(f.classify(child, childMask, &childOps), Containment::Inside);
     EXPECT_EQ(childMask, 0);
     EXPECT_EQ(childOps.mults, 3u) << "one plane tested for the child";
-    // With an empty mask the answer is Inside without any test.
+    // With an empty mask the answer is Inside without any plane test (only the sphere's emptiness
+    // is checked).
     OpTally none;
     PlaneMask empty = 0;
     EXPECT_EQ(f.classify(BoundingSphere(Vec3(0, 0, 1000), 1), empty, &none), Containment::Inside);
-    EXPECT_EQ(none.fmult(), 0u);
+    EXPECT_EQ(none.mults, 0u);
 }
 
 TEST(Frustum, RejectsNonFiniteAndEmptyVolumes) {

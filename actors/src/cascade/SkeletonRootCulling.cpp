@@ -65,8 +65,7 @@ void cullSkeletonRoots(CascadeFrame& f) {
             }
             // The actor's one eye distance.
             const double d2 = detailDistanceSquared(s.sklsWorld[id], f.eye, f.settings.lodScale2, s.priority[id], lodOps);
-            s.eyeDistance[id] = glm::length(Vec3(s.sklsWorld[id][3]) - f.eye);
-            THRONG_TALLY(lodOps, 3, 5, 0, 1);
+            s.eyeDistance[id] = eyeDistance(s.sklsWorld[id], f.eye, lodOps);
             countOperations(c, OpCategory::LodDistance);
             ++counts.lodDistances;
             ++counts.eyeDistances;

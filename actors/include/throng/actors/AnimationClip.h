@@ -66,9 +66,6 @@ public:
     double localTime(double t, bool loop) const;
 
 private:
-    // Writes channel `c`'s value at local time `t` into `out` (`width` floats).
-    static void sampleChannel(const ClipChannel& c, int width, bool orientation, float t, float* out,
-                              OpTally* ops, bool holdKeys);
     std::string name_;
     std::vector<ClipChannel> channels_;
     double duration_ = 0.0;

@@ -32,6 +32,10 @@ void computeSkinPalette(const ActorTemplate& tmpl, const Skin& skin, std::span<c
 double detailDistanceSquared(const Mat4& skeletonRootWorld, const Vec3& eye, double lodScale2, float priority,
                              OpTally* ops = nullptr);
 
+/// Distance from the eye to the Skeleton Root, the actor's `eyeDistance` (3 mults, 5 adds, 1 sqrt;
+/// NO_05 with detailDistanceSquared).
+double eyeDistance(const Mat4& skeletonRootWorld, const Vec3& eye, OpTally* ops = nullptr);
+
 /// The Skeleton Root's transform relative to the Reference Point as a matrix (18 mults, 15 adds).
 Mat4 rootPoseMatrix(const RootPose& root, OpTally* ops = nullptr);
 

@@ -1,50 +1,68 @@
 #pragma once
 // A bounding sphere in double precision. Merging is robust (one sphere inside the other, coincident
 // centres, zero radii) and always conservative: the result contains both inputs even after rounding.
+// The class is a template over its scalar only so that tests can run the very same merge and
+// transform code on an operation-counting number type; everything else uses BoundingSphere.
 
 #include "throng/scenegraph/Math.h"
 #include "throng/scenegraph/OpTally.h"
 
 namespace throng {
 
-/// A sphere (centre, radius). A default-constructed sphere is empty (invalid) and merges as nothing.
-class BoundingSphere {
+/// A sphere (centre, radius) over scalar `S`. A default-constructed sphere is empty (invalid) and
+/// merges as nothing. Its operations are defined in detail/BoundingSphereImpl.h and compiled for
+/// double in the library.
+template <class S>
+class BasicBoundingSphere {
 public:
-    /// An empty sphere: valid() is false and it contains nothing.
-    BoundingSphere() = default;
-    /// A sphere; throws std::invalid_argument if `center` or `radius` is not finite or radius < 0.
-    BoundingSphere(const Vec3& center, double radius);
+    /// The centre's type.
+    using Vec = glm::vec<3, S, glm::defaultp>;
+    /// The type of the matrices a sphere is transformed by.
+    using Mat = glm::mat<4, 4, S, glm::defaultp>;
 
-    /// Whether the sphere holds anything (an empty sphere has a negative radius).
-    bool valid() const { return radius_ >= 0.0; }
+    /// An empty sphere: valid() is false and it contains nothing.
+    BasicBoundingSphere() = default;
+    /// A sphere; throws std::invalid_argument if `center` or `radius` is not finite or radius < 0.
+    BasicBoundingSphere(const Vec& center, S radius);
+    /// The same sphere in another scalar type (a conversion, no arithmetic).
+    template <class U>
+    explicit BasicBoundingSphere(const BasicBoundingSphere<U>& other)
+        : center_(other.center()), radius_(static_cast<S>(other.radius())) {}
+
+    /// Whether the sphere holds anything (an empty sphere has a negative radius). One comparison.
+    bool valid() const { return radius_ >= S(0); }
     /// The centre.
-    const Vec3& center() const { return center_; }
+    const Vec& center() const { return center_; }
     /// The radius (negative when empty).
-    double radius() const { return radius_; }
+    S radius() const { return radius_; }
 
     /// Grows to enclose `point` (throws if it is not finite). Costs are added to `ops` if non-null.
-    void expandBy(const Vec3& point, OpTally* ops = nullptr);
+    void expandBy(const Vec& point, OpTally* ops = nullptr);
     /// Grows to enclose `sphere` with the smallest sphere holding both; empty spheres are ignored.
-    void expandBy(const BoundingSphere& sphere, OpTally* ops = nullptr);
+    void expandBy(const BasicBoundingSphere& sphere, OpTally* ops = nullptr);
     /// Grows the radius by `margin` metres (throws if negative or not finite).
-    void inflate(double margin);
+    void inflate(S margin);
 
     /// The sphere enclosing this one after the affine part of `m` (rotation, any scale, shear,
     /// translation). The radius bound is exact for rotation-and-scale matrices and never too small.
-    BoundingSphere transformed(const Mat4& m, OpTally* ops = nullptr) const;
+    BasicBoundingSphere transformed(const Mat& m, OpTally* ops = nullptr) const;
 
     /// Whether `point` lies inside or on the sphere.
-    bool contains(const Vec3& point) const;
+    bool contains(const Vec& point) const;
     /// Whether `sphere` lies entirely inside this one (an empty sphere is inside anything).
-    bool contains(const BoundingSphere& sphere) const;
+    bool contains(const BasicBoundingSphere& sphere) const;
 
     /// Exact equality of centre and radius, for tests.
-    bool operator==(const BoundingSphere&) const = default;
+    bool operator==(const BasicBoundingSphere&) const = default;
 
 private:
-    Vec3 center_{0.0};
-    double radius_ = -1.0;
+    Vec center_{S(0)};
+    S radius_ = S(-1);
 };
+
+/// The bounding sphere of the scenegraph (double precision).
+using BoundingSphere = BasicBoundingSphere<double>;
+extern template class BasicBoundingSphere<double>;
 
 /// Upper bound of the largest factor by which the linear part of `m` stretches a vector (its
 /// spectral norm): exact when the columns are orthogonal, conservative with shear.

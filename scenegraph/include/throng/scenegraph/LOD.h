@@ -6,6 +6,7 @@
 
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/Math.h"
+#include "throng/scenegraph/OpTally.h"
 
 namespace throng {
 
@@ -29,7 +30,8 @@ public:
     /// Index of the child shown at `distance` (already multiplied by any LOD scale), or -1 if none.
     int selectChild(double distance) const;
     /// Index of the child shown when the squared distance is `distance2` (saves a sqrt), or -1.
-    int selectChildSquared(double distance2) const;
+    /// Its comparisons are added to `ops` if non-null (NO_05).
+    int selectChildSquared(double distance2, OpTally* ops = nullptr) const;
 
 private:
     using Group::addChild;  // children of an LOD need a range

@@ -43,6 +43,14 @@ struct OpTally {
 // THRONG_TALLY(tallyPtr, mults, adds, divs, sqrts) records operations into an OpTally* when counting
 // is compiled in (THRONG_OP_COUNTING=1) and the pointer is non-null. Compiled out, it vanishes, so
 // hot paths pay nothing; compiled in with a null pointer, they pay one predictable branch.
+//
+// A tally states the operations of the code beside it, by these rules: every binary +, -, *, / on
+// the kernel's numbers counts, multiplies by literals included (only arithmetic between constants is
+// folded by the compiler); a comparison is an addition (std::min and std::max make one, std::clamp
+// two, a sphere's emptiness test radius >= 0 one); sin, cos and acos are priced as square roots and
+// fmod as a division; negation, abs and float/double conversions are free. The counted kernels are
+// templates over their scalar (the detail/ headers), and tests/counting runs each on a number type
+// that counts what it executes, checking every tally against it.
 #ifndef THRONG_OP_COUNTING
 #define THRONG_OP_COUNTING 1
 #endif

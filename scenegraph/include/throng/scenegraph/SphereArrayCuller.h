@@ -11,6 +11,7 @@
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/Math.h"
 #include "throng/scenegraph/OpTally.h"
+#include "throng/scenegraph/detail/SphereArrayKernel.h"
 
 namespace throng {
 
@@ -33,17 +34,19 @@ public:
     /// std::invalid_argument if the arrays differ in length or `out` is shorter.
     void classify(const SphereArrays& spheres, std::span<Containment> out, OpTally* ops = nullptr) const;
 
-    /// Operations spent per sphere (the kernel does the same work for every sphere): margin 1 mult
-    /// 4 adds, six planes 18 mults 18 adds, margins and minimums 22 adds, result 4 adds.
+    /// Operations spent per sphere (the kernel does the same work for every sphere, with no branch):
+    /// reach 1 mult 4 adds, six signed distances 18 mults 18 adds, twice six margins, five minimums
+    /// and the reach 24 adds, two comparisons 2 adds.
     static constexpr OpTally kOpsPerSphere{19, 48, 0, 0, 0};
 
     /// The origin the sphere coordinates are relative to.
     const Vec3& origin() const { return origin_; }
+    /// The planes as the kernel uses them, relative to the origin (inactive planes always inside).
+    const detail::CullPlanes<float>& planes() const { return planes_; }
 
 private:
     Vec3 origin_;
-    // Plane i = (nx[i], ny[i], nz[i], d[i]); inactive planes are made always-inside.
-    alignas(32) std::array<float, 8> nx_{}, ny_{}, nz_{}, d_{}, dMargin_{};
+    detail::CullPlanes<float> planes_;
 };
 
 }  // namespace throng
