@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "SpanChecks.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/detail/ClipKernels.h"
 
@@ -43,6 +44,8 @@ double AnimationClip::localTime(double t, bool loop) const { return detail::clip
 
 std::size_t AnimationClip::sample(const ActorTemplate& tmpl, double t, bool loop, std::span<const std::uint8_t> active,
                                   std::span<float> dofs, OpTally* ops, bool holdKeys) const {
+    detail::requireFlagsOrNone(active.size(), tmpl.nodeCount(), "AnimationClip::sample", tmpl);
+    detail::requireEntries(dofs.size(), tmpl.dofValueCount(), "AnimationClip::sample", "dofs", tmpl, "every DOF value");
     return detail::sampleClip(*this, tmpl, t, loop, active, dofs, ops, holdKeys);
 }
 

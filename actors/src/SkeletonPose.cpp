@@ -2,11 +2,13 @@
 
 #include <algorithm>
 
+#include "SpanChecks.h"
 #include "throng/actors/detail/PoseKernels.h"
 
 namespace throng {
 
 std::size_t computeActiveNodes(const ActorTemplate& tmpl, double distance2, std::span<std::uint8_t> active) {
+    detail::requireEntries(active.size(), tmpl.nodeCount(), "computeActiveNodes", "active", tmpl, "one flag per node");
     const auto nodes = tmpl.nodes();
     std::size_t count = 0;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -22,6 +24,10 @@ std::size_t computeActiveNodes(const ActorTemplate& tmpl, double distance2, std:
 
 void computeSkinPalette(const ActorTemplate& tmpl, const Skin& skin, std::span<const Affine> model,
                         std::span<const std::uint8_t> active, std::span<glm::mat4> palette, OpTally* ops) {
+    constexpr const char* where = "computeSkinPalette";
+    detail::requireEntries(model.size(), tmpl.nodeCount(), where, "model", tmpl, "one transform per node");
+    detail::requireFlagsOrNone(active.size(), tmpl.nodeCount(), where, tmpl);
+    detail::requireEntries(palette.size(), skin.joints.size(), where, "palette", tmpl, "one matrix per joint of the skin");
     detail::computeSkinPalette(tmpl, skin, model, active, palette, ops);
 }
 
@@ -42,6 +48,8 @@ BoundingSphere partWorldSphere(const BoundingSphere& local, const Affine& model,
 }
 
 void writeRestPose(const ActorTemplate& tmpl, std::span<const std::uint8_t> active, std::span<float> dofs) {
+    detail::requireFlagsOrNone(active.size(), tmpl.nodeCount(), "writeRestPose", tmpl);
+    detail::requireEntries(dofs.size(), tmpl.dofValueCount(), "writeRestPose", "dofs", tmpl, "every DOF value");
     const auto rest = tmpl.restDofs();
     for (std::size_t i = 0; i < tmpl.nodeCount(); ++i) {
         if (!active.empty() && !active[i]) continue;
@@ -57,12 +65,21 @@ Affine nodeLocalTransform(const SkeletonNode& node, const float* values, OpTally
 
 std::size_t computeModelTransforms(const ActorTemplate& tmpl, std::span<const float> dofs,
                                    std::span<const std::uint8_t> active, std::span<Affine> model, OpTally* ops) {
+    constexpr const char* where = "computeModelTransforms";
+    detail::requireEntries(dofs.size(), tmpl.dofValueCount(), where, "dofs", tmpl, "every DOF value");
+    detail::requireFlagsOrNone(active.size(), tmpl.nodeCount(), where, tmpl);
+    detail::requireEntries(model.size(), tmpl.nodeCount(), where, "model", tmpl, "one transform per node");
     return detail::computeModelTransforms(tmpl, dofs, active, model, ops);
 }
 
 BoundingSphere computeInternalSpheres(const ActorTemplate& tmpl, std::span<const Affine> model,
                                       std::span<const std::uint8_t> active, std::span<BoundingSphere> geometry,
                                       std::span<BoundingSphere> subtree, OpTally* ops) {
+    constexpr const char* where = "computeInternalSpheres";
+    detail::requireEntries(model.size(), tmpl.nodeCount(), where, "model", tmpl, "one transform per node");
+    detail::requireFlagsOrNone(active.size(), tmpl.nodeCount(), where, tmpl);
+    detail::requireEntries(geometry.size(), tmpl.nodeCount(), where, "geometry", tmpl, "one sphere per node");
+    detail::requireEntries(subtree.size(), tmpl.nodeCount(), where, "subtree", tmpl, "one sphere per node");
     return detail::computeInternalSpheres(tmpl, model, active, geometry, subtree, ops);
 }
 

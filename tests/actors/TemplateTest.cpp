@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <set>
 
@@ -199,4 +200,38 @@ TEST(Templates, ClonesShareTheTemplateAndOneMoreCloneIsSmall) {
     RecordProperty("sharedBytes", std::to_string(shared));
     std::printf("humanoid: %zu bytes shared by every clone, %zu bytes per clone\n", shared, perClone);
     EXPECT_EQ(crowd.dofs(7).size(), h->dofValueCount());
+}
+
+// The pose jobs validate the spans their callers own, and name the argument that is too short.
+TEST(PoseJobs, ShortSpansAreRejectedNamingTheArgument) {
+    const auto t = makeSeedHumanoid();
+    const std::size_t n = t->nodeCount();
+    std::vector<float> dofs(t->restDofs().begin(), t->restDofs().end());
+    std::vector<std::uint8_t> active(n, 1);
+    std::vector<Affine> model(n);
+    std::vector<BoundingSphere> geometry(n), subtree(n);
+    auto expectNamed = [](const std::function<void()>& call, const std::string& argument) {
+        try {
+            call();
+            ADD_FAILURE() << "a short '" << argument << "' was accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("'" + argument + "'"), std::string::npos) << e.what();
+        }
+    };
+    const std::span<float> shortDofs(dofs.data(), dofs.size() - 1);
+    const std::span<std::uint8_t> shortActive(active.data(), n - 1);
+    const std::span<Affine> shortModel(model.data(), n - 1);
+    expectNamed([&] { computeActiveNodes(*t, 1.0, shortActive); }, "active");
+    expectNamed([&] { computeModelTransforms(*t, shortDofs, {}, model); }, "dofs");
+    expectNamed([&] { computeModelTransforms(*t, dofs, shortActive, model); }, "active");
+    expectNamed([&] { computeModelTransforms(*t, dofs, {}, shortModel); }, "model");
+    expectNamed([&] { computeInternalSpheres(*t, shortModel, {}, geometry, subtree); }, "model");
+    expectNamed([&] { computeInternalSpheres(*t, model, {}, std::span(geometry.data(), n - 1), subtree); }, "geometry");
+    expectNamed([&] { computeInternalSpheres(*t, model, {}, geometry, std::span(subtree.data(), n - 1)); }, "subtree");
+    expectNamed([&] { writeRestPose(*t, {}, shortDofs); }, "dofs");
+    expectNamed([&] { t->clips()[0]->sample(*t, 0.5, true, {}, shortDofs); }, "dofs");
+    expectNamed([&] { t->clips()[0]->sample(*t, 0.5, true, shortActive, dofs); }, "active");
+    // Full-size spans (and empty active flags, meaning every node) are accepted.
+    EXPECT_EQ(computeModelTransforms(*t, dofs, {}, model), n);
+    EXPECT_EQ(computeActiveNodes(*t, 1.0, active), n);
 }
