@@ -52,6 +52,8 @@ struct Options {
     int pipelineFrames = 120;            // frames of each pipeline run (0: skip)
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::string csv, markdown;
+    std::vector<std::string> sections{"methods", "scaling", "pipeline"};
+    bool has(const char* section) const { return std::find(sections.begin(), sections.end(), section) != sections.end(); }
 };
 
 // Times on the scene's camera path: in a street (eye 2.75 m up) and over the town.
@@ -335,6 +337,8 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(0, 10'000'000));
     app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")
         ->type_name("N")->check(wholeNumber(0, 1'000'000));
+    app.add_option("--sections", o.sections, "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline"}));
     app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
     app.add_option("--csv", o.csv, "also write the method rows as CSV")->type_name("FILE");
     app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
@@ -345,17 +349,19 @@ int main(int argc, char** argv) {
         auto context = createContext({.width = o.width, .height = o.height, .window = false});
         std::vector<Row> rows;
         std::uint64_t ticks = 0;
-        for (std::int64_t n : o.actors) {
+        for (std::int64_t n : o.has("methods") ? o.actors : std::vector<std::int64_t>{}) {
             std::fprintf(stderr, "bench_frame: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n,
                          o.frames);
             const auto part = compareMethods(o, n, context, &ticks);
             rows.insert(rows.end(), part.begin(), part.end());
         }
-        report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n";
-        report << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
-               << ", one thread; means over " << o.frames << " ticks (`bench_frame";
-        for (int i = 1; i < argc; ++i) report << ' ' << argv[i];
-        report << "`).\n\n" << methodTable(rows);
+        if (o.has("methods")) {
+            report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n";
+            report << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
+                   << ", one thread; means over " << o.frames << " ticks (`bench_frame";
+            for (int i = 1; i < argc; ++i) report << ' ' << argv[i];
+            report << "`).\n\n" << methodTable(rows);
+        }
         if (!o.csv.empty()) {
             std::ofstream csv(o.csv);
             csv << "actors,camera,method,step_ms,app_ms,cull1_ms,roots_ms,cull2_ms,pose_ms,cull3_ms,list_ms,app_cull_ms,impostor_batch_ms,"
@@ -366,7 +372,7 @@ int main(int argc, char** argv) {
                     << r.morph << ',' << r.town << ',' << r.meshes << ',' << r.quads << ',' << r.finish << ',' << r.draw << ','
                     << r.frame << ',' << r.posed << ',' << r.impostors << ',' << r.items << ',' << r.triangles << '\n';
         }
-        if (o.scalingActors > 0) {
+        if (o.has("scaling") && o.scalingActors > 0) {
             std::fprintf(stderr, "bench_frame: %lld actors with 1 and 2 threads...\n", (long long)o.scalingActors);
             const auto scaling = threadScaling(o);
             report << "\nAPP+CULL and the step with 1 and 2 threads, " << o.scalingActors
@@ -381,7 +387,7 @@ int main(int argc, char** argv) {
                 report << line;
             }
         }
-        if (o.pipelineFrames > 0) {
+        if (o.has("pipeline") && o.pipelineFrames > 0) {
             std::fprintf(stderr, "bench_frame: the pipelined frame, %d frames each way...\n", o.pipelineFrames);
             const PipelineResult p = pipelineFps(o, context);
             char line[512];

@@ -24,7 +24,7 @@ public:
         if (current_ == chunks_.size()) {
             // Blocks grow geometrically: small lists stay small, large ones need few blocks.
             const std::size_t size = std::max(n, chunks_.empty() ? kFirstChunk : std::min(kLargestChunk, 2 * chunks_.back().size));
-            chunks_.push_back(Chunk{std::make_unique<T[]>(size), size, 0});
+            chunks_.push_back(Chunk{std::make_unique_for_overwrite<T[]>(size), size, 0});  // written before read: no zeroing
         }
         Chunk& c = chunks_[current_];
         T* out = c.data.get() + c.used;
