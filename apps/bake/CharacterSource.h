@@ -1,6 +1,6 @@
 #pragma once
-// Where the impostor tools get a character: a glTF file through the loader (when the build has
-// it), or a procedural template by name ("seed-humanoid") so that the tools run without assets.
+// Where the impostor tools get a character: a glTF file through the loader (throng::gltf), or a
+// procedural template by name ("seed-humanoid") so that the tools run without assets.
 
 #include <memory>
 #include <string>
@@ -12,8 +12,8 @@ class ActorTemplate;
 namespace throng::bake {
 
 /// The template of `source`: "seed-humanoid", or a .glb/.gltf file (its primary character).
-/// Throws std::runtime_error naming the source when it cannot be loaded or this build has no
-/// glTF loader.
+/// Throws throng::GltfError (file, JSON pointer, problem) when the file cannot be loaded, and
+/// std::runtime_error naming the source when it holds no character.
 std::shared_ptr<const ActorTemplate> loadTemplate(const std::string& source);
 
 /// Index of the clip named `name` in `tmpl` (the first clip when `name` is empty). Throws

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <string>
 
-#include "throng/actors/GltfLoader.h"
+#include "throng/gltf/GltfLoader.h"
 
 using namespace throng;
 

@@ -2,8 +2,8 @@
 // template per skin), merges each skin's primitives into one skinned mesh, and turns animations
 // into clips. See GltfLoader.h.
 
-#include "throng/actors/GltfLoader.h"
-#include "throng/actors/MeshSimplifier.h"
+#include "throng/gltf/GltfLoader.h"
+#include "throng/gltf/MeshSimplifier.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "throng/actors/GltfError.h"
+#include "throng/gltf/GltfError.h"
 
 namespace throng::gltf {
 namespace {

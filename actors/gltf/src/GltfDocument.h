@@ -10,7 +10,7 @@
 
 #include <tiny_gltf.h>
 
-#include "throng/actors/GltfLoadOptions.h"
+#include "throng/gltf/GltfLoadOptions.h"
 
 namespace throng::gltf {
 
