@@ -246,4 +246,6 @@ GltfDocument parseDocument(const std::vector<std::uint8_t>& bytes, const std::st
     return doc;
 }
 
+void GltfDocument::fail(const std::string& where, const std::string& problem) const { throw GltfError(file, where, problem); }
+
 }  // namespace throng::gltf
