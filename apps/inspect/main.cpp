@@ -6,7 +6,7 @@
 #include <iostream>
 #include <string>
 
-#include "throng/actors/GltfLoader.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 

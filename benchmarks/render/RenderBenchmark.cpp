@@ -34,8 +34,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/ImageIO.h"

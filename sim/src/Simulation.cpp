@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "throng/actors/ActorGroup.h"
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/ProceduralBird.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/actors/Table3Template.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"

@@ -11,8 +11,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
 using namespace throng;

@@ -9,8 +9,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "GltfTestFile.h"
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
 using namespace throng;

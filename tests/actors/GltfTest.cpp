@@ -13,8 +13,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "GltfTestFile.h"
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
 using namespace throng;
@@ -320,6 +320,24 @@ TEST(Gltf, UnskinnedMeshesAreInWorldSpaceAndBelowJointsTheyAreRigidGeometry) {
     EXPECT_TRUE(t.nodes()[2].dofs.empty());
     EXPECT_EQ(t.nodes()[2].geometry.levels().size(), 1u);
     EXPECT_TRUE(t.nodes()[2].geometry.bound().contains(Vec3(0, 0.25, 0)));
+}
+
+// A primitive below a joint is drawn by the skin's template only: the static template takes the
+// unskinned primitives no skin claimed, each exactly once.
+TEST(Gltf, EachUnskinnedPrimitiveIsDrawnByExactlyOneTemplate) {
+    GltfTestFile f = twoJointRig();
+    const int pos = f.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    f.push("meshes", {{"name", "hat"}, {"primitives", J::array({J{{"attributes", {{"POSITION", pos}}}}})}});
+    const int hat = f.push("nodes", {{"name", "hat"}, {"mesh", 1}});
+    f.doc["nodes"][1]["children"] = J::array({hat});
+    const int box = f.push("nodes", {{"name", "box"}, {"mesh", 1}});
+    f.doc["scenes"][0]["nodes"].push_back(box);
+    const CharacterAsset a = load(f);
+    ASSERT_EQ(a.primitives.size(), 3u);  // the hat, the body, the box
+    ASSERT_EQ(a.characters.size(), 2u);
+    EXPECT_EQ(a.characters[0].primitives, (std::vector<int>{0, 1}));  // the hat as the knee's geometry, then the body
+    EXPECT_EQ(a.characters[1].primitives, (std::vector<int>{2}));     // the box only
+    EXPECT_EQ(a.characters[1].tmpl->nodeCount(), 1u);
 }
 
 TEST(Gltf, SeveralColoursOnOneSkinBecomeAPaletteTexture) {

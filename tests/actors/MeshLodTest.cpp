@@ -9,8 +9,8 @@
 #include <map>
 #include <tuple>
 
-#include "throng/actors/GltfLoader.h"
-#include "throng/actors/MeshSimplifier.h"
+#include "throng/gltf/GltfLoader.h"
+#include "throng/gltf/MeshSimplifier.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
 

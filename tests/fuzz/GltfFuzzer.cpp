@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "throng/actors/GltfLoader.h"
+#include "throng/gltf/GltfLoader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::vector<std::uint8_t> bytes(data, data + size);

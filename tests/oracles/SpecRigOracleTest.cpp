@@ -43,8 +43,8 @@
 #include "../actors/GltfTestFile.h"
 #include "VtkGltfPoser.h"
 #include "throng/actors/AnimationClip.h"
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/scenegraph/MeshDrawable.h"
 

@@ -6,7 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "throng/actors/GltfLoader.h"
+#include "throng/gltf/GltfLoader.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/scenegraph/MeshDrawable.h"
 

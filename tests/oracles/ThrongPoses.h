@@ -11,7 +11,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "throng/actors/CharacterAsset.h"
+#include "throng/gltf/CharacterAsset.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/MeshData.h"
 

@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "throng/actors/ActorTemplate.h"
-#include "throng/actors/GltfLoader.h"
 #include "throng/actors/SeedHumanoid.h"
+#include "throng/gltf/GltfLoader.h"
 
 namespace throng::support {
 

@@ -1,9 +1,13 @@
 // Builds a two-node scene with the installed Throng package, culls it and draws it headless with
-// throng::render; exits 0 on success.
+// throng::render, and loads a one-triangle glTF document with throng::gltf; exits 0 on success.
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <string>
+#include <vector>
 
+#include <throng/gltf/GltfLoader.h>
 #include <throng/render/GlRenderer.h>
 #include <throng/render/OsMesaContext.h>
 #include <throng/render/ProceduralMeshes.h>
@@ -13,8 +17,25 @@
 #include <throng/scenegraph/TraditionalProcessor.h>
 #include <throng/scenegraph/Transform.h>
 
+namespace {
+
+// throng::gltf from the package: a glTF document in memory (one triangle, its buffer a data URI)
+// becomes one rigid template drawing one triangle.
+bool loadsGltf() {
+    const std::string json =
+        R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+        R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],)"
+        R"("bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}]})";
+    const throng::CharacterAsset asset = throng::loadCharacterFromMemory(std::vector<std::uint8_t>(json.begin(), json.end()), "triangle.gltf");
+    std::printf("consumer: glTF loaded, %zu template(s), %zu primitive(s)\n", asset.characters.size(), asset.primitives.size());
+    return asset.primaryTemplate() && asset.primitives.size() == 1 && asset.primitives[0].data->triangleCount() == 1;
+}
+
+}  // namespace
+
 int main() {
     using namespace throng;
+    if (!loadsGltf()) return 1;
     auto root = std::make_shared<Transform>();
     TransformDofs dofs;
     dofs.translation = Vec3(0, 0, -10);

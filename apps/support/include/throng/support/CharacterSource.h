@@ -1,6 +1,6 @@
 #pragma once
-// Where the tools get a character: a glTF file through the loader, or the procedural template
-// "seed-humanoid" so that the tools run without assets.
+// Where the tools get a character: a glTF file through the loader (throng::gltf), or a
+// procedural template by name ("seed-humanoid") so that the tools run without assets.
 
 #include <memory>
 #include <string>
@@ -15,7 +15,8 @@ namespace throng::support {
 inline constexpr const char* kSeedHumanoid = "seed-humanoid";
 
 /// The template of `source`: "seed-humanoid", or a .glb/.gltf file (its primary character).
-/// Throws GltfError for a bad file, std::runtime_error for a file that holds no character.
+/// Throws throng::GltfError (file, JSON pointer, problem) when the file cannot be loaded, and
+/// std::runtime_error naming the source when it holds no character.
 std::shared_ptr<const ActorTemplate> loadTemplate(const std::string& source);
 
 /// Index of the clip named `name` in `tmpl` (the first clip when `name` is empty). Throws

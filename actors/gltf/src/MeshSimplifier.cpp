@@ -1,4 +1,4 @@
-#include "throng/actors/MeshSimplifier.h"
+#include "throng/gltf/MeshSimplifier.h"
 
 #include <meshoptimizer.h>
 

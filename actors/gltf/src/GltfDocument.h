@@ -10,7 +10,7 @@
 
 #include <tiny_gltf.h>
 
-#include "throng/actors/GltfLoadOptions.h"
+#include "throng/gltf/GltfLoadOptions.h"
 
 namespace throng::gltf {
 
@@ -20,6 +20,11 @@ struct GltfDocument {
     bool binary = false;                ///< read from a GLB container
     tinygltf::Model model;              ///< images hold their encoded bytes (component = 0)
     std::vector<std::string> warnings;  ///< "where: problem"
+
+    /// Throws GltfError for this file: `problem` at JSON pointer `where`.
+    [[noreturn]] void fail(const std::string& where, const std::string& problem) const;
+    /// Records "where: problem" among the warnings (something skipped or fixed).
+    void warn(const std::string& where, const std::string& problem) { warnings.push_back(where + ": " + problem); }
 };
 
 /// Parses `bytes` (glTF JSON or GLB). Throws GltfError with the JSON pointer of the problem.

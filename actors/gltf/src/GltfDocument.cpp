@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "throng/actors/GltfError.h"
+#include "throng/gltf/GltfError.h"
 
 namespace throng::gltf {
 namespace {
@@ -245,5 +245,7 @@ GltfDocument parseDocument(const std::vector<std::uint8_t>& bytes, const std::st
     }
     return doc;
 }
+
+void GltfDocument::fail(const std::string& where, const std::string& problem) const { throw GltfError(file, where, problem); }
 
 }  // namespace throng::gltf

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "throng/actors/GltfError.h"
+#include "throng/gltf/GltfError.h"
 
 namespace throng::gltf {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "throng/actors/CharacterAsset.h"
-#include "throng/actors/GltfError.h"
-#include "throng/actors/GltfLoadOptions.h"
+#include "throng/gltf/CharacterAsset.h"
+#include "throng/gltf/GltfError.h"
+#include "throng/gltf/GltfLoadOptions.h"
 
 namespace throng {
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "throng/actors/ActorTemplate.h"
-#include "throng/actors/LoadedAnimation.h"
-#include "throng/actors/LoadedCharacter.h"
-#include "throng/actors/LoadedPrimitive.h"
+#include "throng/gltf/LoadedAnimation.h"
+#include "throng/gltf/LoadedCharacter.h"
+#include "throng/gltf/LoadedPrimitive.h"
 
 namespace throng {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "throng/actors/GltfLimits.h"
+#include "throng/gltf/GltfLimits.h"
 
 namespace throng {
 
