@@ -127,8 +127,8 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
     if (testSphere(frustum, w.whole[id], mask, out, c) == Containment::Outside) return;
     const Mat4& skls = s.sklsWorld[id];
     const detail::ActorItemBase a = detail::actorItemBase(s, id, &node, member, time);
-    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level, std::span<const glm::mat4> palette = {}) {
-        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world, palette);
+    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level) {
+        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world);
     };
     const auto nodes = t.nodes();
     const std::uint32_t n = static_cast<std::uint32_t>(t.nodeCount());
@@ -148,11 +148,10 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
                            out, c) != Containment::Outside) {
                 if (lv.skin >= 0) {
                     const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-                    thread_local std::vector<glm::mat4> palette;
-                    palette.resize(skin.joints.size());
+                    const std::span<glm::mat4> palette = out.items.addSkinned(
+                        detail::actorPartItem(a, *lv.drawable, n, level), lv.drawable->primitiveCount(), skls, skin.joints.size());
                     computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {}, palette,
                                        tallyFor(c, OpCategory::SkeletonMatrix));
-                    emit(*lv.drawable, skls, n, level, palette);
                 } else {
                     emit(*lv.drawable, skls, n, level);
                 }
@@ -247,8 +246,8 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
     });
     CullStatistics& stats = visitor.statistics();
     for (std::size_t c = 0; c < chunks; ++c) {
-        const Chunk& out = w.chunks[c];
-        visitor.appendDrawItems(out.items);
+        Chunk& out = w.chunks[c];
+        visitor.spliceDrawItems(out.items);
         stats.spheresTested += out.spheresTested;
         stats.lodDistances += out.lodDistances;
         if (counter) counter->add(out.ops);

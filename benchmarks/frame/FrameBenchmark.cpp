@@ -22,6 +22,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "throng/actors/ActorProcessor.h"
@@ -359,7 +360,11 @@ int main(int argc, char** argv) {
             report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n";
             report << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
                    << ", one thread; means over " << o.frames << " ticks (`bench_frame";
-            for (int i = 1; i < argc; ++i) report << ' ' << argv[i];
+            for (int i = 1; i < argc; ++i) {  // the options that change the figures, not where they go
+                const std::string_view arg = argv[i];
+                if (arg == "--markdown" || arg == "--csv") ++i;
+                else if (!arg.starts_with("--markdown=") && !arg.starts_with("--csv=")) report << ' ' << arg;
+            }
             report << "`).\n\n" << methodTable(rows);
         }
         if (!o.csv.empty()) {

@@ -51,10 +51,10 @@ void CullVisitor::addDrawItem(const DrawItem& item, std::uint64_t primitives, co
     stats_.primitives += primitives;
 }
 
-void CullVisitor::appendDrawItems(const DrawList& items) {
-    drawList_.append(items);
+void CullVisitor::spliceDrawItems(DrawList& items) {
     stats_.drawItems += items.size();
     stats_.primitives += items.primitiveCount();
+    drawList_.splice(items);
 }
 
 bool CullVisitor::enter(const Node& node) {

@@ -89,7 +89,6 @@ struct ChunkOutput {
     OpCounter ops;                    ///< FMULT tallies, enabled when the frame counts
     DrawList items;                   ///< draw items (phase 7)
     BoundingSphere bound;             ///< a group's bound, merged from its chunk's Refpoint Bspheres
-    std::vector<glm::mat4> palette;   ///< scratch: one skin palette
 };
 
 /// One frame of actor processing and the workspace of its phases.

@@ -32,19 +32,22 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
     const Mat4& skls = s.sklsWorld[id];
     const double d2 = f.detail2[f.posed[j]];
     const bool all = f.visibility[j] == kAllVisible;
-    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level, std::span<const glm::mat4> palette = {}) {
-        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world, palette);
+    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level) {
+        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world);
         ++out.counts.drawItems;
         out.counts.primitives += d.primitiveCount();
     };
     const int rootLevel = t.rootGeometry().selectSquared(d2);
     if (rootLevel >= 0 && (all || f.rootVisible[j])) {
         const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
-        if (lv.drawable && lv.skin >= 0) {
+        if (lv.drawable && lv.skin >= 0) {  // the palette is computed straight into the list
             const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-            out.palette.resize(skin.joints.size());
-            computeSkinPalette(t, skin, model, active, out.palette, nodeOps);
-            emit(*lv.drawable, skls, static_cast<std::uint32_t>(n), rootLevel, out.palette);
+            const std::span<glm::mat4> palette =
+                out.items.addSkinned(detail::actorPartItem(a, *lv.drawable, static_cast<std::uint32_t>(n), rootLevel),
+                                     lv.drawable->primitiveCount(), skls, skin.joints.size());
+            computeSkinPalette(t, skin, model, active, palette, nodeOps);
+            ++out.counts.drawItems;
+            out.counts.primitives += lv.drawable->primitiveCount();
         } else if (lv.drawable) {
             emit(*lv.drawable, skls, static_cast<std::uint32_t>(n), rootLevel);
         }
@@ -102,7 +105,8 @@ void buildDrawList(CascadeFrame& f) {
             out.counts.primitives += impostor.primitiveCount();
         }
     });
-    for (std::size_t c = 0; c < chunkCount(f.shown.size(), kHeavyGrain); ++c) f.drawList->append(f.chunks[c].items);
+    // The chunks' items join the frame's list in chunk order, with their storage (no copy).
+    for (std::size_t c = 0; c < chunkCount(f.shown.size(), kHeavyGrain); ++c) f.drawList->splice(f.chunks[c].items);
 }
 
 }  // namespace throng::cascade

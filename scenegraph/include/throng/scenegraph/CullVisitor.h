@@ -69,8 +69,9 @@ public:
     /// skin palette kept by the list.
     void addDrawItem(const DrawItem& item, std::uint64_t primitives, const Mat4& world,
                      std::span<const glm::mat4> palette = {});
-    /// Appends every item of `items` (made apart, for example by a chunk of a parallel loop), in order.
-    void appendDrawItems(const DrawList& items);
+    /// Moves every item of `items` (made apart, for example by a chunk of a parallel loop) to the end
+    /// of the draw list, in order, with their storage (DrawList::splice); `items` is left empty.
+    void spliceDrawItems(DrawList& items);
     /// Work counters, for nodes that cull parts themselves.
     CullStatistics& statistics() { return stats_; }
 

@@ -54,8 +54,12 @@ public:
     void clear() {
         items_.clear();
         primitives_ = 0;
-        matrices_.clear();
-        palettes_.clear();
+        own_.clear();
+        for (Storage& s : adopted_) {
+            s.clear();
+            spares_.push_back(std::move(s));
+        }
+        adopted_.clear();
     }
     /// Reserves room for `n` items.
     void reserve(std::size_t n) { items_.reserve(n); }
@@ -68,17 +72,18 @@ public:
     /// Appends `item` with copies of `world` and `palette` kept by the list (the item's pointers
     /// are set to the copies), so the list stays valid whatever happens to the scene.
     void add(DrawItem item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
-        item.worldMatrix = matrices_.push(world);
-        if (palette.empty()) {
-            item.skinPalette = nullptr;
-            item.skinPaletteSize = 0;
-        } else {
-            glm::mat4* copy = palettes_.allocate(palette.size());
-            std::copy(palette.begin(), palette.end(), copy);
-            item.skinPalette = copy;
-            item.skinPaletteSize = static_cast<std::uint32_t>(palette.size());
-        }
+        const std::span<glm::mat4> room = addSkinned(item, primitives, world, palette.size());
+        std::copy(palette.begin(), palette.end(), room.begin());
+    }
+    /// Appends `item` with a copy of `world` and room for a skin palette of `paletteSize` matrices,
+    /// both kept by the list; returns the room, for the caller to fill before the list is drawn.
+    std::span<glm::mat4> addSkinned(DrawItem item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
+        glm::mat4* palette = paletteSize ? own_.palettes.allocate(paletteSize) : nullptr;
+        item.worldMatrix = own_.matrices.push(world);
+        item.skinPalette = palette;
+        item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
         add(item, primitives);
+        return {palette, paletteSize};
     }
     /// Appends every item of `other` in order, with copies of their matrices and palettes.
     void append(const DrawList& other) {
@@ -93,6 +98,25 @@ public:
         }
         primitives_ += other.primitives_;
     }
+    /// Moves every item of `other` to the end of this list, in order, together with the storage
+    /// their matrices and palettes live in (nothing is copied but the items). `other` is left empty
+    /// with storage this list no longer needs, so lists that splice into each other frame after
+    /// frame stop allocating once warm. Items `other` holds with outside pointers keep them.
+    void splice(DrawList& other) {
+        items_.insert(items_.end(), other.items_.begin(), other.items_.end());
+        primitives_ += other.primitives_;
+        other.items_.clear();
+        other.primitives_ = 0;
+        for (Storage& s : other.adopted_) adopted_.push_back(std::move(s));
+        other.adopted_.clear();
+        adopted_.push_back(std::move(other.own_));
+        if (spares_.empty()) {
+            other.own_ = Storage{};
+        } else {
+            other.own_ = std::move(spares_.back());
+            spares_.pop_back();
+        }
+    }
     /// The items, in the order CULL produced them.
     const std::vector<DrawItem>& items() const { return items_; }
     /// Number of items.
@@ -101,10 +125,20 @@ public:
     std::uint64_t primitiveCount() const { return primitives_; }
 
 private:
+    // Where the list's own copies of matrices and palettes live.
+    struct Storage {
+        FrameArena<Mat4> matrices;
+        FrameArena<glm::mat4> palettes;
+        void clear() {
+            matrices.clear();
+            palettes.clear();
+        }
+    };
     std::vector<DrawItem> items_;
     std::uint64_t primitives_ = 0;
-    FrameArena<Mat4> matrices_;
-    FrameArena<glm::mat4> palettes_;
+    Storage own_;                    // what add() writes into
+    std::vector<Storage> adopted_;   // storage spliced in with other lists' items
+    std::vector<Storage> spares_;    // cleared storage, handed to lists that splice into this one
 };
 
 }  // namespace throng
