@@ -48,6 +48,12 @@ void ActorProcessor::setLodScale(double scale) {
     lodScale_ = scale;
 }
 
+void ActorProcessor::setOcclusion(const std::optional<OcclusionSettings>& settings) {
+    traditional_.setOcclusion(settings);  // validates
+    if (settings) occlusion_.emplace(*settings);
+    else occlusion_.reset();
+}
+
 void ActorProcessor::setCullingFrustum(std::optional<Frustum> frustum) {
     traditional_.setCullingFrustum(frustum);
     cullingFrustum_ = frustum;
@@ -106,6 +112,10 @@ void ActorProcessor::processTraditionally(Node& root, const Camera& camera, doub
         }
     stats_.actorsPosed = stats_.actorsInScene;
     stats_.internalSpheresComputed = f.matrices.spheresRecomputed;
+    stats_.nodesOccluded = f.cull.nodesOccluded;
+    stats_.occlusionTests = f.cull.occlusionTests;
+    stats_.occludersDrawn = f.occlusion.occludersDrawn;
+    stats_.occlusionBufferMs = f.occlusion.bufferMs;
     stats_.spheresTested = f.cull.spheresTested;
     stats_.lodDistances = f.cull.lodDistances;
     stats_.drawItems = f.cull.drawItems;
@@ -136,6 +146,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     f.drawList = &list;
     f.impostorTier = &impostorTier_;
     f.candidates.clear();
+    f.occlusion = nullptr;
 
     // Generic APP: update callbacks of generic nodes (actor nodes wait for phase 1).
     timed(stats_.appMs, [&] {
@@ -149,19 +160,32 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         root.accept(matrices);
         stats_.internalSpheresComputed += matrices.statistics().spheresRecomputed;
     });
-    // Generic CULL, which meets actor nodes after the generic groups above them; phase 2: CULL 1.
+    // Occlusion, when on: this frame's occluders drawn into the buffer CULL tests against.
+    if (occlusion_) {
+        const OcclusionStatistics& o = occlusion_->build(root, camera, f.frustum);
+        stats_.occlusionBufferMs = o.bufferMs;
+        stats_.occludersDrawn = o.occludersDrawn;
+        f.occlusion = &occlusion_->buffer();
+    }
+    // Generic CULL, which meets actor nodes after the generic groups above them; phase 2: CULL 1,
+    // then occlusion of the survivors.
     timed(stats_.cullMs, [&] {
         WithActorTraversal<CullVisitor> cull(this, camera, list, c, lodScale_);
         if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
         cull.setFrameTime(time);
+        cull.setOcclusion(f.occlusion);
         root.accept(cull);
+        stats_.nodesOccluded += cull.statistics().nodesOccluded;
+        stats_.occlusionTests += cull.statistics().occlusionTests;
         stats_.spheresTested += cull.statistics().spheresTested;
         stats_.lodDistances += cull.statistics().lodDistances;
         stats_.drawItems += cull.statistics().drawItems;
         stats_.primitives += cull.statistics().primitives;
         cascade::cullReferencePoints(f);
     });
-    stats_.culledWithGroup = stats_.actorsInScene - f.candidates.size() - (stats_.a - (f.candidates.size() - f.survivors.size()));
+    stats_.culledWithGroup = stats_.actorsInScene - f.candidates.size() - stats_.occludedWithGroup -
+                             (stats_.a - (f.candidates.size() - f.survivors.size()));
+    timed(stats_.refpointOcclusionMs, [&] { cascade::occludeReferencePoints(f); });
     timed(stats_.skeletonRootMs, [&] { cascade::computeSkeletonRoots(f); });  // phase 3
     timed(stats_.cull2Ms, [&] { cascade::cullSkeletonRoots(f); });            // phase 4: CULL 2
     timed(stats_.poseMs, [&] { cascade::evaluateBehaviours(f); });            // phase 5
@@ -186,11 +210,12 @@ void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor&
         cascade_->candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
 }
 
-void ActorProcessor::culledOut(Node&, std::span<const ActorId> ids, CullVisitor&) {
-    // Every Refpoint Bsphere lies inside the node's bound, so every one is outside too.
+void ActorProcessor::culledOut(Node&, std::span<const ActorId> ids, CullVisitor& visitor) {
+    // Every Refpoint Bsphere lies inside the node's bound, so every one is outside (or hidden) too.
     Crowd::State& s = crowd_.state();
-    for (ActorId id : ids) s.actorClass[id] = ActorClass::A;
-    stats_.a += ids.size();
+    const ActorClass why = visitor.rejectedByOcclusion() ? ActorClass::Occluded : ActorClass::A;
+    for (ActorId id : ids) s.actorClass[id] = why;
+    (why == ActorClass::A ? stats_.a : stats_.occludedWithGroup) += ids.size();
 }
 
 }  // namespace throng

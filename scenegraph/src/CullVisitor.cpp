@@ -3,6 +3,7 @@
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/LOD.h"
+#include "throng/scenegraph/OcclusionBuffer.h"
 #include "throng/scenegraph/OpCounter.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/scenegraph/Validation.h"
@@ -59,9 +60,18 @@ void CullVisitor::spliceDrawItems(DrawList& items) {
 
 bool CullVisitor::enter(const Node& node) {
     ++stats_.nodesVisited;
+    rejectedByOcclusion_ = false;
     if (testSphere(node.worldBound(), mask_) == Containment::Outside) {
         ++stats_.nodesRejected;
         return false;
+    }
+    if (occlusion_) {
+        ++stats_.occlusionTests;
+        if (occlusion_->occluded(node.worldBound())) {
+            ++stats_.nodesOccluded;
+            rejectedByOcclusion_ = true;
+            return false;
+        }
     }
     return true;
 }

@@ -20,6 +20,11 @@ void TraditionalProcessor::setLodScale(double scale) {
     lodScale_ = scale;
 }
 
+void TraditionalProcessor::setOcclusion(const std::optional<OcclusionSettings>& settings) {
+    if (settings) occlusion_.emplace(*settings);
+    else occlusion_.reset();
+}
+
 const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Camera& camera, double time,
                                                           DrawBackend* backend) {
     requireFinite(time, "TraditionalProcessor::processFrame", "time");
@@ -41,6 +46,8 @@ const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Came
     stats_.matricesBoundsMs = watch.elapsedMs();
     stats_.matrices = matrices.statistics();
 
+    if (occlusion_) stats_.occlusion = occlusion_->build(root, camera, cullingFrustum_ ? *cullingFrustum_ : camera.frustum());
+
     watch.restart();
     current_ = 1 - current_;  // the previous frame's list stays intact for a DRAW still reading it
     DrawList& list = drawLists_[current_];
@@ -48,6 +55,7 @@ const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Came
     CullVisitor cull(camera, list, counter, lodScale_);
     if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
     cull.setFrameTime(time);
+    if (occlusion_) cull.setOcclusion(&occlusion_->buffer());
     root.accept(cull);
     stats_.cullMs = watch.elapsedMs();
     stats_.cull = cull.statistics();

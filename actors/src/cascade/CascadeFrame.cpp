@@ -11,6 +11,14 @@ void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
     into.c2 += from.c2;
     into.c3_1 += from.c3_1;
     into.c3_2 += from.c3_2;
+    into.occludedWithGroup += from.occludedWithGroup;
+    into.occludedRefpoint += from.occludedRefpoint;
+    into.occludedSklsroot += from.occludedSklsroot;
+    into.occlusionCellsTested += from.occlusionCellsTested;
+    into.occlusionCellsHidden += from.occlusionCellsHidden;
+    into.occlusionTests += from.occlusionTests;
+    into.nodesOccluded += from.nodesOccluded;
+    into.occludersDrawn += from.occludersDrawn;
     into.actorsPosed += from.actorsPosed;
     into.impostors += from.impostors;
     into.skeletonNodesEvaluated += from.skeletonNodesEvaluated;

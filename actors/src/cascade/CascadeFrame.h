@@ -30,6 +30,7 @@ class ActorTemplate;
 class Crowd;
 class Drawable;
 class Node;
+class OcclusionBuffer;
 
 namespace cascade {
 
@@ -101,6 +102,7 @@ struct CascadeFrame {
     Settings settings;                      ///< LOD and impostor settings
     ActorFrameStatistics* stats = nullptr;  ///< where the frame's statistics go
     DrawList* drawList = nullptr;           ///< where the frame's draw items go
+    const OcclusionBuffer* occlusion = nullptr;  ///< this frame's occluders, or null: no occlusion
 
     // Phase 2: candidates, and the flat arrays of the Refpoint Bspheres still to test.
     std::vector<Candidate> candidates;
@@ -108,6 +110,13 @@ struct CascadeFrame {
     std::vector<float> cx, cy, cz, cr;
     std::vector<Containment> containment;
     std::vector<std::uint32_t> survivors;   ///< candidate indices that passed CULL 1
+
+    // Phase 2, occlusion: survivors binned into cells of nearby actors, each cell tested first.
+    std::vector<std::uint32_t> cellOf;      ///< per survivor: its cell
+    std::vector<std::uint32_t> cellStart;   ///< per cell: first entry in cellMembers (one more at the end)
+    std::vector<std::uint32_t> cellMembers; ///< survivor positions, cell by cell
+    std::vector<std::uint32_t> cellCursor;  ///< per cell: where its next member goes
+    std::vector<std::uint8_t> hidden;       ///< per survivor: rejected by occlusion
 
     // Phase 4, per survivor.
     std::vector<std::uint8_t> outcome;      ///< an Outcome
@@ -165,9 +174,13 @@ BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> id
 /// Phase 2: CULL 1 on the Refpoint Bspheres of group members still pending (flat, several at a
 /// time), then the survivors.
 void cullReferencePoints(CascadeFrame& f);
+/// Phase 2, occlusion (when the frame has a buffer): the survivors' Refpoint Bspheres against it,
+/// cells of nearby actors tested as one sphere first; hidden actors leave the survivors.
+void occludeReferencePoints(CascadeFrame& f);
 /// Phase 3: the Skeleton Roots of the survivors.
 void computeSkeletonRoots(CascadeFrame& f);
-/// Phase 4: CULL 2 on Sklsroot Bspheres; one eye distance per actor; impostor tier; skeletal LOD.
+/// Phase 4: CULL 2 on Sklsroot Bspheres, then occlusion; one eye distance per actor; impostor
+/// tier; skeletal LOD.
 void cullSkeletonRoots(CascadeFrame& f);
 /// Phase 5: behaviour of the active Skeleton nodes at each posed actor's level, and their matrices.
 void evaluateBehaviours(CascadeFrame& f);

@@ -1,5 +1,5 @@
 // Phase 4 of actor processing, CULL 2: Sklsroot Bspheres of actors whose Refpoint Bsphere crosses
-// a plane; one eye distance per actor that passes (every later LOD decision reads it); the hybrid
+// a plane, then every survivor's Sklsroot Bsphere against the occlusion buffer (when there is one); one eye distance per actor that passes (every later LOD decision reads it); the hybrid
 // tier (impostor or geometry, with hysteresis); the behavioural level and skeletal LOD of the
 // actors that keep their geometry.
 
@@ -9,6 +9,7 @@
 #include "CascadeFrame.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/OcclusionBuffer.h"
 
 namespace throng::cascade {
 namespace {
@@ -62,6 +63,18 @@ void cullSkeletonRoots(CascadeFrame& f) {
             } else {
                 s.actorClass[id] = ActorClass::B;
                 ++counts.b;
+            }
+            if (f.occlusion) {
+                ++counts.occlusionTests;
+                if (f.occlusion->occluded(BoundingSphere(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]))) {
+                    // Undo the class counted above: the actor leaves the cascade here.
+                    if (s.actorClass[id] == ActorClass::B) --counts.b;
+                    else if (s.actorClass[id] == ActorClass::C2) --counts.c2;
+                    s.actorClass[id] = ActorClass::Occluded;
+                    ++counts.occludedSklsroot;
+                    f.outcome[k] = kRejected;
+                    continue;
+                }
             }
             // The actor's one eye distance.
             const double d2 = detailDistanceSquared(s.sklsWorld[id], f.eye, f.settings.lodScale2, s.priority[id], lodOps);

@@ -26,6 +26,8 @@ struct ActorFrameStatistics {
     double refpointMs = 0;        ///< phase 1: Reference Points of all actors
     double matricesBoundsMs = 0;  ///< generic matrices and bounds (traditional: all actor matrices and spheres)
     double cullMs = 0;            ///< generic CULL and CULL 1 (phase 2); traditional: the whole CULL
+    double occlusionBufferMs = 0; ///< occlusion: gathering and drawing the occluders, the pyramid
+    double refpointOcclusionMs = 0;///< occlusion of the Refpoint Bspheres that passed CULL 1
     double skeletonRootMs = 0;    ///< phase 3: Skeleton Roots of the survivors
     double cull2Ms = 0;           ///< phase 4: CULL 2, eye distances, skeletal LOD
     double poseMs = 0;            ///< phase 5: behaviour of active nodes and their matrices
@@ -42,6 +44,16 @@ struct ActorFrameStatistics {
     std::uint64_t c2 = 0;               ///< C2: Sklsroot Bsphere inside
     std::uint64_t c3_1 = 0;             ///< C3.1: internal spheres wholly in or out
     std::uint64_t c3_2 = 0;             ///< C3.2: internal spheres culled one by one
+
+    // Occlusion (zero when it is off): actors rejected at each stage, and the stage's work.
+    std::uint64_t occludedWithGroup = 0;   ///< with their actor group's sphere, during the traversal
+    std::uint64_t occludedRefpoint = 0;    ///< by their Refpoint Bsphere, after CULL 1
+    std::uint64_t occludedSklsroot = 0;    ///< by their Sklsroot Bsphere, after CULL 2
+    std::uint64_t occlusionCellsTested = 0;///< cells of nearby actors tested as one sphere after CULL 1
+    std::uint64_t occlusionCellsHidden = 0;///< of those, hidden (their actors rejected with one test)
+    std::uint64_t occlusionTests = 0;      ///< sphere tests against the buffer, all kinds
+    std::uint64_t nodesOccluded = 0;       ///< generic nodes rejected by occlusion (town tiles...)
+    std::uint64_t occludersDrawn = 0;      ///< Occluder nodes drawn into the buffer
 
     // Work.
     std::uint64_t actorsPosed = 0;            ///< actors whose behaviour posed them this frame
@@ -60,7 +72,7 @@ struct ActorFrameStatistics {
 
     /// Everything before DRAW.
     double appCullMs() const {
-        return appMs + refpointMs + matricesBoundsMs + cullMs + skeletonRootMs + cull2Ms + poseMs + cull3Ms + drawListMs;
+        return appMs + refpointMs + matricesBoundsMs + occlusionBufferMs + cullMs + refpointOcclusionMs + skeletonRootMs + cull2Ms + poseMs + cull3Ms + drawListMs;
     }
 };
 

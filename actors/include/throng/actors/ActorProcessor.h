@@ -2,9 +2,12 @@
 // Processes a scene holding actors one frame at a time, by traditional processing or by actor
 // processing (seed 002 §4.2), on the very same scene:
 //   1. Reference Points of all actors (simulation state, whatever the camera);
-//   2. CULL 1: Refpoint Bspheres (after generic groups above them) - rejects A;
+//   2. CULL 1: Refpoint Bspheres (after generic groups above them) - rejects A; then, when the
+//      scene declares occluders and occlusion is on, the survivors' Refpoint Bspheres against the
+//      frame's occlusion buffer (cells of nearby actors first) - rejects the hidden;
 //   3. Skeleton Roots of the survivors;
-//   4. CULL 2: Sklsroot Bspheres - rejects C1; one eye distance per actor; skeletal LOD;
+//   4. CULL 2: Sklsroot Bspheres - rejects C1, then the hidden; one eye distance per actor;
+//      skeletal LOD;
 //   5. behaviour of the active Skeleton nodes at the actor's behavioural level, and their matrices;
 //   6. CULL 3: internal spheres, only for actors whose Sklsroot Bsphere crosses a plane;
 //   7. the draw list, each part at its vaLod level.
@@ -22,6 +25,7 @@
 #include "throng/actors/Affine.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Frustum.h"
+#include "throng/scenegraph/OcclusionCulling.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
 
 namespace throng {
@@ -70,6 +74,13 @@ public:
     void setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor);
     /// Whether actor `id` was drawn as an impostor in the last frame.
     bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
+    /// Occlusion culling with a buffer of `settings` (null, the default: off, nothing built), in
+    /// both methods: the scene's Occluder nodes are drawn each frame, generic nodes and actor
+    /// groups are tested during the traversal, actors after CULL 1 and CULL 2. Throws
+    /// std::invalid_argument for bad settings.
+    void setOcclusion(const std::optional<OcclusionSettings>& settings);
+    /// The occlusion stage of actor processing, or null when occlusion is off.
+    const OcclusionCulling* occlusion() const { return occlusion_ ? &*occlusion_ : nullptr; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
     void setCullingFrustum(std::optional<Frustum> frustum);
     /// Runs the per-actor work of both methods on `threads` threads (default 1): every phase of
@@ -113,6 +124,7 @@ private:
     bool skeletalLod_ = true;
     bool behaviouralLod_ = true;
     std::optional<Frustum> cullingFrustum_;
+    std::optional<OcclusionCulling> occlusion_;
     std::uint64_t frame_ = 0;
     double lastTime_ = 0.0;
     ActorFrameStatistics stats_;

@@ -57,6 +57,7 @@ enum class ActorClass : std::uint8_t {
     C2,               ///< Refpoint crosses, Sklsroot Bsphere inside
     C3_1,             ///< Sklsroot crosses, internal spheres wholly in or out
     C3_2,             ///< Sklsroot crosses, internal spheres need culling
+    Occluded,         ///< hidden behind occluders (its group's, Refpoint or Sklsroot Bsphere)
 };
 
 /// All actors of a scene. It must outlive the Actor and ActorGroup nodes made from it.

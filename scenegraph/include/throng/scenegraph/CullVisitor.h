@@ -13,6 +13,7 @@
 namespace throng {
 
 class Camera;
+class OcclusionBuffer;
 class OpCounter;
 
 /// Work done and results of one CULL traversal.
@@ -20,6 +21,8 @@ struct CullStatistics {
     std::uint64_t nodesVisited = 0;    ///< nodes reached
     std::uint64_t spheresTested = 0;   ///< sphere-frustum tests (NO_04b)
     std::uint64_t nodesRejected = 0;   ///< nodes found outside (their subtrees skipped)
+    std::uint64_t occlusionTests = 0;  ///< bounds tested against the occlusion buffer
+    std::uint64_t nodesOccluded = 0;   ///< nodes found hidden by occluders (their subtrees skipped)
     std::uint64_t lodDistances = 0;    ///< eye distances computed by LOD nodes (NO_05)
     std::uint64_t drawItems = 0;       ///< items added to the draw list
     std::uint64_t primitives = 0;      ///< primitives of those items
@@ -34,6 +37,11 @@ public:
 
     /// Replaces the culling frustum (for example a smaller one, to watch culling at work).
     void setCullingFrustum(const Frustum& frustum);
+    /// Also rejects nodes whose bound `buffer` finds hidden (null: no occlusion culling). The
+    /// buffer must be finished for this camera and outlive the traversal.
+    void setOcclusion(const OcclusionBuffer* buffer) { occlusion_ = buffer; }
+    /// The occlusion buffer in use, or null.
+    const OcclusionBuffer* occlusion() const { return occlusion_; }
     /// Sets the simulation time of the frame (draw items of animated nodes record what they show).
     void setFrameTime(double time) { time_ = time; }
     /// The simulation time of the frame, seconds.
@@ -44,6 +52,8 @@ public:
     void apply(Transform& transform) override;
     void apply(LOD& lod) override;
     void apply(Geometry& geometry) override;
+    /// Occluders draw nothing: nothing to do.
+    void apply(Occluder&) override {}
 
     /// Work done and results so far.
     const CullStatistics& statistics() const { return stats_; }
@@ -54,6 +64,9 @@ public:
     const Frustum& frustum() const { return frustum_; }
     /// The eye position.
     const Vec3& eye() const { return eye_; }
+    /// Whether the node last rejected (the one Node::culledOut is called for) was hidden by
+    /// occluders rather than outside the frustum.
+    bool rejectedByOcclusion() const { return rejectedByOcclusion_; }
     /// Planes still to be tested for the node being visited (its ancestors were inside the others).
     PlaneMask planeMask() const { return mask_; }
     /// Square of the LOD scale (distances are compared squared).
@@ -76,8 +89,8 @@ public:
     CullStatistics& statistics() { return stats_; }
 
 protected:
-    /// Tests `node`'s world bound against the planes still in the mask; false if it is outside.
-    /// Clears mask bits of planes the bound is fully inside.
+    /// Tests `node`'s world bound against the planes still in the mask, then against the occlusion
+    /// buffer; false if it is outside or hidden. Clears mask bits of planes the bound is fully inside.
     bool enter(const Node& node);
 
     Frustum frustum_;
@@ -89,6 +102,8 @@ protected:
     const Mat4* world_;
     std::uint32_t lodLevel_ = 0;
     double time_ = 0.0;
+    const OcclusionBuffer* occlusion_ = nullptr;
+    bool rejectedByOcclusion_ = false;
     CullStatistics stats_;
 };
 

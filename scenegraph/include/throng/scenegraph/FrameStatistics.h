@@ -5,6 +5,7 @@
 
 #include "throng/scenegraph/CullVisitor.h"
 #include "throng/scenegraph/MatrixBoundsVisitor.h"
+#include "throng/scenegraph/OcclusionCulling.h"
 
 namespace throng {
 
@@ -18,6 +19,7 @@ struct FrameStatistics {
     std::uint64_t callbacksRun = 0;     ///< update callbacks run
     MatrixBoundsStatistics matrices;    ///< matrix and bound work
     CullStatistics cull;                ///< culling work and results
+    OcclusionStatistics occlusion;      ///< the occlusion stage (zero when occlusion culling is off)
     std::uint64_t fmultTotal = 0;       ///< FMULT counted this frame (0 when counting is off)
 };
 

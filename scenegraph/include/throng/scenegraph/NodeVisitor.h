@@ -9,6 +9,7 @@ class Group;
 class Transform;
 class LOD;
 class Geometry;
+class Occluder;
 
 /// Visits nodes by type. Types added by other libraries dispatch to the closest base overload.
 class NodeVisitor {
@@ -24,6 +25,8 @@ public:
     virtual void apply(LOD& lod);
     /// A geometry leaf; the default calls apply(Node&).
     virtual void apply(Geometry& geometry);
+    /// An occluder declaration; the default calls apply(Node&).
+    virtual void apply(Occluder& occluder);
 
     /// Visits every child of `group` in order.
     void traverse(Group& group);

@@ -6,6 +6,7 @@
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/FrameStatistics.h"
+#include "throng/scenegraph/OcclusionCulling.h"
 #include "throng/scenegraph/OpCounter.h"
 
 #include <array>
@@ -26,6 +27,12 @@ public:
     void setFullRecompute(bool full) { fullRecompute_ = full; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
     void setCullingFrustum(std::optional<Frustum> frustum) { cullingFrustum_ = frustum; }
+    /// Culls nodes hidden behind the scene's Occluder nodes too, with a buffer of `settings`
+    /// (null, the default: no occlusion culling, nothing built). Throws std::invalid_argument for
+    /// bad settings.
+    void setOcclusion(const std::optional<OcclusionSettings>& settings);
+    /// The occlusion stage, or null when occlusion culling is off.
+    const OcclusionCulling* occlusion() const { return occlusion_ ? &*occlusion_ : nullptr; }
     /// The operation counter (disabled until counter().setEnabled(true)).
     OpCounter& counter() { return counter_; }
 
@@ -46,6 +53,7 @@ private:
     std::size_t current_ = 0;
     FrameStatistics stats_;
     std::optional<Frustum> cullingFrustum_;
+    std::optional<OcclusionCulling> occlusion_;
     double lodScale_ = 1.0;
     double lastTime_ = 0.0;
     std::uint64_t frame_ = 0;

@@ -1,0 +1,93 @@
+#include "throng/scenegraph/OcclusionCulling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/NodeVisitor.h"
+#include "throng/scenegraph/Occluder.h"
+#include "throng/scenegraph/Stopwatch.h"
+
+namespace throng {
+namespace {
+
+const OcclusionSettings& checked(const OcclusionSettings& s) {
+    if (s.maxOccluders < 1)
+        throw std::invalid_argument("OcclusionSettings: 'maxOccluders' must be at least 1, not " + std::to_string(s.maxOccluders));
+    return s;  // width and height are checked by the buffer
+}
+
+// Collects the Occluder nodes in the frustum, skipping generic subtrees outside it.
+class Gatherer : public NodeVisitor {
+public:
+    template <class Add>
+    Gatherer(const Frustum& frustum, Add add) : frustum_(frustum), add_(std::move(add)) {}
+    void apply(Group& group) override {
+        const BoundingSphere& b = group.worldBound();
+        if (b.valid() && frustum_.classify(b) == Containment::Outside) return;
+        traverse(group);
+    }
+    void apply(Occluder& occluder) override {
+        const BoundingSphere& b = occluder.worldOccluderBound();
+        if (b.valid() && frustum_.classify(b) != Containment::Outside) add_(occluder);
+    }
+
+private:
+    const Frustum& frustum_;
+    std::function<void(Occluder&)> add_;
+};
+
+// Distance from the eye to the farthest point of the near plane's rectangle: an occluder whose shell
+// is nearer than this may be cut open by the near plane, showing its inside.
+double nearReach(const Camera& camera) {
+    const Mat4& p = camera.projection();
+    const double nearDistance = p[3][2] / (p[2][2] - 1.0);
+    double reach = 0.0;
+    for (double x : {-1.0, 1.0})
+        for (double y : {-1.0, 1.0}) {
+            const double xq = (x + p[2][0]) / p[0][0], yq = (y + p[2][1]) / p[1][1];
+            reach = std::max(reach, nearDistance * std::sqrt(1.0 + xq * xq + yq * yq));
+        }
+    return reach;
+}
+
+}  // namespace
+
+OcclusionCulling::OcclusionCulling(const OcclusionSettings& settings)
+    : settings_(checked(settings)), buffer_(settings.width, settings.height) {}
+
+const OcclusionStatistics& OcclusionCulling::build(Node& root, const Camera& camera, const Frustum& frustum) {
+    Stopwatch watch;
+    stats_ = OcclusionStatistics{};
+    buffer_.begin(camera);
+    const Vec3 eye = camera.eye();
+    candidates_.clear();
+    Gatherer gather(frustum, [&](Occluder& o) {
+        const BoundingSphere& b = o.worldOccluderBound();
+        candidates_.push_back(Candidate{std::max(glm::length(b.center() - eye) - b.radius(), 0.0), &o});
+    });
+    root.accept(gather);
+    stats_.occludersInView = candidates_.size();
+    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+    const double margin = 2.0 * nearReach(camera);
+    for (const Candidate& c : candidates_) {
+        if (stats_.occludersDrawn >= static_cast<std::uint64_t>(settings_.maxOccluders)) break;
+        if (c.occluder->shellContains(eye, margin)) {
+            ++stats_.occludersInsideShell;
+            continue;
+        }
+        ++stats_.occludersDrawn;
+        for (std::size_t i = 0; i < c.occluder->boxes().size(); ++i)
+            if (buffer_.drawBox(c.occluder->worldCorners(i))) ++stats_.boxesDrawn;
+    }
+    buffer_.finish();
+    stats_.pixelsWritten = buffer_.pixelsWritten();
+    stats_.bufferMs = watch.elapsedMs();
+    return stats_;
+}
+
+}  // namespace throng

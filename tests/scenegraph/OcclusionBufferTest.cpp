@@ -1,0 +1,220 @@
+// The occlusion buffer: what it hides, and that it never hides what a ray from the eye can reach.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "throng/scenegraph/AxisBox.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/CullVisitor.h"
+#include "throng/scenegraph/Geometry.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/Occluder.h"
+#include "throng/scenegraph/OcclusionBuffer.h"
+#include "throng/scenegraph/OcclusionCulling.h"
+#include "throng/scenegraph/TraditionalProcessor.h"
+#include "throng/scenegraph/Transform.h"
+
+namespace throng {
+namespace {
+
+std::array<Vec3, 8> corners(const Vec3& lo, const Vec3& hi) {
+    std::array<Vec3, 8> c;
+    for (int i = 0; i < 8; ++i) c[i] = Vec3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    return c;
+}
+
+Camera lookingDownMinusZ(double nearDistance = 0.1) {
+    Camera camera;
+    camera.setPerspective(glm::radians(60.0), 16.0 / 9.0, nearDistance, 1000.0);
+    camera.setLookAt(Vec3(0, 0, 0), Vec3(0, 0, -1));
+    return camera;
+}
+
+// A wall 20 m wide and 10 m high, 10 m in front of the eye, 1 m thick.
+OcclusionBuffer wallBuffer(const Camera& camera) {
+    OcclusionBuffer buffer(256, 144);
+    buffer.begin(camera);
+    EXPECT_TRUE(buffer.drawBox(corners(Vec3(-10, -5, -11), Vec3(10, 5, -10))));
+    buffer.finish();
+    return buffer;
+}
+
+TEST(OcclusionBuffer, HidesWhatIsWhollyBehindAnOccluderAndNothingElse) {
+    const Camera camera = lookingDownMinusZ();
+    const OcclusionBuffer buffer = wallBuffer(camera);
+    EXPECT_TRUE(buffer.occluded(BoundingSphere(Vec3(0, 0, -20), 1.0)));     // right behind
+    EXPECT_TRUE(buffer.occluded(BoundingSphere(Vec3(3, 2, -40), 2.0)));     // farther, off centre
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(0, 0, -5), 1.0)));     // in front
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(0, 0, -10.5), 1.0)));  // reaching into the wall's front
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(19.5, 0, -20), 2.0))); // peeking past its edge
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(0, 0, 5), 1.0)));      // behind the eye
+    EXPECT_FALSE(buffer.occluded(BoundingSphere()));                        // empty
+}
+
+TEST(OcclusionBuffer, DepthIsTheOccludersFarthestFrontDepthOverThePixel) {
+    const Camera camera = lookingDownMinusZ();
+    const OcclusionBuffer buffer = wallBuffer(camera);
+    // The wall's front face is at 10 m, square to the view: every covered pixel reads 10 m (a hair
+    // more, the conservative direction), uncovered ones infinity.
+    const double d = buffer.depthAt(128, 72);
+    EXPECT_GE(d, 10.0);
+    EXPECT_LT(d, 10.01);
+    EXPECT_EQ(buffer.depthAt(0, 0), std::numeric_limits<double>::infinity());
+    EXPECT_THROW((void)buffer.depthAt(256, 0), std::out_of_range);
+}
+
+TEST(OcclusionBuffer, AnOccluderTheEyeIsInsideDrawsNothing) {
+    const Camera camera = lookingDownMinusZ();
+    OcclusionBuffer buffer(64, 36);
+    buffer.begin(camera);
+    EXPECT_FALSE(buffer.drawBox(corners(Vec3(-1, -1, -1), Vec3(1, 1, 1))));
+    buffer.finish();
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(0, 0, -20), 1.0)));
+    EXPECT_EQ(buffer.pixelsWritten(), 0u);
+}
+
+TEST(OcclusionBuffer, AnOccluderCutByTheNearPlaneStillHidesWhatIsBehindIt) {
+    // A long wall beside and in front of the eye, from behind it to 30 m ahead, seen at a slant.
+    Camera camera;
+    camera.setPerspective(glm::radians(60.0), 16.0 / 9.0, 0.5, 1000.0);
+    camera.setLookAt(Vec3(0, 1.7, 0), Vec3(5, 1.7, -10));
+    OcclusionBuffer buffer(256, 144);
+    buffer.begin(camera);
+    EXPECT_TRUE(buffer.drawBox(corners(Vec3(2, 0, -30), Vec3(3, 10, 5))));
+    buffer.finish();
+    EXPECT_TRUE(buffer.occluded(BoundingSphere(Vec3(8, 1, -15), 0.8)));   // behind the wall
+    EXPECT_FALSE(buffer.occluded(BoundingSphere(Vec3(1, 1, -15), 0.8)));  // on the eye's side
+}
+
+TEST(OcclusionBuffer, RejectsBadSizesAndNonPerspectiveCameras) {
+    EXPECT_THROW(OcclusionBuffer(4, 100), std::invalid_argument);
+    EXPECT_THROW(OcclusionBuffer(100, 5000), std::invalid_argument);
+    try {
+        OcclusionBuffer(100, 7);
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("height"), std::string::npos) << e.what();
+    }
+    Camera ortho;
+    ortho.setProjectionMatrix(glm::ortho(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0));
+    OcclusionBuffer buffer(64, 64);
+    EXPECT_THROW(buffer.begin(ortho), std::invalid_argument);
+    EXPECT_THROW(OcclusionCulling(OcclusionSettings{64, 64, 0}), std::invalid_argument);
+}
+
+// Whether the segment from the origin to `p` passes through box [lo, hi] before reaching p (slab test).
+bool blocked(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    double t0 = 0.0, t1 = 1.0;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(p[a]) < 1e-12) {
+            if (0.0 < lo[a] || 0.0 > hi[a]) return false;
+            continue;
+        }
+        double ta = lo[a] / p[a], tb = hi[a] / p[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return t0 < 1.0 - 1e-9;  // the box is entered before p is reached
+}
+
+// Random boxes and spheres seen from random eyes: whenever the buffer calls a sphere hidden, no ray
+// from the eye to any of hundreds of points on the sphere's near side misses every box.
+TEST(OcclusionBuffer, NeverHidesASphereThatARayFromTheEyeReaches) {
+    std::mt19937 rng(2026);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int hiddenChecked = 0;
+    for (int scene = 0; scene < 300; ++scene) {
+        Camera camera;
+        camera.setPerspective(glm::radians(40.0 + 40.0 * (u(rng) + 1.0)), 1.0 + 0.8 * (u(rng) + 1.0), 0.2, 500.0);
+        camera.setLookAt(Vec3(0), Vec3(u(rng), 0.5 * u(rng), -1.0));  // the eye at the origin keeps the oracle simple
+        std::vector<std::pair<Vec3, Vec3>> boxes;
+        OcclusionBuffer buffer(64 + int(64 * (u(rng) + 1.0)), 36 + int(36 * (u(rng) + 1.0)));
+        buffer.begin(camera);
+        for (int b = 0; b < 6; ++b) {
+            const Vec3 c(8.0 * u(rng), 3.0 * u(rng), -6.0 - 6.0 * (u(rng) + 1.0));
+            const Vec3 h(0.2 + 3.0 * (u(rng) + 1.0), 0.2 + 2.0 * (u(rng) + 1.0), 0.2 + 1.0 * (u(rng) + 1.0));
+            boxes.emplace_back(c - h, c + h);
+            buffer.drawBox(corners(c - h, c + h));
+        }
+        buffer.finish();
+        for (int s = 0; s < 200; ++s) {
+            const BoundingSphere sphere(Vec3(10.0 * u(rng), 5.0 * u(rng), -10.0 - 15.0 * (u(rng) + 1.0)), 0.05 + 1.5 * (u(rng) + 1.0));
+            if (!buffer.occluded(sphere)) continue;
+            ++hiddenChecked;
+            for (int k = 0; k < 400; ++k) {
+                Vec3 dir(u(rng), u(rng), u(rng));
+                if (glm::length(dir) < 1e-3) continue;
+                dir = glm::normalize(dir);
+                if (glm::dot(dir, sphere.center()) > 0.0) dir = -dir;  // the side facing the eye
+                const Vec3 p = sphere.center() + sphere.radius() * dir;
+                const Vec4 clip = camera.viewProjection() * Vec4(p, 1.0);
+                if (std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w) continue;  // off the screen: not the buffer's call
+                bool anyBlocks = false;
+                for (const auto& [lo, hi] : boxes) anyBlocks = anyBlocks || blocked(p, lo, hi);
+                ASSERT_TRUE(anyBlocks) << "scene " << scene << ": a hidden sphere at (" << sphere.center().x << ", "
+                                       << sphere.center().y << ", " << sphere.center().z << ") r " << sphere.radius()
+                                       << " has a point the eye sees";
+            }
+        }
+    }
+    EXPECT_GT(hiddenChecked, 2000) << "too few hidden spheres to mean anything";
+}
+
+// An Occluder node in a scene: CULL rejects the geometry behind it, and only that.
+TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
+    auto root = std::make_shared<Group>();
+    auto wall = std::make_shared<Transform>();
+    wall->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -10)));
+    wall->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-3, -3, -0.5f), glm::vec3(3, 3, 0.5f)}},
+                                              AxisBox{glm::vec3(-3.5f, -3.5f, -1), glm::vec3(3.5f, 3.5f, 1)}));
+    root->addChild(wall);
+    const auto cube = std::make_shared<MeshDrawable>(makeBox("cube", glm::vec3(0), glm::vec3(0.5f), glm::vec4(1)));
+    const auto place = [&](const Vec3& at) {
+        auto t = std::make_shared<Transform>();
+        t->setMatrix(glm::translate(Mat4(1.0), at));
+        t->addChild(std::make_shared<Geometry>(cube));
+        root->addChild(t);
+    };
+    place(Vec3(0, 0, -30));   // hidden
+    place(Vec3(0, 0, -5));    // in front
+    place(Vec3(14, 0, -30));  // beside the wall, in view
+    const Camera camera = lookingDownMinusZ();
+
+    TraditionalProcessor plain, occluding;
+    occluding.setOcclusion(OcclusionSettings{});
+    const FrameStatistics a = plain.processFrame(*root, camera, 0.0);
+    const FrameStatistics b = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(a.cull.drawItems, 3u);
+    EXPECT_EQ(b.cull.drawItems, 2u);
+    EXPECT_EQ(b.cull.nodesOccluded, 1u);
+    EXPECT_EQ(b.occlusion.occludersDrawn, 1u);
+    EXPECT_EQ(a.occlusion.occludersDrawn, 0u);  // off: nothing built, nothing drawn
+    EXPECT_EQ(a.cull.occlusionTests, 0u);
+
+    // With the eye inside the wall's shell the occluder is left out.
+    Camera inside;
+    inside.setPerspective(glm::radians(60.0), 16.0 / 9.0, 0.1, 1000.0);
+    inside.setLookAt(Vec3(0, 0, -10.8), Vec3(0, 0, -30));
+    const FrameStatistics c = occluding.processFrame(*root, inside, 0.0);
+    EXPECT_EQ(c.occlusion.occludersInsideShell, 1u);
+    EXPECT_EQ(c.cull.nodesOccluded, 0u);
+}
+
+TEST(OcclusionCulling, OccluderNodesRejectBadBoxes) {
+    const AxisBox shell{glm::vec3(-1), glm::vec3(1)};
+    EXPECT_THROW(Occluder({AxisBox{glm::vec3(0), glm::vec3(0)}}, shell), std::invalid_argument);
+    EXPECT_THROW(Occluder({AxisBox{glm::vec3(-2), glm::vec3(0)}}, shell), std::invalid_argument);
+    EXPECT_THROW(Occluder({AxisBox{glm::vec3(0), glm::vec3(std::nanf(""))}}, shell), std::invalid_argument);
+    EXPECT_THROW(Occluder({}, AxisBox{}), std::invalid_argument);
+    EXPECT_NO_THROW(Occluder({AxisBox{glm::vec3(-0.5f), glm::vec3(0.5f)}}, shell));
+}
+
+}  // namespace
+}  // namespace throng
