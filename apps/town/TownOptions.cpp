@@ -41,6 +41,10 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("on|off")
         ->check(oneOf({"on", "off"}))
         ->default_str("on");
+    app.add_option("--occlusion", o.occlusion, "occlusion culling as the scene declares it (off: never)")
+        ->type_name("on|off")
+        ->check(oneOf({"on", "off"}))
+        ->default_str("on");
     app.add_option("--lod-scale", o.lodScale, "multiplies every LOD distance")
         ->type_name("X")
         ->check(positiveNumber())
@@ -52,7 +56,8 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->default_str("the scene's");
     app.footer(
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
-        "+/- LOD scale, C shrink the culling pyramid (watch culling at work), P processing, Esc quit.");
+        "+/- LOD scale, C shrink the culling pyramid (watch culling at work), O show the occlusion buffer,\n"
+        "P processing, Esc quit.");
 }
 
 }  // namespace

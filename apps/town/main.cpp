@@ -30,6 +30,7 @@
 #include "throng/render/ImageIO.h"
 #include "throng/render/ImpostorSet.h"
 #include "throng/scenegraph/FramePipeline.h"
+#include "throng/scenegraph/OcclusionCulling.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
@@ -50,13 +51,33 @@ struct PreparedFrame {
     Camera camera;                     // the camera it was culled for
     ActorFrameStatistics stats;        // APP and CULL
     const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
+    Image occlusion;                   // its occlusion buffer as a picture, when the window shows it
 };
+
+// The occlusion buffer as a picture: near occluders light, far ones dark, nothing drawn clear.
+Image occlusionPicture(const OcclusionBuffer& buffer) {
+    Image image;
+    image.name = "occlusion buffer";
+    image.width = buffer.width();
+    image.height = buffer.height();
+    image.rgba.resize(std::size_t(image.width) * std::size_t(image.height) * 4);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double d = buffer.depthAt(x, image.height - 1 - y);  // buffer row 0 is the bottom
+            std::uint8_t* p = &image.rgba[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 4];
+            const auto level = static_cast<std::uint8_t>(std::isfinite(d) ? 255.0 / (1.0 + d / 20.0) : 0.0);
+            p[0] = p[1] = level, p[2] = std::isfinite(d) ? 255 : 96, p[3] = std::isfinite(d) ? 230 : 140;
+        }
+    return image;
+}
 
 // Columns ending in _ms are wall-clock times; the others depend only on the scene, seed and options.
 const char* kCsvHeader =
     "frame,time,step_ms,app_ms,refpoint_ms,matrices_bounds_ms,cull_ms,skeleton_root_ms,cull2_ms,pose_ms,cull3_ms,draw_list_ms,"
     "draw_ms,scene_ms,mesh_ms,impostor_ms,morph_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
-    "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn\n";
+    "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
+    "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
+    "occlusion_cells_hidden,occlusion_tests,nodes_occluded\n";
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
     const ActorFrameStatistics& s = f.stats;
@@ -69,7 +90,9 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ',' << s.c3_1
       << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.eyeDistances << ',' << s.drawItems << ',' << r.skinnedItems
       << ',' << s.impostors << ',' << r.morphs.synthesized << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
-      << ',' << r.meshes.triangles << '\n';
+      << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
+      << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
+      << s.occlusionTests << ',' << s.nodesOccluded << '\n';
     return o.str();
 }
 
@@ -102,6 +125,7 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   "actors %llu: culled with group %llu  A %llu  B %llu  C1 %llu  C2 %llu  C3.1 %llu  C3.2 %llu\n"
                   "posed %llu, skeleton nodes %llu, draw items %llu, triangles %llu\n"
                   "APP+CULL %.2f ms (APP %.2f, refpoints %.2f, bounds %.2f, CULL1 %.2f, roots %.2f, CULL2 %.2f, poses %.2f, CULL3 %.2f, list %.2f)\n"
+                  "occlusion: %llu occluders drawn in %.2f ms; hidden: %llu with their group, %llu Refpoint, %llu Sklsroot, %llu tiles (O: buffer)\n"
                   "LOD scale %.2f (+/-)   culling pyramid %s (C)   camera %s (Tab)   %s",
                   world.description().name.c_str(), fps, s.processing == Processing::Actor ? "actor" : "traditional",
                   pipelined ? ", DRAW overlapped" : "", paused ? "   PAUSED" : "", (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
@@ -109,7 +133,9 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   (unsigned long long)s.c3_1, (unsigned long long)s.c3_2, (unsigned long long)s.actorsPosed,
                   (unsigned long long)s.skeletonNodesEvaluated, (unsigned long long)s.drawItems, (unsigned long long)s.primitives,
                   s.appCullMs(), s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs,
-                  s.cull3Ms, s.drawListMs, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
+                  s.cull3Ms, s.drawListMs, (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
+                  (unsigned long long)s.occludedWithGroup, (unsigned long long)s.occludedRefpoint, (unsigned long long)s.occludedSklsroot,
+                  (unsigned long long)s.nodesOccluded, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
                   "W/A/S/D/Q/E move, drag to look, Space pause, P processing, Esc quit");
     return buf;
 }
@@ -141,7 +167,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["meanMs"]["step"] = sums.step / n;  // the simulation step, before APP+CULL
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
-    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight"}) {
+    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders"}) {
         const auto c = world.effects().of(effect);
         j["effects"][effect] = {{"constructed", c.constructed}, {"ticks", c.ticks}};
     }
@@ -187,6 +213,8 @@ int main(int argc, char** argv) {
     processor.setProcessing(o.processing == "traditional" ? Processing::Traditional : Processing::Actor);
     processor.setThreads(unsigned(o.threads));
     processor.setLodScale(lodScale);
+    // Occlusion culling when the scene declares it (and --occlusion does not turn it off).
+    if (o.occlusion && world->description().representation.occlusion) processor.setOcclusion(world->description().representation.occlusion);
     // Far actors as impostors when the scene asks for them (or --impostor-distance does).
     const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
     std::unique_ptr<ImpostorSet> impostors;
@@ -217,6 +245,7 @@ int main(int argc, char** argv) {
     // The two stages of a frame. prepare: step the simulation (unless paused), then APP and CULL
     // for `camera`. draw: DRAW from the prepared frame's own data, then its statistics.
     PreparedFrame prepared[2];
+    bool showOcclusion = false;  // the window's O key
     auto prepare = [&](PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
         f.number = number;
         f.stepMs = 0.0;
@@ -228,11 +257,13 @@ int main(int argc, char** argv) {
         f.camera = camera;
         f.stats = processor.processFrame(world->root(), camera, f.time);
         f.list = &processor.drawList();
+        f.occlusion = showOcclusion && processor.occlusion() ? occlusionPicture(processor.occlusion()->buffer()) : Image{};
     };
     double lastFrameEnd = 0.0;
     auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
         Stopwatch watch;
         renderer.beginFrame(f.camera);
+        renderer.setOverlayImage(f.occlusion);
         renderer.draw(*f.list);
         if (beforePresent) beforePresent();
         renderer.endFrame();
@@ -334,6 +365,7 @@ int main(int argc, char** argv) {
             if (glfwGetKey(glfw, GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
             if (pressed(GLFW_KEY_SPACE)) paused = !paused;
             if (pressed(GLFW_KEY_C)) shrunk = !shrunk;
+            if (pressed(GLFW_KEY_O)) showOcclusion = !showOcclusion;
             if (pressed(GLFW_KEY_P))
                 processor.setProcessing(processor.processing() == Processing::Actor ? Processing::Traditional : Processing::Actor);
             if (pressed(GLFW_KEY_EQUAL) || pressed(GLFW_KEY_KP_ADD)) processor.setLodScale(scale *= 1.25);

@@ -1,5 +1,9 @@
 #include "throng/render/CrowdRenderer.h"
 
+#include <algorithm>
+
+#include "throng/render/ImageOverlay.h"
+
 #include <glad/gl.h>
 
 #include <stdexcept>
@@ -78,6 +82,12 @@ void CrowdRenderer::draw(const DrawList& list) {
 
 void CrowdRenderer::endFrame() {
     Stopwatch watch;
+    if (!overlayImage_.rgba.empty()) {
+        if (!imageOverlay_) imageOverlay_ = std::make_unique<ImageOverlay>(*context_);
+        // Bottom-right, a third of the frame's width, the image's own aspect.
+        const int w = context_->width() / 3, h = w * overlayImage_.height / std::max(overlayImage_.width, 1);
+        imageOverlay_->draw(overlayImage_, context_->width() - w - 12, context_->height() - h - 12, w, h);
+    }
     if (!overlayText_.empty()) {
         if (!overlay_) overlay_ = std::make_unique<TextOverlay>(*context_);
         overlay_->draw(overlayText_, 12, 12, 1.6f);

@@ -154,13 +154,14 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("town")) {
         const Reader t = root.at("town");
-        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles"});
+        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders"});
         TownDescription town;
         if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
         if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
         if (t.has("blockTiles")) town.blockTiles = int(t.at("blockTiles").atLeast(1));
         if (t.has("tileSize")) town.tileSize = t.at("tileSize").positive();
         if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
+        if (t.has("occluders")) town.occluders = t.at("occluders").boolean();
         town.tiles = existingFile(t.at("tiles"), baseDirectory, true);
         for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
             if (!fs::is_regular_file(fs::path(town.tiles) / needed))
@@ -272,7 +273,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("representation")) {
         const Reader r = root.at("representation");
-        r.object({"impostorDistance", "hysteresis", "lodScale"});
+        r.object({"impostorDistance", "hysteresis", "lodScale", "occlusion"});
         if (r.has("impostorDistance")) {
             s.representation.impostorDistance = r.at("impostorDistance").number();
             if (s.representation.impostorDistance < 0) r.at("impostorDistance").fail("must not be negative");
@@ -282,6 +283,25 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
             if (s.representation.hysteresis < 0 || s.representation.hysteresis > 0.5) r.at("hysteresis").fail("must be in [0, 0.5]");
         }
         if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").positive();
+        if (r.has("occlusion")) {
+            const Reader o = r.at("occlusion");
+            o.object({"width", "height", "maxOccluders"});
+            OcclusionSettings settings;
+            const auto size = [&](const char* key, int& into) {
+                if (!o.has(key)) return;
+                const std::int64_t v = o.at(key).atLeast(8);
+                if (v > 4096) o.at(key).fail("must be at most 4096, got " + std::to_string(v));
+                into = static_cast<int>(v);
+            };
+            size("width", settings.width);
+            size("height", settings.height);
+            if (o.has("maxOccluders")) {
+                const std::int64_t v = o.at("maxOccluders").atLeast(1);
+                if (v > 1000000) o.at("maxOccluders").fail("must be at most 1000000, got " + std::to_string(v));
+                settings.maxOccluders = static_cast<int>(v);
+            }
+            s.representation.occlusion = settings;
+        }
     }
 
     if (root.has("camera")) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -14,6 +15,8 @@
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/Occluder.h"
+#include "throng/scenegraph/OccluderFitting.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/sim/CounterRng.h"
 #include "throng/sim/Flock.h"
@@ -147,6 +150,22 @@ void Simulation::buildTown(const BuildProgress& progress) {
         for (const auto& p : asset.primitives) list.push_back(std::make_shared<MeshDrawable>(p.data));
         progress("loading town tiles", double(models.size()) / kTileKindCount * 0.5);
     }
+    // Occluders, when the scene asks: boxes fitted inside each kind of building, once per kind.
+    std::map<TileKind, std::pair<std::vector<AxisBox>, AxisBox>> occluderOf;  // boxes and shell
+    if (d.town->occluders) {
+        for (const auto& [kind, list] : models) {
+            if (tileWalkable(kind)) continue;
+            std::vector<const MeshData*> meshes;
+            AxisBox shell{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+            for (const auto& m : list) {
+                meshes.push_back(&m->mesh());
+                for (const glm::vec3& p : m->mesh().positions) shell.min = glm::min(shell.min, p), shell.max = glm::max(shell.max, p);
+            }
+            std::vector<AxisBox> boxes = fitOccluderBoxes(meshes);
+            if (!boxes.empty()) occluderOf[kind] = {std::move(boxes), shell};
+        }
+        progress("fitting occluders", 0.5);
+    }
     // Tiles grouped by chunks of 4 x 4 so that CULL rejects whole chunks.
     auto town = std::make_shared<Group>();
     town->setName("town");
@@ -170,6 +189,10 @@ void Simulation::buildTown(const BuildProgress& progress) {
         const float h = float(0.5 * town_->tileSize);
         if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
         if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
+        if (const auto it = occluderOf.find(t.kind); it != occluderOf.end()) {
+            node->addChild(std::make_shared<Occluder>(it->second.first, it->second.second));
+            effects_.constructed("occluders");
+        }
         chunk->addChild(node);
     }
     for (auto& [key, chunk] : chunks) town->addChild(chunk);

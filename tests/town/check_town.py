@@ -91,7 +91,7 @@ def effects(exe, scenes, work):
         run(exe, out, "--scene", os.path.join(scenes, scene + ".json"), "--headless", "--frames", "30", "--every", "0",
             "--width", "160", "--height", "90")
         summaries[scene] = json.load(open(os.path.join(out, "summary.json")))["effects"]
-    for effect in ("avoidance", "gaze", "flight"):
+    for effect in ("avoidance", "gaze", "flight", "occluders"):
         off = summaries["plain"][effect]
         on = summaries["effects"][effect]
         if off["constructed"] != 0 or off["ticks"] != 0:
@@ -101,6 +101,15 @@ def effects(exe, scenes, work):
     for effect in ("locomotion", "idle"):
         if summaries["plain"][effect]["ticks"] < 1:
             sys.exit(f"the plain scene's {effect} never ticked")
+    # Occlusion culling: declared, it draws occluders and tests spheres; undeclared, it does nothing.
+    for scene, declared in (("plain", False), ("effects", True)):
+        rows = list(csv.DictReader(open(os.path.join(work, scene, "stats.csv"))))
+        drawn = sum(int(r["occluders_drawn"]) for r in rows)
+        tests = sum(int(r["occlusion_tests"]) for r in rows)
+        if declared and (drawn == 0 or tests == 0):
+            sys.exit(f"declared occlusion drew {drawn} occluders and made {tests} tests")
+        if not declared and (drawn != 0 or tests != 0 or any(float(r["occlusion_buffer_ms"]) != 0 for r in rows)):
+            sys.exit(f"undeclared occlusion drew {drawn} occluders and made {tests} tests")
     print(json.dumps(summaries, indent=1))
 
 

@@ -25,6 +25,7 @@ namespace throng {
 class GlContext;
 class GlRenderer;
 class GpuMorpher;
+class ImageOverlay;
 class TextOverlay;
 
 /// How a CrowdRenderer draws.
@@ -74,6 +75,8 @@ public:
 
     /// Text drawn over the next frames (lines separated by '\n'; empty: none).
     void setOverlayText(std::string text) { overlayText_ = std::move(text); }
+    /// An image drawn over the next frames in the bottom-right corner (empty: none).
+    void setOverlayImage(Image image) { overlayImage_ = std::move(image); }
     /// Statistics of the last frame.
     const CrowdRenderStatistics& statistics() const { return stats_; }
     /// The mesh renderer (viewport, resources, options).
@@ -90,7 +93,9 @@ private:
     std::unique_ptr<ImpostorBatcher> batcher_;
     std::unique_ptr<ImpostorRenderer> quads_;
     std::unique_ptr<TextOverlay> overlay_;
+    std::unique_ptr<ImageOverlay> imageOverlay_;
     std::string overlayText_;
+    Image overlayImage_;
     Camera camera_;
     CrowdRenderStatistics stats_;
     DrawList sceneItems_, actorItems_;  // this frame's mesh items, split by pass (pointers kept)

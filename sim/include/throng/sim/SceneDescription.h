@@ -12,6 +12,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "throng/scenegraph/OcclusionCulling.h"
+
 namespace throng::sim {
 
 /// The town the actors walk in.
@@ -22,6 +24,7 @@ struct TownDescription {
     double tileSize = 8.0;      ///< metres per tile
     std::uint64_t seed = 1;     ///< layout
     std::string tiles;          ///< folder of the tile models (relative to the scene file)
+    bool occluders = false;     ///< buildings get occluder boxes fitted inside them (for occlusion culling)
 };
 
 /// An actor template: a glTF file, or a procedural one ("seed-humanoid", "table3", "bird").
@@ -88,6 +91,8 @@ struct RepresentationDescription {
     double impostorDistance = 0.0;         ///< beyond it, impostors (0: never)
     double hysteresis = 0.1;               ///< fraction of the distance kept before switching back
     double lodScale = 1.0;                 ///< multiplies every LOD distance
+    /// Occlusion culling against the scene's occluders with this buffer; none: off, nothing built.
+    std::optional<OcclusionSettings> occlusion;
 };
 
 /// A whole scene.
