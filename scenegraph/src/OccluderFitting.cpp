@@ -19,6 +19,9 @@ using DVec3 = glm::dvec3;
 // faces lying on cell boundaries (walls on the bounding box) must not spoil the cells beside them.
 // The margin (at least 0.001 of a cell) keeps boxes clear of such grazing triangles.
 constexpr double kGraze = 1e-4;
+// The columns that test a cell's corners stand this fraction of a cell inside it (below the smallest
+// margin, so the untested sliver lies outside every box's outer faces).
+constexpr double kColumnInset = 1e-3;
 
 struct Triangle {
     DVec3 v[3];
@@ -139,45 +142,54 @@ SurfaceMarks markSurface(const Grid& g, const std::vector<Triangle>& tris) {
     return marks;
 }
 
-struct Crossing {
-    std::size_t column;
-    double depth;
-    int sign;  // sign of the triangle normal along the axis: +1 when a ray towards +axis exits
-};
-
-// For each cell, whether the signed crossing count towards +axis and towards -axis is at least one
-// for every axis (winding number >= 1 seen from six directions). Crossings are found by sampling each
-// triangle at the column centres with the rasteriser's top-left rule, so a ray through a shared edge
-// or vertex counts once.
+// For each cell, whether along each of the six axis directions a triangle facing that direction lies
+// beyond the cell: seen from far away along that direction, the renderer draws that face in front of
+// the cell. Tested on nine columns per cell (near its corners, its edge middles, its centre) so that
+// an overhang ending above part of a cell does not count for all of it; the corner columns stand
+// kColumnInset of a cell inside, so that a wall on a cell's side does not hide the roof edge it meets
+// from them. Columns meet triangles by the rasteriser's top-left rule, so a column through a shared
+// edge or vertex hits exactly one triangle.
 std::vector<std::uint8_t> enclosedCells(const Grid& g, const std::vector<Triangle>& tris) {
     std::vector<std::uint8_t> enclosed(g.count(), 1);
-    std::vector<Crossing> crossings;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         const int b = (a + 1) % 3, c = (a + 2) % 3;
-        crossings.clear();
+        // Three columns per cell along b and along c: just inside its low side, at its centre, just
+        // inside its high side.
+        const int mb = 3 * g.n[b], mc = 3 * g.n[c];
+        auto sample = [&](int axis, int t) {
+            const int cell = t / 3, at = t % 3;
+            return at == 1 ? g.centre(axis, cell) : at == 0 ? g.plane(axis, cell) + kColumnInset * g.cell[axis] : g.plane(axis, cell + 1) - kColumnInset * g.cell[axis];
+        };
+        // Per column: the farthest face towards +a that faces +a, and towards -a that faces -a.
+        std::vector<double> topUp(std::size_t(mb) * std::size_t(mc), -kInf), bottomDown(std::size_t(mb) * std::size_t(mc), kInf);
         for (const Triangle& t : tris) {
             // Projected onto (b, c) the signed area equals the normal's component along a.
             DVec3 p[3] = {t.v[0], t.v[1], t.v[2]};
             const double area = (p[1][b] - p[0][b]) * (p[2][c] - p[0][c]) - (p[1][c] - p[0][c]) * (p[2][b] - p[0][b]);
             if (area == 0.0 || !std::isfinite(area)) continue;
-            const int sign = area > 0.0 ? 1 : -1;
-            if (area < 0.0) std::swap(p[1], p[2]);
-            const double bmin = std::min({p[0][b], p[1][b], p[2][b]}), bmax = std::max({p[0][b], p[1][b], p[2][b]});
-            const double cmin = std::min({p[0][c], p[1][c], p[2][c]}), cmax = std::max({p[0][c], p[1][c], p[2][c]});
+            const bool facesUp = area > 0.0;
+            if (!facesUp) std::swap(p[1], p[2]);
             int j0, j1, k0, k1;
-            g.span(b, bmin, bmax, j0, j1);
-            g.span(c, cmin, cmax, k0, k1);
-            for (int k = k0; k <= k1; ++k) {
-                const double qc = g.centre(c, k);
-                for (int j = j0; j <= j1; ++j) {
-                    const double qb = g.centre(b, j);
+            g.span(b, std::min({p[0][b], p[1][b], p[2][b]}), std::max({p[0][b], p[1][b], p[2][b]}), j0, j1);
+            g.span(c, std::min({p[0][c], p[1][c], p[2][c]}), std::max({p[0][c], p[1][c], p[2][c]}), k0, k1);
+            for (int tc = 3 * k0; tc <= 3 * k1 + 2; ++tc) {
+                const double qc = sample(c, tc);
+                for (int tb = 3 * j0; tb <= 3 * j1 + 2; ++tb) {
+                    const double qb = sample(b, tb);
                     double w[3];
                     bool inside = true;
                     for (int e = 0; e < 3 && inside; ++e) {
                         const DVec3& from = p[(e + 1) % 3];
                         const DVec3& to = p[(e + 2) % 3];
                         const double db = to[b] - from[b], dc = to[c] - from[c];
-                        w[e] = db * (qc - from[c]) - dc * (qb - from[b]);
+                        // Evaluated from the edge's lexicographically first end, so that the two
+                        // triangles sharing it get exactly opposite values (no rounding gap).
+                        const bool flip = to[b] < from[b] || (to[b] == from[b] && to[c] < from[c]);
+                        const DVec3& origin = flip ? to : from;
+                        const double eb = flip ? -db : db, ec = flip ? -dc : dc;
+                        const double canonical = eb * (qc - origin[c]) - ec * (qb - origin[b]);
+                        w[e] = flip ? -canonical : canonical;
                         // Top-left rule: an edge shared by two triangles is claimed by exactly one.
                         inside = w[e] > 0.0 || (w[e] == 0.0 && (dc > 0.0 || (dc == 0.0 && db < 0.0)));
                     }
@@ -185,36 +197,32 @@ std::vector<std::uint8_t> enclosedCells(const Grid& g, const std::vector<Triangl
                     const double sum = w[0] + w[1] + w[2];
                     if (!(sum > 0.0)) continue;
                     const double depth = (w[0] * p[0][a] + w[1] * p[1][a] + w[2] * p[2][a]) / sum;
-                    crossings.push_back({std::size_t(j) + std::size_t(g.n[b]) * std::size_t(k), depth, sign});
+                    const std::size_t column = std::size_t(tb) + std::size_t(mb) * std::size_t(tc);
+                    if (facesUp) topUp[column] = std::max(topUp[column], depth);
+                    else bottomDown[column] = std::min(bottomDown[column], depth);
                 }
             }
         }
-        std::sort(crossings.begin(), crossings.end(),
-                  [](const Crossing& l, const Crossing& r) { return l.column != r.column ? l.column < r.column : l.depth < r.depth; });
-        // Sweep every column along a: crossings below the cell centre and in total.
-        std::size_t next = 0;
+        // A cell is covered towards +a when every one of its nine columns has such a face beyond
+        // its centre (a free cell has no face inside it, so beyond the centre is beyond the cell).
         for (int k = 0; k < g.n[c]; ++k)
             for (int j = 0; j < g.n[b]; ++j) {
-                const std::size_t column = std::size_t(j) + std::size_t(g.n[b]) * std::size_t(k);
-                while (next < crossings.size() && crossings[next].column < column) ++next;
-                std::size_t end = next;
-                int total = 0;
-                while (end < crossings.size() && crossings[end].column == column) total += crossings[end++].sign;
-                std::size_t at = next;
-                int below = 0;
+                double nearestUp = kInf, nearestDown = -kInf;
+                for (int dk = 0; dk <= 2; ++dk)
+                    for (int dj = 0; dj <= 2; ++dj) {
+                        const std::size_t column = std::size_t(3 * j + dj) + std::size_t(mb) * std::size_t(3 * k + dk);
+                        nearestUp = std::min(nearestUp, topUp[column]);
+                        nearestDown = std::max(nearestDown, bottomDown[column]);
+                    }
                 for (int i = 0; i < g.n[a]; ++i) {
                     const double centre = g.centre(a, i);
-                    while (at < end && crossings[at].depth < centre) below += crossings[at++].sign;
-                    // Towards +a the crossings above count their sign; towards -a, those below count
-                    // the opposite sign (a ray going down exits through faces whose normal points down).
-                    const int up = total - below, down = -below;
+                    if (nearestUp > centre && nearestDown < centre) continue;
                     int cell[3];
                     cell[a] = i;
                     cell[b] = j;
                     cell[c] = k;
-                    if (up < 1 || down < 1) enclosed[g.index(cell[0], cell[1], cell[2])] = 0;
+                    enclosed[g.index(cell[0], cell[1], cell[2])] = 0;
                 }
-                next = end;
             }
     }
     return enclosed;

@@ -43,11 +43,12 @@ struct OccluderFitStatistics {
 
 /// Axis-aligned boxes, in the meshes' own frame, lying inside the solid the meshes enclose together
 /// (e.g. the primitives of one glTF tile), largest first. A cell of a voxel grid over the meshes'
-/// bounding box counts as solid when no triangle passes through it and the signed number of
-/// surface crossings from its centre to the outside (front faces count -1, back faces +1) is at
-/// least one along all six axis directions; free cells joined through faces no triangle lies on must
-/// all agree. Boxes are then taken greedily over solid cells (largest-volume box first, then the
-/// largest over uncovered cells, grown through solid ones). Open or empty geometry yields no box.
+/// bounding box counts as solid when no triangle passes through it and, along each of the six axis
+/// directions, a triangle facing that direction (counter-clockwise seen from there) lies beyond it
+/// over its whole footprint, so that an eye far that way sees a front face first; free cells joined
+/// through faces no triangle lies on must all agree, so a pocket open to the outside is dropped
+/// whole. Boxes are then taken greedily over solid cells (largest-volume box first, then the largest
+/// over uncovered cells, grown through solid ones). Open or empty geometry yields no box.
 /// Throws std::invalid_argument for bad options, a null mesh, non-finite positions or indices out
 /// of range (naming the mesh's position in `meshes` and the offending vertex or index).
 std::vector<AxisBox> fitOccluderBoxes(std::span<const MeshData* const> meshes, const OccluderFitOptions& options = {},
