@@ -20,12 +20,12 @@ bool inside(const AxisBox& box, const AxisBox& shell) {
 }  // namespace
 
 Occluder::Occluder(std::vector<AxisBox> boxes, const AxisBox& shell) : boxes_(std::move(boxes)), shell_(shell) {
-    if (!finite(shell.min) || !finite(shell.max) || shell.empty())
+    if (!finite(shell.min) || !finite(shell.max) || !(shell.volume() > 0.0))
         throw std::invalid_argument("Occluder: the shell is empty or not finite");
     for (std::size_t i = 0; i < boxes_.size(); ++i) {
         const AxisBox& b = boxes_[i];
         if (!finite(b.min) || !finite(b.max)) throw std::invalid_argument("Occluder: box " + std::to_string(i) + " is not finite");
-        if (b.empty()) throw std::invalid_argument("Occluder: box " + std::to_string(i) + " is empty");
+        if (!(b.volume() > 0.0)) throw std::invalid_argument("Occluder: box " + std::to_string(i) + " is empty");
         if (!inside(b, shell)) throw std::invalid_argument("Occluder: box " + std::to_string(i) + " is not inside the shell");
     }
     world_.resize(boxes_.size());
