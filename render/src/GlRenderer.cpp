@@ -66,7 +66,7 @@ struct Group {
 
 struct ProgramState {
     std::unique_ptr<ShaderProgram> program;
-    GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1;
+    GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1, flatTint = -1;
     GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
     std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
 };
@@ -241,6 +241,7 @@ struct GlRenderer::Impl {
         gl.Uniform3fv(p.lightColor, 1, &options.lightColor[0]);
         gl.Uniform3fv(p.skyColor, 1, &options.skyColor[0]);
         gl.Uniform3fv(p.groundColor, 1, &options.groundColor[0]);
+        gl.Uniform1i(p.flatTint, options.flatTint);
         p.frameStamp = frameStamp;
     }
 };
@@ -263,6 +264,7 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         p.baseColor = s.uniformLocation("uBaseColor");
         p.hasTexture = s.uniformLocation("uHasTexture");
         p.hasNormals = s.uniformLocation("uHasNormals");
+        p.flatTint = s.uniformLocation("uFlatTint");
         p.viewRotation = s.uniformLocation("uViewRotation");
         p.projection = s.uniformLocation("uProjection");
         p.lightDirection = s.uniformLocation("uLightDirection");

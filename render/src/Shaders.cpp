@@ -100,6 +100,7 @@ uniform vec3 uLightDirection;  // normalised, towards the light
 uniform vec3 uLightColor;
 uniform vec3 uSkyColor;
 uniform vec3 uGroundColor;
+uniform bool uFlatTint;        // ID renders: the tint as is
 
 out vec4 fragColor;
 
@@ -109,6 +110,10 @@ vec3 linearToSrgb(vec3 c) {
 }
 
 void main() {
+    if (uFlatTint) {
+        fragColor = vTint;
+        return;
+    }
     vec4 base = uBaseColor * vTint;
     if (uHasTexture) base *= texture(uTexture, vTexcoord);
     vec3 n;

@@ -15,6 +15,7 @@ struct RendererOptions {
     bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
+    bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders)
     glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
     glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)
