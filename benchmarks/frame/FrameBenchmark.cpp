@@ -53,6 +53,8 @@ struct Options {
     int pipelineFrames = 120;            // frames of each pipeline run (0: skip)
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::string csv, markdown;
+    std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
+    std::string occlusionCsv;              // where that section's rows go as CSV (empty: nowhere)
     std::vector<std::string> sections{"methods", "scaling", "pipeline"};
     bool has(const char* section) const { return std::find(sections.begin(), sections.end(), section) != sections.end(); }
 };
@@ -60,7 +62,8 @@ struct Options {
 // Times on the scene's camera path: in a street (eye 2.75 m up) and over the town.
 double cameraTime(const std::string& name) { return name == "street" ? 9.0 : 0.0; }
 
-const char* kMethods[] = {"traditional", "actor", "actor + impostors"};
+const char* kMethods[] = {"traditional", "actor", "actor + impostors", "actor + occlusion", "actor + impostors + occlusion"};
+constexpr int kMethodCount = 5;
 
 // Means over the measured ticks of one method.
 struct Row {
@@ -68,11 +71,13 @@ struct Row {
     std::string camera, method;
     double step = 0, app = 0, cull1 = 0, roots = 0, cull2 = 0, pose = 0, cull3 = 0, list = 0, appCull = 0;
     double batch = 0, morph = 0, town = 0, meshes = 0, quads = 0, finish = 0, draw = 0, frame = 0;
-    double posed = 0, impostors = 0, items = 0, triangles = 0;
+    double posed = 0, impostors = 0, items = 0, triangles = 0, occlusionBuffer = 0, hidden = 0;
     void add(double stepMs, const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double drawMs) {
         step += stepMs;
         app += s.appMs + s.refpointMs + s.matricesBoundsMs;
-        cull1 += s.cullMs;
+        cull1 += s.cullMs + s.refpointOcclusionMs;
+        occlusionBuffer += s.occlusionBufferMs;
+        hidden += double(s.occludedWithGroup + s.occludedRefpoint + s.occludedSklsroot);
         roots += s.skeletonRootMs;
         cull2 += s.cull2Ms;
         pose += s.poseMs;
@@ -94,7 +99,7 @@ struct Row {
     }
     void divide(double n) {
         for (double* v : {&step, &app, &cull1, &roots, &cull2, &pose, &cull3, &list, &appCull, &batch, &morph, &town, &meshes,
-                          &quads, &finish, &draw, &frame, &posed, &impostors, &items, &triangles})
+                          &quads, &finish, &draw, &frame, &posed, &impostors, &items, &triangles, &occlusionBuffer, &hidden})
             *v /= n;
     }
 };
@@ -134,17 +139,22 @@ std::pair<double, double> impostorDistance(const sim::Simulation& world) {
     std::exit(1);
 }
 
-// The three methods on the same ticks, for each camera.
+// The methods on the same ticks, for each camera.
 std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context,
                                 std::uint64_t* ticksChecked) {
     auto world = buildWorld(o, actors);
     auto impostors = bakeImpostors(context, *world);
     context->resize(o.width, o.height);
-    ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd());
+    ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd()), occluding(world->crowd()),
+        hybridOccluding(world->crowd());
     traditional.setProcessing(Processing::Traditional);
     const auto [distance, hysteresis] = impostorDistance(*world);
     impostors->attach(hybrid, distance, hysteresis);
-    ActorProcessor* processors[] = {&traditional, &actor, &hybrid};
+    impostors->attach(hybridOccluding, distance, hysteresis);
+    const OcclusionSettings occlusion = world->description().representation.occlusion.value_or(OcclusionSettings{});
+    occluding.setOcclusion(occlusion);
+    hybridOccluding.setOcclusion(occlusion);
+    ActorProcessor* processors[] = {&traditional, &actor, &hybrid, &occluding, &hybridOccluding};
     CrowdRendererOptions ro;
     ro.finishPasses = true;
     CrowdRenderer renderer(context, ro);
@@ -152,8 +162,8 @@ std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std
     std::vector<Row> rows;
     for (const std::string& cameraName : o.cameras) {
         const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
-        Row r[3];
-        for (int m = 0; m < 3; ++m) {
+        Row r[kMethodCount];
+        for (int m = 0; m < kMethodCount; ++m) {
             r[m].actors = std::int64_t(world->crowd().size());
             r[m].camera = cameraName;
             r[m].method = kMethods[m];
@@ -162,7 +172,7 @@ std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std
             const FrameContext& now = world->step();
             const double stepMs = world->lastStepMs();
             std::uint64_t digest = 0;
-            for (int m = 0; m < 3; ++m) {
+            for (int m = 0; m < kMethodCount; ++m) {
                 const ActorFrameStatistics s = processors[m]->processFrame(world->root(), camera, now.time);
                 const std::uint64_t d = stateDigest(world->crowd());
                 if (m == 0) digest = d;
@@ -296,19 +306,73 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
     return result;
 }
 
+// One occlusion buffer resolution on one camera: what it rejected and what it cost.
+struct OcclusionRow {
+    std::string camera;
+    int width = 0, height = 0;  // 0 x 0: occlusion off
+    double bufferMs = 0, appCullMs = 0, hidden = 0, reachingCull1 = 0, posed = 0, tiles = 0;
+};
+
+// The occlusion buffer's resolution against rejection and time (actor + impostors processing, the
+// same ticks for every resolution and for occlusion off).
+std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
+    const int sizes[][2] = {{0, 0}, {64, 36}, {128, 72}, {256, 144}, {512, 288}, {1024, 576}};
+    constexpr int kSizes = 6;
+    auto world = buildWorld(o, o.occlusionActors);
+    *actorsOut = std::int64_t(world->crowd().size());
+    auto impostors = bakeImpostors(context, *world);
+    const auto [distance, hysteresis] = impostorDistance(*world);
+    std::vector<std::unique_ptr<ActorProcessor>> processors;
+    for (const auto& size : sizes) {
+        processors.push_back(std::make_unique<ActorProcessor>(world->crowd()));
+        impostors->attach(*processors.back(), distance, hysteresis);
+        if (size[0] > 0) {
+            OcclusionSettings settings = world->description().representation.occlusion.value_or(OcclusionSettings{});
+            settings.width = size[0], settings.height = size[1];
+            processors.back()->setOcclusion(settings);
+        }
+    }
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    std::vector<OcclusionRow> rows;
+    for (const std::string& cameraName : o.cameras) {
+        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+        OcclusionRow r[kSizes];
+        for (int k = 0; k < kSizes; ++k) r[k].camera = cameraName, r[k].width = sizes[k][0], r[k].height = sizes[k][1];
+        for (int f = -2; f < o.frames; ++f) {
+            const FrameContext& now = world->step();
+            for (int k = 0; k < kSizes; ++k) {
+                const ActorFrameStatistics s = processors[std::size_t(k)]->processFrame(world->root(), camera, now.time);
+                if (f < 0) continue;
+                r[k].bufferMs += s.occlusionBufferMs;
+                r[k].appCullMs += s.appCullMs();
+                r[k].hidden += double(s.occludedWithGroup + s.occludedRefpoint + s.occludedSklsroot);
+                r[k].reachingCull1 += double(s.actorsInScene - s.culledWithGroup - s.a);
+                r[k].posed += double(s.actorsPosed);
+                r[k].tiles += double(s.nodesOccluded);
+            }
+        }
+        for (OcclusionRow& row : r) {
+            for (double* v : {&row.bufferMs, &row.appCullMs, &row.hidden, &row.reachingCull1, &row.posed, &row.tiles}) *v /= o.frames;
+            rows.push_back(row);
+        }
+        std::fprintf(stderr, "bench_frame: occlusion resolutions, %s camera done\n", cameraName.c_str());
+    }
+    return rows;
+}
+
 std::string methodTable(const std::vector<Row>& rows) {
     std::ostringstream t;
     char line[1024];
-    t << "| actors | camera | method | step | APP | CULL 1 | roots | CULL 2 | poses | CULL 3 | list | APP+CULL | impostor batch | "
-         "morph | town draw | mesh draw | impostor draw | finish | DRAW | whole frame | fps | posed | impostors | triangles |\n"
-         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    t << "| actors | camera | method | step | APP | occlusion buffer | CULL 1 | roots | CULL 2 | poses | CULL 3 | list | APP+CULL | impostor batch | "
+         "morph | town draw | mesh draw | impostor draw | finish | DRAW | whole frame | fps | posed | impostors | hidden | triangles |\n"
+         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows) {
         std::snprintf(line, sizeof line,
-                      "| %lld | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f | "
-                      "%.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f |\n",
-                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.step, r.app, r.cull1, r.roots, r.cull2, r.pose, r.cull3,
-                      r.list, r.appCull, r.batch, r.morph, r.town, r.meshes, r.quads, r.finish, r.draw, r.frame, 1000.0 / r.frame,
-                      r.posed, r.impostors, r.triangles);
+                      "| %lld | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f | "
+                      "%.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.0f |\n",
+                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.step, r.app, r.occlusionBuffer, r.cull1, r.roots, r.cull2,
+                      r.pose, r.cull3, r.list, r.appCull, r.batch, r.morph, r.town, r.meshes, r.quads, r.finish, r.draw, r.frame,
+                      1000.0 / r.frame, r.posed, r.impostors, r.hidden, r.triangles);
         t << line;
     }
     return t.str();
@@ -319,8 +383,9 @@ std::string methodTable(const std::vector<Row>& rows) {
 int main(int argc, char** argv) {
     Options o;
     support::CommandLine cl("bench_frame",
-                            "The whole frame of the town crowd: traditional, actor and actor + impostor processing on the\n"
-                            "identical state, side by side; then APP+CULL with 1 and 2 threads, and the pipelined frame.");
+                            "The whole frame of the town crowd: traditional, actor, actor + impostor processing, each of the\n"
+                            "last two with occlusion culling, on the identical state, side by side; then APP+CULL with 1\n"
+                            "and 2 threads, the pipelined frame, and (when asked) the occlusion buffer's resolution.");
     CLI::App& app = cl.app();
     using support::wholeNumber;
     app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")
@@ -338,8 +403,13 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(0, 10'000'000));
     app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")
         ->type_name("N")->check(wholeNumber(0, 1'000'000));
-    app.add_option("--sections", o.sections, "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline"}));
+    app.add_option("--sections", o.sections,
+                   "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline, occlusion (buffer "
+                   "resolution against rejection and time; not run unless named)")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "occlusion"}));
+    app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
+        ->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section as CSV (one row per knob value)")->type_name("FILE");
     app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
     app.add_option("--csv", o.csv, "also write the method rows as CSV")->type_name("FILE");
     app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
@@ -362,20 +432,22 @@ int main(int argc, char** argv) {
                    << ", one thread; means over " << o.frames << " ticks (`bench_frame";
             for (int i = 1; i < argc; ++i) {  // the options that change the figures, not where they go
                 const std::string_view arg = argv[i];
-                if (arg == "--markdown" || arg == "--csv") ++i;
-                else if (!arg.starts_with("--markdown=") && !arg.starts_with("--csv=")) report << ' ' << arg;
+                if (arg == "--markdown" || arg == "--csv" || arg == "--occlusion-csv") ++i;
+                else if (!arg.starts_with("--markdown=") && !arg.starts_with("--csv=") && !arg.starts_with("--occlusion-csv="))
+                    report << ' ' << arg;
             }
             report << "`).\n\n" << methodTable(rows);
         }
         if (!o.csv.empty()) {
             std::ofstream csv(o.csv);
             csv << "actors,camera,method,step_ms,app_ms,cull1_ms,roots_ms,cull2_ms,pose_ms,cull3_ms,list_ms,app_cull_ms,impostor_batch_ms,"
-                   "morph_ms,town_ms,mesh_ms,impostor_draw_ms,finish_ms,draw_ms,frame_ms,posed,impostors,draw_items,triangles\n";
+                   "morph_ms,town_ms,mesh_ms,impostor_draw_ms,finish_ms,draw_ms,frame_ms,posed,impostors,draw_items,triangles,occlusion_buffer_ms,hidden\n";
             for (const Row& r : rows)
                 csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.step << ',' << r.app << ',' << r.cull1 << ',' << r.roots
                     << ',' << r.cull2 << ',' << r.pose << ',' << r.cull3 << ',' << r.list << ',' << r.appCull << ',' << r.batch << ','
                     << r.morph << ',' << r.town << ',' << r.meshes << ',' << r.quads << ',' << r.finish << ',' << r.draw << ','
-                    << r.frame << ',' << r.posed << ',' << r.impostors << ',' << r.items << ',' << r.triangles << '\n';
+                    << r.frame << ',' << r.posed << ',' << r.impostors << ',' << r.items << ',' << r.triangles << ',' << r.occlusionBuffer << ','
+                    << r.hidden << '\n';
         }
         if (o.has("scaling") && o.scalingActors > 0) {
             std::fprintf(stderr, "bench_frame: %lld actors with 1 and 2 threads...\n", (long long)o.scalingActors);
@@ -401,6 +473,33 @@ int main(int argc, char** argv) {
                           "%.1f fps with DRAW overlapping the next frame, %.1f fps without (%.2fx).\n",
                           (long long)p.actors, p.fps[1], p.fps[0], p.fps[1] / p.fps[0]);
             report << line;
+        }
+        if (o.has("occlusion")) {
+            std::fprintf(stderr, "bench_frame: occlusion buffer resolutions, %lld actors...\n", (long long)o.occlusionActors);
+            std::int64_t actors = 0;
+            const auto sweep = occlusionSweep(o, context, &actors);
+            report << "\nOcclusion buffer resolution against rejection and time, actor + impostors processing, " << actors
+                   << " actors, one thread, means over " << o.frames << " ticks (\"hidden\": actors rejected by occlusion, as a share of those "
+                   << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less):\n\n"
+                   << "| camera | buffer | buffer ms | APP+CULL ms | hidden | hidden share | posed | tiles hidden |\n"
+                   << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+            std::ofstream csv;
+            if (!o.occlusionCsv.empty()) {
+                csv.open(o.occlusionCsv);
+                csv << "knob,value,camera,actors,scene,hidden_share,actors_hidden,actors_posed,tiles_hidden,occlusion_buffer_ms,app_cull_ms,memory_bytes\n";
+            }
+            char line[512];
+            for (const OcclusionRow& r : sweep) {
+                const std::string size = r.width ? std::to_string(r.width) + "x" + std::to_string(r.height) : "off";
+                const double share = r.reachingCull1 > 0 ? r.hidden / r.reachingCull1 : 0.0;
+                std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.2f | %.0f | %.1f %% | %.0f | %.0f |\n", r.camera.c_str(), size.c_str(),
+                              r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles);
+                report << line;
+                // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
+                if (csv) csv << "occlusion_resolution," << size << ',' << r.camera << ',' << actors << ",town," << share << ',' << r.hidden
+                             << ',' << r.posed << ',' << r.tiles << ',' << r.bufferMs << ',' << r.appCullMs << ','
+                             << (std::int64_t(r.width) * r.height * 16 / 3) << '\n';
+            }
         }
     } catch (const std::exception& e) {
         fail(e.what());
