@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "OverlayState.h"
 #include "throng/render/GlContext.h"
 #include "throng/render/ShaderProgram.h"
 
@@ -71,13 +72,7 @@ void ImageOverlay::draw(const Image& image, int x, int y, int width, int height)
     // Texture row 0 is the image's top row.
     const float quad[6][4] = {{x0, y0, 0, 0}, {x1, y0, 1, 0}, {x1, y1, 1, 1}, {x0, y0, 0, 0}, {x1, y1, 1, 1}, {x0, y1, 0, 1}};
 
-    gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
-    gl.Viewport(0, 0, context_.width(), context_.height());
-    const GLboolean culling = gl.IsEnabled(GL_CULL_FACE);
-    gl.Disable(GL_CULL_FACE);
-    gl.Disable(GL_DEPTH_TEST);
-    gl.Enable(GL_BLEND);
-    gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    const detail::OverlayState state(context_);
     gl.UseProgram(program_->id());
     gl.Uniform2f(program_->uniformLocation("viewport"), float(context_.width()), float(context_.height()));
     gl.Uniform1i(program_->uniformLocation("image"), 0);
@@ -85,10 +80,6 @@ void ImageOverlay::draw(const Image& image, int x, int y, int width, int height)
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo_);
     gl.BufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STREAM_DRAW);
     gl.DrawArrays(GL_TRIANGLES, 0, 6);
-    gl.BindVertexArray(0);
-    gl.Disable(GL_BLEND);
-    gl.Enable(GL_DEPTH_TEST);
-    if (culling) gl.Enable(GL_CULL_FACE);
 }
 
 }  // namespace throng

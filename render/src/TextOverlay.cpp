@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "OverlayState.h"
 #include "throng/render/GlContext.h"
 #include "throng/render/ShaderProgram.h"
 
@@ -86,26 +87,14 @@ void TextOverlay::draw(const std::string& text, int x, int y, float scale, const
     quad(all, float(x) - 6, float(y) - 6, x + width * scale + 6, y + lines * 12.0f * scale + 2, glm::vec4(0, 0, 0, 0.55f));
     all.insert(all.end(), tris.begin(), tris.end());
 
-    context_.makeCurrent();
+    const detail::OverlayState state(context_);
     const GladGLContext& gl = context_.gl();
-    gl.BindFramebuffer(GL_FRAMEBUFFER, context_.framebuffer());
-    gl.Viewport(0, 0, context_.width(), context_.height());
-    // Flat 2D quads in whatever winding: no depth test, no face culling (restored below).
-    const GLboolean culling = gl.IsEnabled(GL_CULL_FACE);
-    gl.Disable(GL_CULL_FACE);
-    gl.Disable(GL_DEPTH_TEST);
-    gl.Enable(GL_BLEND);
-    gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     gl.UseProgram(program_->id());
     gl.Uniform2f(program_->uniformLocation("viewport"), float(context_.width()), float(context_.height()));
     gl.BindVertexArray(vao_);
     gl.BindBuffer(GL_ARRAY_BUFFER, vbo_);
     gl.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(all.size() * sizeof(Vertex)), all.data(), GL_STREAM_DRAW);
     gl.DrawArrays(GL_TRIANGLES, 0, GLsizei(all.size()));
-    gl.BindVertexArray(0);
-    gl.Disable(GL_BLEND);
-    gl.Enable(GL_DEPTH_TEST);
-    if (culling) gl.Enable(GL_CULL_FACE);
 }
 
 }  // namespace throng
