@@ -1,6 +1,7 @@
 #include "throng/render/GlRenderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -67,7 +68,7 @@ struct Group {
 struct ProgramState {
     std::unique_ptr<ShaderProgram> program;
     GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1;
-    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
+    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1, encodeSrgb = -1;
     std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
 };
 
@@ -104,12 +105,15 @@ struct GlRenderer::Impl {
     std::unordered_map<const Image*, TextureEntry> textures;
 
     bool inFrame = false;
+    bool framebufferEncodes = false;  // this frame: the target's colour is sRGB and the framebuffer encodes
     std::uint64_t frameStamp = 0, drawStamp = 0;
     glm::mat4 viewRotation{1.0f}, projection{1.0f};
     Vec3 eye{0.0};
 
     // Scratch reused by every draw(): no allocation once the crowd's size has been seen.
     std::vector<std::uint32_t> itemGroup;
+    std::vector<std::uint32_t> order;                       // items in drawing order
+    std::vector<std::pair<float, std::uint32_t>> byDistance;  // (nearest distance, item) when sorting
     std::vector<Group> groups;
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
@@ -232,6 +236,44 @@ struct GlRenderer::Impl {
         gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
     }
 
+    // Whether the bound draw framebuffer's colour buffer is sRGB-encoded (then GL_FRAMEBUFFER_SRGB
+    // makes the GL encode what the shader writes, cheaper on llvmpipe than pow() in the shader).
+    bool targetIsSrgb() {
+        GLint encoding = GL_LINEAR;
+        const GLenum attachment = context->framebuffer() ? GL_COLOR_ATTACHMENT0 : GL_BACK_LEFT;
+        gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING,
+                                               &encoding);
+        const bool failed = gl.GetError() != GL_NO_ERROR;  // a default framebuffer without that buffer
+        return !failed && encoding == GL_SRGB;
+    }
+
+    // Fills `order` with the items' indices, nearest first when options.frontToBack (by the nearest
+    // point of each item's bounding sphere; ties keep list order), else in list order.
+    void orderItems(const std::vector<DrawItem>& items) {
+        order.resize(items.size());
+        if (!options.frontToBack) {
+            for (std::size_t i = 0; i < items.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+            return;
+        }
+        byDistance.resize(items.size());
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const DrawItem& item = items[i];
+            float key = 0.0f;
+            if (item.drawable && item.worldMatrix) {
+                const Mat4& w = *item.worldMatrix;
+                const BoundingSphere& b = item.drawable->localBound();
+                const Vec3 centre = Vec3(w * Vec4(b.center(), 1.0));
+                const double scale = std::sqrt(std::max({glm::dot(Vec3(w[0]), Vec3(w[0])), glm::dot(Vec3(w[1]), Vec3(w[1])),
+                                                         glm::dot(Vec3(w[2]), Vec3(w[2]))}));
+                key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
+            }
+            byDistance[i] = {key, static_cast<std::uint32_t>(i)};
+        }
+        std::stable_sort(byDistance.begin(), byDistance.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (std::size_t i = 0; i < items.size(); ++i) order[i] = byDistance[i].second;
+    }
+
     void loadFrameUniforms(ProgramState& p) {
         const glm::vec3 light = glm::length(options.lightDirection) > 0.0f ? glm::normalize(options.lightDirection)
                                                                             : glm::vec3(0.0f, 1.0f, 0.0f);
@@ -241,6 +283,7 @@ struct GlRenderer::Impl {
         gl.Uniform3fv(p.lightColor, 1, &options.lightColor[0]);
         gl.Uniform3fv(p.skyColor, 1, &options.skyColor[0]);
         gl.Uniform3fv(p.groundColor, 1, &options.groundColor[0]);
+        gl.Uniform1i(p.encodeSrgb, !framebufferEncodes);
         p.frameStamp = frameStamp;
     }
 };
@@ -269,6 +312,7 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         p.lightColor = s.uniformLocation("uLightColor");
         p.skyColor = s.uniformLocation("uSkyColor");
         p.groundColor = s.uniformLocation("uGroundColor");
+        p.encodeSrgb = s.uniformLocation("uEncodeSrgb");
         gl.UseProgram(s.id());
         gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
         gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
@@ -343,6 +387,7 @@ void GlRenderer::beginFrame(const Camera& camera) {
     gl.ClearColor(c.r, c.g, c.b, c.a);
     gl.ClearDepth(1.0);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    r.framebufferEncodes = r.options.framebufferSrgb && r.targetIsSrgb();
 }
 
 void GlRenderer::draw(const DrawList& list) {
@@ -357,9 +402,11 @@ void GlRenderer::draw(const DrawList& list) {
     r.itemGroup.resize(items.size());
     r.groups.clear();
 
-    // 1. Check every item and sort it into a group (first appearance order), before any drawing.
+    // 1. Check every item and sort it into a group (first appearance in drawing order: with
+    // frontToBack, groups by their nearest item), before any drawing.
+    r.orderItems(items);
     std::size_t paletteMatrices = 0, cpuVertices = 0;
-    for (std::size_t i = 0; i < items.size(); ++i) {
+    for (const std::uint32_t i : r.order) {
         const DrawItem& item = items[i];
         if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
         const auto* meshDrawable = dynamic_cast<const MeshDrawable*>(item.drawable);
@@ -404,7 +451,7 @@ void GlRenderer::draw(const DrawList& list) {
                                  " texels, more than this GL's texture buffer limit of " +
                                  std::to_string(r.maxTextureBufferTexels));
 
-    // 2. Lay the groups out in the instance buffer, then fill it in item order.
+    // 2. Lay the groups out in the instance buffer, then fill it in drawing order.
     std::uint32_t slots = 0;
     for (Group& g : r.groups) {
         g.first = slots;
@@ -416,7 +463,7 @@ void GlRenderer::draw(const DrawList& list) {
     r.cpuNormals.resize(cpuVertices);
     std::size_t paletteCursor = 0;
     const Vec3 eye = r.eye;
-    for (std::size_t i = 0; i < items.size(); ++i) {
+    for (const std::uint32_t i : r.order) {
         if (r.itemGroup[i] == kNone) continue;
         const DrawItem& item = items[i];
         Group& g = r.groups[r.itemGroup[i]];
@@ -469,6 +516,7 @@ void GlRenderer::draw(const DrawList& list) {
     gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
     GLuint current = 0;
     bool clockwise = false;  // beginFrame set GL_CCW
+    if (r.framebufferEncodes) gl.Enable(GL_FRAMEBUFFER_SRGB);  // only while drawing: clears and other passes stay raw
     for (Group& g : r.groups) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;
@@ -513,6 +561,7 @@ void GlRenderer::draw(const DrawList& list) {
     }
     gl.BindVertexArray(0);
     if (clockwise) gl.FrontFace(GL_CCW);
+    if (r.framebufferEncodes) gl.Disable(GL_FRAMEBUFFER_SRGB);
     r.stats.drawMs += watch.elapsedMs();
 }
 

@@ -100,6 +100,7 @@ uniform vec3 uLightDirection;  // normalised, towards the light
 uniform vec3 uLightColor;
 uniform vec3 uSkyColor;
 uniform vec3 uGroundColor;
+uniform bool uEncodeSrgb;      // false when the framebuffer encodes (GL_FRAMEBUFFER_SRGB)
 
 out vec4 fragColor;
 
@@ -120,7 +121,8 @@ void main() {
     }
     float sun = max(dot(n, uLightDirection), 0.0);
     vec3 ambient = mix(uGroundColor, uSkyColor, 0.5 + 0.5 * n.y);
-    fragColor = vec4(linearToSrgb(base.rgb * (ambient + uLightColor * sun)), base.a);
+    vec3 c = base.rgb * (ambient + uLightColor * sun);
+    fragColor = vec4(uEncodeSrgb ? linearToSrgb(c) : c, base.a);
 }
 )GLSL";
 

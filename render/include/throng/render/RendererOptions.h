@@ -15,6 +15,12 @@ struct RendererOptions {
     bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
+    /// Draws nearer items first (groups by their nearest instance, instances near to far), so the
+    /// depth test rejects hidden fragments before they are shaded. Same picture, less shading.
+    bool frontToBack = true;
+    /// When the target's colour buffer is sRGB-encoded, lets the framebuffer encode the shaded
+    /// colour (GL_FRAMEBUFFER_SRGB) instead of the fragment shader; other targets keep the shader's.
+    bool framebufferSrgb = true;
     glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
     glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)
