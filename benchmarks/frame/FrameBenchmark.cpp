@@ -14,7 +14,7 @@
 //
 // `--sections town` (not run by default): the town's DRAW alone, the GL finished after the town
 // pass, along the whole camera path (10 actors by default), with the old drawing, each improvement
-// alone (front-to-back order, sRGB encoding by the framebuffer, town LOD) and all together, the
+// alone (front-to-back order, constant faces shaded per vertex, town LOD) and all together, the
 // variants interleaved frame by frame on the same cameras.
 //
 // usage: bench_frame --help
@@ -309,7 +309,7 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
 // The town's DRAW alone: the old drawing, each improvement alone and all together.
 struct TownVariant {
     std::string name;
-    bool frontToBack = false, framebufferSrgb = false, lod = false;
+    bool frontToBack = false, constantFaces = false, lod = false;
     std::vector<double> ms;         // mean town pass per camera sample (wall clock)
     std::vector<double> cpuMs;      // the same in CPU time of the whole process (every GL thread)
     double triangles = 0;           // mean town triangles drawn per frame
@@ -319,7 +319,7 @@ std::vector<TownVariant> townVariants(bool withLod) {
     std::vector<TownVariant> v;
     v.push_back({"old drawing", false, false, false, {}, {}, 0});
     v.push_back({"front to back", true, false, false, {}, {}, 0});
-    v.push_back({"framebuffer sRGB", false, true, false, {}, {}, 0});
+    v.push_back({"constant faces", false, true, false, {}, {}, 0});
     if (withLod) v.push_back({"town LOD", false, false, true, {}, {}, 0});
     v.push_back({"all together", true, true, withLod, {}, {}, 0});
     return v;
@@ -369,7 +369,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
     for (const TownVariant& v : result.variants) {
         RendererOptions ro;
         ro.frontToBack = v.frontToBack;
-        ro.framebufferSrgb = v.framebufferSrgb;
+        ro.constantFaces = v.constantFaces;
         renderers.push_back(std::make_unique<GlRenderer>(context, ro));
     }
     DrawList lists[2];

@@ -68,7 +68,7 @@ struct Group {
 struct ProgramState {
     std::unique_ptr<ShaderProgram> program;
     GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1;
-    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1, encodeSrgb = -1;
+    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
     std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
 };
 
@@ -98,6 +98,7 @@ struct GlRenderer::Impl {
     RenderStatistics stats;
     Image lastFrame;
     ProgramState programs[3];  // 0, 4 and 8 influences
+    ProgramState constantFaces;  // rigid triangles of one colour, shaded per vertex
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
     std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
     GLint maxTextureBufferTexels = 0;
@@ -105,7 +106,6 @@ struct GlRenderer::Impl {
     std::unordered_map<const Image*, TextureEntry> textures;
 
     bool inFrame = false;
-    bool framebufferEncodes = false;  // this frame: the target's colour is sRGB and the framebuffer encodes
     std::uint64_t frameStamp = 0, drawStamp = 0;
     glm::mat4 viewRotation{1.0f}, projection{1.0f};
     Vec3 eye{0.0};
@@ -236,17 +236,6 @@ struct GlRenderer::Impl {
         gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
     }
 
-    // Whether the bound draw framebuffer's colour buffer is sRGB-encoded (then GL_FRAMEBUFFER_SRGB
-    // makes the GL encode what the shader writes, cheaper on llvmpipe than pow() in the shader).
-    bool targetIsSrgb() {
-        GLint encoding = GL_LINEAR;
-        const GLenum attachment = context->framebuffer() ? GL_COLOR_ATTACHMENT0 : GL_BACK_LEFT;
-        gl.GetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COLOR_ENCODING,
-                                               &encoding);
-        const bool failed = gl.GetError() != GL_NO_ERROR;  // a default framebuffer without that buffer
-        return !failed && encoding == GL_SRGB;
-    }
-
     // Fills `order` with the items' indices, nearest first when options.frontToBack (by the nearest
     // point of each item's bounding sphere; ties keep list order), else in list order.
     void orderItems(const std::vector<DrawItem>& items) {
@@ -283,7 +272,6 @@ struct GlRenderer::Impl {
         gl.Uniform3fv(p.lightColor, 1, &options.lightColor[0]);
         gl.Uniform3fv(p.skyColor, 1, &options.skyColor[0]);
         gl.Uniform3fv(p.groundColor, 1, &options.groundColor[0]);
-        gl.Uniform1i(p.encodeSrgb, !framebufferEncodes);
         p.frameStamp = frameStamp;
     }
 };
@@ -297,11 +285,14 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
     const int influences[3] = {0, 4, 8};
-    for (int k = 0; k < 3; ++k) {
-        ProgramState& p = r.programs[k];
-        p.program = std::make_unique<ShaderProgram>(
-            *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
-            detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
+    for (int k = 0; k < 4; ++k) {
+        ProgramState& p = k < 3 ? r.programs[k] : r.constantFaces;
+        p.program = k < 3 ? std::make_unique<ShaderProgram>(
+                                *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
+                                detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource())
+                          : std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (constant faces)",
+                                                            detail::constantFaceVertexShaderSource(),
+                                                            detail::constantFaceFragmentShaderSource());
         const ShaderProgram& s = *p.program;
         p.baseColor = s.uniformLocation("uBaseColor");
         p.hasTexture = s.uniformLocation("uHasTexture");
@@ -312,7 +303,6 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         p.lightColor = s.uniformLocation("uLightColor");
         p.skyColor = s.uniformLocation("uSkyColor");
         p.groundColor = s.uniformLocation("uGroundColor");
-        p.encodeSrgb = s.uniformLocation("uEncodeSrgb");
         gl.UseProgram(s.id());
         gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
         gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
@@ -387,7 +377,6 @@ void GlRenderer::beginFrame(const Camera& camera) {
     gl.ClearColor(c.r, c.g, c.b, c.a);
     gl.ClearDepth(1.0);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    r.framebufferEncodes = r.options.framebufferSrgb && r.targetIsSrgb();
 }
 
 void GlRenderer::draw(const DrawList& list) {
@@ -516,11 +505,7 @@ void GlRenderer::draw(const DrawList& list) {
     gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
     GLuint current = 0;
     bool clockwise = false;  // beginFrame set GL_CCW
-    if (r.framebufferEncodes) gl.Enable(GL_FRAMEBUFFER_SRGB);  // only while drawing: clears and other passes stay raw
-    for (Group& g : r.groups) {
-        MeshEntry& e = *g.mesh;
-        const detail::GlMesh& m = e.gpu;
-        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
+    auto useProgram = [&](ProgramState& p, const MeshEntry& e) {
         if (p.program->id() != current) {
             current = p.program->id();
             gl.UseProgram(current);
@@ -528,7 +513,14 @@ void GlRenderer::draw(const DrawList& list) {
         }
         gl.Uniform4fv(p.baseColor, 1, &e.baseColor[0]);
         gl.Uniform1i(p.hasTexture, e.texture != 0);
-        gl.Uniform1i(p.hasNormals, m.hasNormals);
+        gl.Uniform1i(p.hasNormals, e.gpu.hasNormals);
+    };
+    // Constant faces need every drawn triangle to face the eye (their colour has no back side).
+    const bool constantFaces = r.options.constantFaces && r.options.cullBackFaces;
+    for (Group& g : r.groups) {
+        MeshEntry& e = *g.mesh;
+        const detail::GlMesh& m = e.gpu;
+        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
         gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
         if (g.mirrored != clockwise) {
             clockwise = g.mirrored;
@@ -551,17 +543,27 @@ void GlRenderer::draw(const DrawList& list) {
         if (m.indexCount == 0) continue;
         gl.BindBuffer(GL_ARRAY_BUFFER, r.instanceBuffer);
         r.pointInstanceAttributes(g.first);
-        if (g.count == 1) {
-            gl.DrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        auto drawRange = [&](GLsizei first, GLsizei count) {
+            if (count == 0) return;
+            const void* at = byteOffset(static_cast<std::size_t>(first) * sizeof(std::uint32_t));
+            if (g.count == 1) gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, at);
+            else gl.DrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, at, static_cast<GLsizei>(g.count));
+            ++r.stats.drawCalls;
+        };
+        if (constantFaces && g.path == Path::Rigid && m.constantIndexCount > 0) {
+            // The classified copy of the indices: constant triangles with the cheap program, then the rest.
+            r.stats.constantTriangles += std::uint64_t(m.constantIndexCount / 3) * g.count;
+            useProgram(r.constantFaces, e);
+            drawRange(m.indexCount, m.constantIndexCount);
+            useProgram(p, e);
+            drawRange(m.indexCount + m.constantIndexCount, m.indexCount - m.constantIndexCount);
         } else {
-            gl.DrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                                     static_cast<GLsizei>(g.count));
+            useProgram(p, e);
+            drawRange(0, m.indexCount);
         }
-        ++r.stats.drawCalls;
     }
     gl.BindVertexArray(0);
     if (clockwise) gl.FrontFace(GL_CCW);
-    if (r.framebufferEncodes) gl.Disable(GL_FRAMEBUFFER_SRGB);
     r.stats.drawMs += watch.elapsedMs();
 }
 

@@ -81,9 +81,7 @@ void OsMesaContext::createFramebuffer() {
     g.GenRenderbuffers(1, &colour_);
     g.GenRenderbuffers(1, &depth_);
     g.BindRenderbuffer(GL_RENDERBUFFER, colour_);
-    // sRGB-encoded 8-bit colour: stored and read like RGBA8 (no conversion unless a pass enables
-    // GL_FRAMEBUFFER_SRGB), so a renderer may let the framebuffer encode its linear colour.
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_SRGB8_ALPHA8, width_, height_);
+    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
     g.BindRenderbuffer(GL_RENDERBUFFER, depth_);
     g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width_, height_);
     g.BindRenderbuffer(GL_RENDERBUFFER, 0);

@@ -6,7 +6,7 @@
 
 namespace throng {
 
-/// Off-screen OpenGL core context rendering into an sRGB-encoded RGBA8 + depth framebuffer object.
+/// Off-screen OpenGL core context rendering into an RGBA8 + depth framebuffer object.
 class OsMesaContext final : public GlContext {
 public:
     /// Creates a core-profile context (3.3 or later) with a `width` x `height` framebuffer and makes

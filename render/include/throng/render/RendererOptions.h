@@ -18,9 +18,10 @@ struct RendererOptions {
     /// Draws nearer items first (groups by their nearest instance, instances near to far), so the
     /// depth test rejects hidden fragments before they are shaded. Same picture, less shading.
     bool frontToBack = true;
-    /// When the target's colour buffer is sRGB-encoded, lets the framebuffer encode the shaded
-    /// colour (GL_FRAMEBUFFER_SRGB) instead of the fragment shader; other targets keep the shader's.
-    bool framebufferSrgb = true;
+    /// Shades triangles of one colour (one normal and one texture coordinate at their three
+    /// vertices, rigid meshes, back faces culled) once per vertex instead of once per pixel: the
+    /// same formula, evaluated where it cannot vary. Other triangles are shaded per pixel.
+    bool constantFaces = true;
     glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
     glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)
