@@ -99,6 +99,7 @@ struct GlRenderer::Impl {
     Image lastFrame;
     ProgramState programs[3];  // 0, 4 and 8 influences
     ProgramState constantFaces;  // rigid triangles of one colour, shaded per vertex
+    ProgramState flatLight;      // rigid triangles of one normal, lit per vertex
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
     std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
     GLint maxTextureBufferTexels = 0;
@@ -285,14 +286,20 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
     const int influences[3] = {0, 4, 8};
-    for (int k = 0; k < 4; ++k) {
-        ProgramState& p = k < 3 ? r.programs[k] : r.constantFaces;
-        p.program = k < 3 ? std::make_unique<ShaderProgram>(
-                                *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
-                                detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource())
-                          : std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (constant faces)",
-                                                            detail::constantFaceVertexShaderSource(),
-                                                            detail::constantFaceFragmentShaderSource());
+    for (int k = 0; k < 5; ++k) {
+        ProgramState& p = k < 3 ? r.programs[k] : k == 3 ? r.constantFaces : r.flatLight;
+        if (k < 3)
+            p.program = std::make_unique<ShaderProgram>(
+                *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
+                detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
+        else if (k == 3)
+            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (constant faces)",
+                                                        detail::constantFaceVertexShaderSource(),
+                                                        detail::constantFaceFragmentShaderSource());
+        else
+            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (flat-lit faces)",
+                                                        detail::flatLightVertexShaderSource(),
+                                                        detail::flatLightFragmentShaderSource());
         const ShaderProgram& s = *p.program;
         p.baseColor = s.uniformLocation("uBaseColor");
         p.hasTexture = s.uniformLocation("uHasTexture");
@@ -550,13 +557,17 @@ void GlRenderer::draw(const DrawList& list) {
             else gl.DrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, at, static_cast<GLsizei>(g.count));
             ++r.stats.drawCalls;
         };
-        if (constantFaces && g.path == Path::Rigid && m.constantIndexCount > 0) {
-            // The classified copy of the indices: constant triangles with the cheap program, then the rest.
+        const GLsizei classified = m.constantIndexCount + m.flatLitIndexCount;
+        if (constantFaces && g.path == Path::Rigid && classified > 0) {
+            // The classified copy of the indices: constant triangles, flat-lit ones, then the rest.
             r.stats.constantTriangles += std::uint64_t(m.constantIndexCount / 3) * g.count;
-            useProgram(r.constantFaces, e);
+            r.stats.flatLitTriangles += std::uint64_t(m.flatLitIndexCount / 3) * g.count;
+            if (m.constantIndexCount > 0) useProgram(r.constantFaces, e);
             drawRange(m.indexCount, m.constantIndexCount);
-            useProgram(p, e);
-            drawRange(m.indexCount + m.constantIndexCount, m.indexCount - m.constantIndexCount);
+            if (m.flatLitIndexCount > 0) useProgram(r.flatLight, e);
+            drawRange(m.indexCount + m.constantIndexCount, m.flatLitIndexCount);
+            if (classified < m.indexCount) useProgram(p, e);
+            drawRange(m.indexCount + classified, m.indexCount - classified);
         } else {
             useProgram(p, e);
             drawRange(0, m.indexCount);

@@ -28,6 +28,13 @@ std::string constantFaceVertexShaderSource();
 /// The fragment shader of constant faces: writes the colour its vertex shader computed.
 std::string constantFaceFragmentShaderSource();
 
+/// The vertex shader of flat-lit faces (one normal at the three vertices, texture coordinates
+/// that vary; rigid, back faces culled): the light is computed once per vertex and passed flat.
+std::string flatLightVertexShaderSource();
+
+/// The fragment shader of flat-lit faces: texture, the flat light, sRGB encoding.
+std::string flatLightFragmentShaderSource();
+
 /// The shading fragment shader: base colour x texture x tint, hemisphere + sun light, sRGB output.
 std::string fragmentShaderSource();
 

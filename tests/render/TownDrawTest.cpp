@@ -83,12 +83,14 @@ TEST_F(TownDrawTest, NewDrawingMatchesOldAtFullDetail) {
         const Frame old = render(before, camera, processor.drawList());
         const Frame now = render(after, camera, processor.drawList());
         EXPECT_EQ(old.stats.triangles, now.stats.triangles) << "the same triangles, drawn another way";
-        EXPECT_EQ(old.stats.constantTriangles, 0u);
+        EXPECT_EQ(old.stats.constantTriangles + old.stats.flatLitTriangles, 0u);
         EXPECT_GT(now.stats.constantTriangles, now.stats.triangles / 5) << "the cheap path must really be taken";
+        EXPECT_GT(now.stats.flatLitTriangles, 0u) << "so must the flat-lit one";
         EXPECT_GT(test::coveredPixels(old.image), std::size_t(kWidth * kHeight / 4)) << "the town must be in view";
         const ImageDifference d = compareImages(old.image, now.image, test::GoldenTolerance{}.threshold);
-        std::printf("t = %4.1f s: %llu of %llu triangles constant; %zu pixels over %d (%.4f %%), max %d, PSNR %.1f dB\n", t,
-                    (unsigned long long)now.stats.constantTriangles, (unsigned long long)now.stats.triangles,
+        std::printf("t = %4.1f s: %llu of %llu triangles constant, %llu flat-lit; %zu pixels over %d (%.4f %%), max %d, PSNR %.1f dB\n",
+                    t, (unsigned long long)now.stats.constantTriangles, (unsigned long long)now.stats.triangles,
+                    (unsigned long long)now.stats.flatLitTriangles,
                     d.pixelsOverThreshold, test::GoldenTolerance{}.threshold, 100.0 * d.fractionOverThreshold,
                     d.maxChannelDifference, d.psnr);
         EXPECT_LE(d.fractionOverThreshold, test::GoldenTolerance{}.maxFraction);

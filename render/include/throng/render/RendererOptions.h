@@ -20,7 +20,8 @@ struct RendererOptions {
     bool frontToBack = true;
     /// Shades triangles of one colour (one normal and one texture coordinate at their three
     /// vertices, rigid meshes, back faces culled) once per vertex instead of once per pixel: the
-    /// same formula, evaluated where it cannot vary. Other triangles are shaded per pixel.
+    /// same formula, evaluated where it cannot vary; triangles of one normal are lit once per vertex
+    /// and textured per pixel. Other triangles are shaded per pixel.
     bool constantFaces = true;
     glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
