@@ -28,6 +28,11 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
+// Distance bands of front-to-back drawing: [0, 16 m), then each band twice as deep as the last.
+std::int32_t distanceBand(float distance) {
+    return distance < 16.0f ? 0 : 1 + static_cast<std::int32_t>(std::log2(distance / 16.0f));
+}
+
 // Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix.
 struct InstanceData {
     float model[16];
@@ -59,6 +64,7 @@ struct Group {
     MeshEntry* mesh = nullptr;
     Path path = Path::Rigid;
     bool mirrored = false;            // negative determinant: triangles wind the other way on screen
+    std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
     std::uint32_t count = 0;          // items
     std::uint32_t first = 0;          // first slot in the instance buffer
     std::uint32_t filled = 0;         // slots written so far
@@ -115,6 +121,7 @@ struct GlRenderer::Impl {
     std::vector<std::uint32_t> itemGroup;
     std::vector<std::uint32_t> order;                       // items in drawing order
     std::vector<std::pair<float, std::uint32_t>> byDistance;  // (nearest distance, item) when sorting
+    std::vector<std::int32_t> band;                         // each item's distance band (front-to-back)
     std::vector<Group> groups;
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
@@ -246,6 +253,7 @@ struct GlRenderer::Impl {
             return;
         }
         byDistance.resize(items.size());
+        band.assign(items.size(), 0);
         for (std::size_t i = 0; i < items.size(); ++i) {
             const DrawItem& item = items[i];
             float key = 0.0f;
@@ -258,6 +266,7 @@ struct GlRenderer::Impl {
                 key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
             }
             byDistance[i] = {key, static_cast<std::uint32_t>(i)};
+            band[i] = distanceBand(key);
         }
         std::stable_sort(byDistance.begin(), byDistance.end(),
                          [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -435,9 +444,12 @@ void GlRenderer::draw(const DrawList& list) {
             e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
         }
         std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
-        if (g == kNone || !r.options.instancing) {
+        // Front to back, a mesh's instances are split by distance band, so that an instanced
+        // draw covering the whole town does not put far instances before near ones of other meshes.
+        const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
+        if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
             g = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, mirrored});
+            r.groups.push_back(Group{&e, path, mirrored, band});
         }
         ++r.groups[g].count;
         r.itemGroup[i] = g;
