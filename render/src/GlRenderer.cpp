@@ -64,11 +64,11 @@ struct Group {
     MeshEntry* mesh = nullptr;
     Path path = Path::Rigid;
     bool mirrored = false;            // negative determinant: triangles wind the other way on screen
-    std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
     std::uint32_t count = 0;          // items
     std::uint32_t first = 0;          // first slot in the instance buffer
     std::uint32_t filled = 0;         // slots written so far
     std::uint32_t cpuVertexBase = 0;  // CPU-skinned: first vertex in the stream buffer
+    std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
 };
 
 struct ProgramState {
@@ -449,7 +449,7 @@ void GlRenderer::draw(const DrawList& list) {
         const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
         if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
             g = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, mirrored, band});
+            r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, 0, band});
         }
         ++r.groups[g].count;
         r.itemGroup[i] = g;
