@@ -28,9 +28,11 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-// Distance bands of front-to-back drawing: [0, 16 m), then each band twice as deep as the last.
+// Distance bands of front-to-back drawing: [0, 16 m), then each band twice as deep as the last
+// (infinite distances share the last band).
 std::int32_t distanceBand(float distance) {
-    return distance < 16.0f ? 0 : 1 + static_cast<std::int32_t>(std::log2(distance / 16.0f));
+    if (!(distance >= 16.0f)) return 0;
+    return 1 + static_cast<std::int32_t>(std::log2(std::min(distance, 1e30f) / 16.0f));
 }
 
 // Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix.
@@ -264,6 +266,7 @@ struct GlRenderer::Impl {
                 const double scale = std::sqrt(std::max({glm::dot(Vec3(w[0]), Vec3(w[0])), glm::dot(Vec3(w[1]), Vec3(w[1])),
                                                          glm::dot(Vec3(w[2]), Vec3(w[2]))}));
                 key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
+                if (std::isnan(key)) key = 0.0f;  // a NaN would break the sort's ordering
             }
             byDistance[i] = {key, static_cast<std::uint32_t>(i)};
             band[i] = distanceBand(key);
