@@ -12,13 +12,20 @@
 // worlds of the same seed, their digests compared), and end-to-end frames per second of the scene
 // with DRAW overlapping the next frame (Performer's multiprocess mode) and without.
 //
+// `--sections town` (not run by default): the town's DRAW alone, the GL finished after the town
+// pass, along the whole camera path (10 actors by default), with the old drawing, each improvement
+// alone (front-to-back order, constant faces shaded per vertex, town LOD) and all together, the
+// variants interleaved frame by frame on the same cameras.
+//
 // usage: bench_frame --help
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -28,6 +35,7 @@
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
+#include "throng/render/GlRenderer.h"
 #include "throng/render/ImpostorSet.h"
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/scenegraph/Stopwatch.h"
@@ -51,6 +59,9 @@ struct Options {
     int scalingFrames = 30;
     std::int64_t pipelineActors = 0;     // actors of the pipeline section (0: the scene's own count)
     int pipelineFrames = 120;            // frames of each pipeline run (0: skip)
+    std::int64_t townActors = 10;        // actors of the town section
+    int townSamples = 12;                // cameras along the path in the town section
+    int townFrames = 5;                  // frames per camera and variant in the town section
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
@@ -360,6 +371,151 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
     return rows;
 }
 
+// The town's DRAW alone: the old drawing, each improvement alone and all together.
+struct TownVariant {
+    std::string name;
+    bool frontToBack = false, constantFaces = false, lod = false;
+    std::vector<double> ms;         // mean town pass per camera sample (wall clock)
+    std::vector<double> cpuMs;      // the same in CPU time of the whole process (every GL thread)
+    double triangles = 0;           // mean town triangles drawn per frame
+};
+
+std::vector<TownVariant> townVariants() {
+    std::vector<TownVariant> v;
+    v.push_back({"old drawing", false, false, false, {}, {}, 0});
+    v.push_back({"front to back", true, false, false, {}, {}, 0});
+    v.push_back({"constant faces", false, true, false, {}, {}, 0});
+    v.push_back({"town LOD", false, false, true, {}, {}, 0});
+    v.push_back({"front to back + constant faces", true, true, false, {}, {}, 0});
+    v.push_back({"all together", true, true, true, {}, {}, 0});
+    return v;
+}
+
+// The town's items of a draw list (no actor, drawn as meshes), as CrowdRenderer's first pass takes them.
+void townItems(const DrawList& list, DrawList& town) {
+    town.clear();
+    for (const DrawItem& item : list.items())
+        if (item.actor == kNoActor && item.representation != Representation::Impostor) town.add(item, 0);
+}
+
+// CPU time of the whole process (the GL's rasteriser threads included), in milliseconds.
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+// Town LOD levels measured when the scene declares none: full tiles to 50 m, half the triangles to
+// 100 m, a quarter beyond.
+const std::vector<glm::dvec2> kTownLod{{50.0, 1.0}, {100.0, 0.5}, {std::numeric_limits<double>::infinity(), 0.25}};
+
+struct TownResult {
+    std::vector<TownVariant> variants;
+    std::vector<double> times;      // camera path times sampled
+    bool lodDeclared = false;
+};
+
+TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context) {
+    // Two worlds of one seed: the town as declared (with its LOD, if any) and at full detail.
+    sim::SceneDescription scene = sim::parseSceneFile(o.scene);
+    sim::scaleActors(scene, o.townActors);
+    TownResult result;
+    if (!scene.town) fail("--sections town: the scene declares no town");
+    result.lodDeclared = !scene.town->lod.empty();
+    if (!result.lodDeclared) scene.town->lod = kTownLod;
+    sim::SceneDescription full = scene;
+    full.town->lod.clear();
+    std::unique_ptr<sim::Simulation> worlds[2] = {sim::Simulation::build(std::move(full)), sim::Simulation::build(std::move(scene))};
+    context->resize(o.width, o.height);
+    std::unique_ptr<ActorProcessor> processors[2];
+    for (int w = 0; w < 2; ++w) {
+        if (!worlds[w]) continue;
+        processors[w] = std::make_unique<ActorProcessor>(worlds[w]->crowd());
+        for (int f = 0; f < std::max(o.warmup, 1); ++f) worlds[w]->step();
+    }
+    result.variants = townVariants();
+    // The town pass alone: clear, draw the town's items, finish (endFrame waits for the GL).
+    std::vector<std::unique_ptr<GlRenderer>> renderers;
+    for (const TownVariant& v : result.variants) {
+        RendererOptions ro;
+        ro.frontToBack = v.frontToBack;
+        ro.constantFaces = v.constantFaces;
+        renderers.push_back(std::make_unique<GlRenderer>(context, ro));
+    }
+    DrawList lists[2];
+    const double aspect = double(o.width) / double(o.height), duration = worlds[0]->camera().duration();
+    const std::size_t nv = result.variants.size();
+    std::vector<double> wall(nv), cpu(nv);  // this sample's sums per variant
+    for (int sample = -1; sample < o.townSamples; ++sample) {  // sample -1: uploads and JIT, not measured
+        const double t = duration * (std::max(sample, 0) + 0.5) / o.townSamples;
+        const Camera camera = worlds[0]->camera().at(t, aspect);
+        for (int w = 0; w < 2; ++w) {
+            if (!processors[w]) continue;
+            processors[w]->processFrame(worlds[w]->root(), camera, worlds[w]->now().time);
+            townItems(processors[w]->drawList(), lists[w]);
+        }
+        std::fill(wall.begin(), wall.end(), 0.0);
+        std::fill(cpu.begin(), cpu.end(), 0.0);
+        for (int f = 0; f < o.townFrames; ++f) {
+            for (std::size_t i = 0; i < nv; ++i) {
+                const std::size_t k = (i + std::size_t(f)) % nv;  // rotate which variant goes first
+                GlRenderer& r = *renderers[k];
+                r.beginFrame(camera);
+                const double cpu0 = processCpuMs();
+                Stopwatch watch;
+                r.draw(lists[result.variants[k].lod ? 1 : 0]);
+                r.endFrame();
+                wall[k] += watch.elapsedMs();
+                cpu[k] += processCpuMs() - cpu0;
+                if (sample >= 0) result.variants[k].triangles += double(r.statistics().triangles) / (o.townFrames * o.townSamples);
+            }
+        }
+        if (sample < 0) continue;
+        result.times.push_back(t);
+        for (std::size_t k = 0; k < nv; ++k) {
+            result.variants[k].ms.push_back(wall[k] / o.townFrames);
+            result.variants[k].cpuMs.push_back(cpu[k] / o.townFrames);
+        }
+    }
+    return result;
+}
+
+std::string townTable(const TownResult& r, const Options& o, const std::string& gl) {
+    std::ostringstream t;
+    char line[512];
+    auto mean = [](const std::vector<double>& v) {
+        double s = 0;
+        for (double x : v) s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    t << "Town DRAW alone (the GL finished after the town pass), " << o.townActors << " actors, " << o.width << " x " << o.height
+      << " headless, " << gl << "; " << r.times.size() << " cameras along the path, " << o.townFrames
+      << " frames each per variant, variants interleaved:\n\n"
+      << "| variant | mean ms | worst camera ms | vs old | CPU ms (all threads) | town triangles |\n|---|---:|---:|---:|---:|---:|\n";
+    const double old = mean(r.variants.front().ms);
+    for (const TownVariant& v : r.variants) {
+        std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2fx | %.1f | %.0f |\n", v.name.c_str(), mean(v.ms),
+                      *std::max_element(v.ms.begin(), v.ms.end()), old / mean(v.ms), mean(v.cpuMs), v.triangles);
+        t << line;
+    }
+    if (!r.lodDeclared) t << "\nThe scene declares no town LOD; the LOD rows use 50 m full, 100 m half the triangles, a quarter beyond.\n";
+    t << "\nPer camera (path time in s), ms:\n\n| time |";
+    for (const TownVariant& v : r.variants) t << ' ' << v.name << " |";
+    t << "\n|---:|";
+    for (std::size_t k = 0; k < r.variants.size(); ++k) t << "---:|";
+    t << '\n';
+    for (std::size_t i = 0; i < r.times.size(); ++i) {
+        std::snprintf(line, sizeof line, "| %.1f |", r.times[i]);
+        t << line;
+        for (const TownVariant& v : r.variants) {
+            std::snprintf(line, sizeof line, " %.1f |", v.ms[i]);
+            t << line;
+        }
+        t << '\n';
+    }
+    return t.str();
+}
+
 std::string methodTable(const std::vector<Row>& rows) {
     std::ostringstream t;
     char line[1024];
@@ -404,12 +560,17 @@ int main(int argc, char** argv) {
     app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")
         ->type_name("N")->check(wholeNumber(0, 1'000'000));
     app.add_option("--sections", o.sections,
-                   "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline, occlusion (buffer "
-                   "resolution against rejection and time; not run unless named)")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "occlusion"}));
+                   "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline; not run unless "
+                   "named: town (the town's DRAW alone, old and new drawing), occlusion (buffer resolution against rejection and time)")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion"}));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
     app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section as CSV (one row per knob value)")->type_name("FILE");
+    app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--town-samples", o.townSamples, "cameras along the path in the town section")
+        ->type_name("N")->check(wholeNumber(1, 10'000));
+    app.add_option("--town-frames", o.townFrames, "frames per camera and variant in the town section")
+        ->type_name("N")->check(wholeNumber(1, 10'000));
     app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
     app.add_option("--csv", o.csv, "also write the method rows as CSV")->type_name("FILE");
     app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
@@ -500,6 +661,11 @@ int main(int argc, char** argv) {
                              << ',' << r.posed << ',' << r.tiles << ',' << r.bufferMs << ',' << r.appCullMs << ','
                              << (std::int64_t(r.width) * r.height * 16 / 3) << '\n';
             }
+        }
+        if (o.has("town")) {
+            std::fprintf(stderr, "bench_frame: the town's DRAW, %d cameras along the path...\n", o.townSamples);
+            const TownResult town = townDraw(o, context);
+            report << (report.tellp() > 0 ? "\n" : "") << townTable(town, o, context->description());
         }
     } catch (const std::exception& e) {
         fail(e.what());

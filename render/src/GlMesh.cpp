@@ -12,6 +12,31 @@ namespace {
 
 const void* offset(std::size_t bytes) { return reinterpret_cast<const void*>(bytes); }
 
+// The index buffer's contents (see GlMesh::constantIndexCount): the original indices, then, if some
+// triangles are constant, every triangle again with the constant ones first. Equality is exact, so
+// the colour the vertex shader computes is the one the fragment shader would have.
+std::vector<std::uint32_t> withConstantFaces(const MeshData& mesh, GlMesh& g) {
+    std::vector<std::uint32_t> out = mesh.indices;
+    if (mesh.influenceCount() > 0 || mesh.normals.empty()) return out;  // skinning moves normals apart
+    const bool textured = mesh.baseColorTexture && !mesh.texcoords.empty();
+    std::vector<std::uint32_t> constant, flatLit, other;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        const auto& n = mesh.normals;
+        const bool oneNormal = n[a] == n[b] && n[a] == n[c];
+        const bool oneTexel = !textured || (mesh.texcoords[a] == mesh.texcoords[b] && mesh.texcoords[a] == mesh.texcoords[c]);
+        auto& to = !oneNormal ? other : oneTexel ? constant : flatLit;
+        to.insert(to.end(), {a, b, c});
+    }
+    if (constant.empty() && flatLit.empty()) return out;
+    g.constantIndexCount = static_cast<GLsizei>(constant.size());
+    g.flatLitIndexCount = static_cast<GLsizei>(flatLit.size());
+    out.insert(out.end(), constant.begin(), constant.end());
+    out.insert(out.end(), flatLit.begin(), flatLit.end());
+    out.insert(out.end(), other.begin(), other.end());
+    return out;
+}
+
 }  // namespace
 
 GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
@@ -71,8 +96,9 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
     gl.BindBuffer(GL_ARRAY_BUFFER, g.vbo);
     gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(total), data.data(), GL_STATIC_DRAW);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);  // recorded in the vertex array
-    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-                  mesh.indices.empty() ? nullptr : mesh.indices.data(), GL_STATIC_DRAW);
+    const std::vector<std::uint32_t> indices = withConstantFaces(mesh, g);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                  indices.empty() ? nullptr : indices.data(), GL_STATIC_DRAW);
     gl.EnableVertexAttribArray(kPosition);
     gl.VertexAttribPointer(kPosition, 3, GL_FLOAT, GL_FALSE, 0, offset(0));
     if (g.hasNormals) {

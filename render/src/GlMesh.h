@@ -15,6 +15,14 @@ namespace throng::detail {
 struct GlMesh {
     GLuint vbo = 0, ibo = 0, vao = 0;
     GLsizei indexCount = 0;
+    /// Constant faces (rigid meshes with normals): triangles whose three vertices share one normal
+    /// and one texture coordinate (or the mesh has no texture) have one colour over their whole
+    /// surface, so it can be shaded once per vertex. `ibo` holds the original indices, then (when
+    /// there are such triangles) the same triangles again, constant ones first in their original
+    /// order, then flat-lit ones (one normal, texture coordinates that vary: the light cannot vary
+    /// over them), then the others; this many are constant, and `flatLitIndexCount` flat-lit.
+    GLsizei constantIndexCount = 0;
+    GLsizei flatLitIndexCount = 0;
     std::uint32_t vertexCount = 0;
     std::uint32_t triangleCount = 0;
     int influences = 0;                ///< 0, 4 or 8

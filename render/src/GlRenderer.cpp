@@ -1,6 +1,7 @@
 #include "throng/render/GlRenderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -26,6 +27,13 @@ namespace throng {
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+
+// Distance bands of front-to-back drawing: [0, 16 m), then each band twice as deep as the last
+// (infinite distances share the last band).
+std::int32_t distanceBand(float distance) {
+    if (!(distance >= 16.0f)) return 0;
+    return 1 + static_cast<std::int32_t>(std::log2(std::min(distance, 1e30f) / 16.0f));
+}
 
 // Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix.
 struct InstanceData {
@@ -62,6 +70,7 @@ struct Group {
     std::uint32_t first = 0;          // first slot in the instance buffer
     std::uint32_t filled = 0;         // slots written so far
     std::uint32_t cpuVertexBase = 0;  // CPU-skinned: first vertex in the stream buffer
+    std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
 };
 
 struct ProgramState {
@@ -97,6 +106,8 @@ struct GlRenderer::Impl {
     RenderStatistics stats;
     Image lastFrame;
     ProgramState programs[3];  // 0, 4 and 8 influences
+    ProgramState constantFaces;  // rigid triangles of one colour, shaded per vertex
+    ProgramState flatLight;      // rigid triangles of one normal, lit per vertex
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
     std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
     GLint maxTextureBufferTexels = 0;
@@ -110,6 +121,9 @@ struct GlRenderer::Impl {
 
     // Scratch reused by every draw(): no allocation once the crowd's size has been seen.
     std::vector<std::uint32_t> itemGroup;
+    std::vector<std::uint32_t> order;                       // items in drawing order
+    std::vector<std::pair<float, std::uint32_t>> byDistance;  // (nearest distance, item) when sorting
+    std::vector<std::int32_t> band;                         // each item's distance band (front-to-back)
     std::vector<Group> groups;
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
@@ -232,6 +246,36 @@ struct GlRenderer::Impl {
         gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
     }
 
+    // Fills `order` with the items' indices, nearest first when options.frontToBack (by the nearest
+    // point of each item's bounding sphere; ties keep list order), else in list order.
+    void orderItems(const std::vector<DrawItem>& items) {
+        order.resize(items.size());
+        if (!options.frontToBack) {
+            for (std::size_t i = 0; i < items.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+            return;
+        }
+        byDistance.resize(items.size());
+        band.assign(items.size(), 0);
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const DrawItem& item = items[i];
+            float key = 0.0f;
+            if (item.drawable && item.worldMatrix) {
+                const Mat4& w = *item.worldMatrix;
+                const BoundingSphere& b = item.drawable->localBound();
+                const Vec3 centre = Vec3(w * Vec4(b.center(), 1.0));
+                const double scale = std::sqrt(std::max({glm::dot(Vec3(w[0]), Vec3(w[0])), glm::dot(Vec3(w[1]), Vec3(w[1])),
+                                                         glm::dot(Vec3(w[2]), Vec3(w[2]))}));
+                key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
+                if (std::isnan(key)) key = 0.0f;  // a NaN would break the sort's ordering
+            }
+            byDistance[i] = {key, static_cast<std::uint32_t>(i)};
+            band[i] = distanceBand(key);
+        }
+        std::stable_sort(byDistance.begin(), byDistance.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (std::size_t i = 0; i < items.size(); ++i) order[i] = byDistance[i].second;
+    }
+
     void loadFrameUniforms(ProgramState& p) {
         const glm::vec3 light = glm::length(options.lightDirection) > 0.0f ? glm::normalize(options.lightDirection)
                                                                             : glm::vec3(0.0f, 1.0f, 0.0f);
@@ -255,11 +299,20 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
     const int influences[3] = {0, 4, 8};
-    for (int k = 0; k < 3; ++k) {
-        ProgramState& p = r.programs[k];
-        p.program = std::make_unique<ShaderProgram>(
-            *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
-            detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
+    for (int k = 0; k < 5; ++k) {
+        ProgramState& p = k < 3 ? r.programs[k] : k == 3 ? r.constantFaces : r.flatLight;
+        if (k < 3)
+            p.program = std::make_unique<ShaderProgram>(
+                *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
+                detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
+        else if (k == 3)
+            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (constant faces)",
+                                                        detail::constantFaceVertexShaderSource(),
+                                                        detail::constantFaceFragmentShaderSource());
+        else
+            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (flat-lit faces)",
+                                                        detail::flatLightVertexShaderSource(),
+                                                        detail::flatLightFragmentShaderSource());
         const ShaderProgram& s = *p.program;
         p.baseColor = s.uniformLocation("uBaseColor");
         p.hasTexture = s.uniformLocation("uHasTexture");
@@ -359,9 +412,11 @@ void GlRenderer::draw(const DrawList& list) {
     r.itemGroup.resize(items.size());
     r.groups.clear();
 
-    // 1. Check every item and sort it into a group (first appearance order), before any drawing.
+    // 1. Check every item and sort it into a group (first appearance in drawing order: with
+    // frontToBack, groups by their nearest item), before any drawing.
+    r.orderItems(items);
     std::size_t paletteMatrices = 0, cpuVertices = 0;
-    for (std::size_t i = 0; i < items.size(); ++i) {
+    for (const std::uint32_t i : r.order) {
         const DrawItem& item = items[i];
         if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
         const auto* meshDrawable = dynamic_cast<const MeshDrawable*>(item.drawable);
@@ -394,9 +449,12 @@ void GlRenderer::draw(const DrawList& list) {
             e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
         }
         std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
-        if (g == kNone || !r.options.instancing) {
+        // Front to back, a mesh's instances are split by distance band, so that an instanced
+        // draw covering the whole town does not put far instances before near ones of other meshes.
+        const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
+        if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
             g = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, mirrored});
+            r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, 0, band});
         }
         ++r.groups[g].count;
         r.itemGroup[i] = g;
@@ -406,7 +464,7 @@ void GlRenderer::draw(const DrawList& list) {
                                  " texels, more than this GL's texture buffer limit of " +
                                  std::to_string(r.maxTextureBufferTexels));
 
-    // 2. Lay the groups out in the instance buffer, then fill it in item order.
+    // 2. Lay the groups out in the instance buffer, then fill it in drawing order.
     std::uint32_t slots = 0;
     for (Group& g : r.groups) {
         g.first = slots;
@@ -418,7 +476,7 @@ void GlRenderer::draw(const DrawList& list) {
     r.cpuNormals.resize(cpuVertices);
     std::size_t paletteCursor = 0;
     const Vec3 eye = r.eye;
-    for (std::size_t i = 0; i < items.size(); ++i) {
+    for (const std::uint32_t i : r.order) {
         if (r.itemGroup[i] == kNone) continue;
         const DrawItem& item = items[i];
         Group& g = r.groups[r.itemGroup[i]];
@@ -471,10 +529,7 @@ void GlRenderer::draw(const DrawList& list) {
     gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
     GLuint current = 0;
     bool clockwise = false;  // beginFrame set GL_CCW
-    for (Group& g : r.groups) {
-        MeshEntry& e = *g.mesh;
-        const detail::GlMesh& m = e.gpu;
-        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
+    auto useProgram = [&](ProgramState& p, const MeshEntry& e) {
         if (p.program->id() != current) {
             current = p.program->id();
             gl.UseProgram(current);
@@ -482,7 +537,14 @@ void GlRenderer::draw(const DrawList& list) {
         }
         gl.Uniform4fv(p.baseColor, 1, &e.baseColor[0]);
         gl.Uniform1i(p.hasTexture, e.texture != 0);
-        gl.Uniform1i(p.hasNormals, m.hasNormals);
+        gl.Uniform1i(p.hasNormals, e.gpu.hasNormals);
+    };
+    // Constant faces need every drawn triangle to face the eye (their colour has no back side).
+    const bool constantFaces = r.options.constantFaces && r.options.cullBackFaces && !r.options.flatTint;  // ID renders: one program
+    for (Group& g : r.groups) {
+        MeshEntry& e = *g.mesh;
+        const detail::GlMesh& m = e.gpu;
+        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
         gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
         if (g.mirrored != clockwise) {
             clockwise = g.mirrored;
@@ -505,13 +567,28 @@ void GlRenderer::draw(const DrawList& list) {
         if (m.indexCount == 0) continue;
         gl.BindBuffer(GL_ARRAY_BUFFER, r.instanceBuffer);
         r.pointInstanceAttributes(g.first);
-        if (g.count == 1) {
-            gl.DrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        auto drawRange = [&](GLsizei first, GLsizei count) {
+            if (count == 0) return;
+            const void* at = byteOffset(static_cast<std::size_t>(first) * sizeof(std::uint32_t));
+            if (g.count == 1) gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, at);
+            else gl.DrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, at, static_cast<GLsizei>(g.count));
+            ++r.stats.drawCalls;
+        };
+        const GLsizei classified = m.constantIndexCount + m.flatLitIndexCount;
+        if (constantFaces && g.path == Path::Rigid && classified > 0) {
+            // The classified copy of the indices: constant triangles, flat-lit ones, then the rest.
+            r.stats.constantTriangles += std::uint64_t(m.constantIndexCount / 3) * g.count;
+            r.stats.flatLitTriangles += std::uint64_t(m.flatLitIndexCount / 3) * g.count;
+            if (m.constantIndexCount > 0) useProgram(r.constantFaces, e);
+            drawRange(m.indexCount, m.constantIndexCount);
+            if (m.flatLitIndexCount > 0) useProgram(r.flatLight, e);
+            drawRange(m.indexCount + m.constantIndexCount, m.flatLitIndexCount);
+            if (classified < m.indexCount) useProgram(p, e);
+            drawRange(m.indexCount + classified, m.indexCount - classified);
         } else {
-            gl.DrawElementsInstanced(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr,
-                                     static_cast<GLsizei>(g.count));
+            useProgram(p, e);
+            drawRange(0, m.indexCount);
         }
-        ++r.stats.drawCalls;
     }
     gl.BindVertexArray(0);
     if (clockwise) gl.FrontFace(GL_CCW);

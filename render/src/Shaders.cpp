@@ -24,11 +24,30 @@ uniform mat4 uProjection;
 #if FEEDBACK
 out vec3 tfPosition;
 out vec3 tfNormal;
+#elif CONSTANT_FACES || FLAT_LIGHT
+#if CONSTANT_FACES
+flat out vec4 vColor;
+uniform sampler2D uTexture;
+uniform bool uHasTexture;
+#else
+out vec2 vTexcoord;
+flat out vec4 vBase;
+flat out vec3 vLight;
+#endif
+uniform vec4 uBaseColor;
+uniform vec3 uLightDirection;
+uniform vec3 uLightColor;
+uniform vec3 uSkyColor;
+uniform vec3 uGroundColor;
 #else
 out vec3 vRelPosition;
 out vec3 vNormal;
 out vec2 vTexcoord;
 out vec4 vTint;
+#endif
+
+#if CONSTANT_FACES
+SRGB_ENCODE
 #endif
 
 mat4 joint(int base, uint j) {
@@ -73,18 +92,74 @@ void main() {
     tfNormal = len > 0.0 ? n / len : n;
 #else
     vec4 rel = iModel * vec4(p, 1.0);
+#if !CONSTANT_FACES && !FLAT_LIGHT
     vRelPosition = rel.xyz;
+#endif
     // Normals by the cofactor matrix (det * inverse transpose): right under non-uniform scale,
     // three cross products instead of an inverse per vertex; the sign of det undoes mirroring.
     mat3 m = mat3(iModel);
     mat3 cof = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
+#if CONSTANT_FACES || FLAT_LIGHT
+    // The fragment shader's formula, with the normal (and for constant faces the texture
+    // coordinate) the triangle's three vertices share; front faces only: back faces are culled.
+    vec3 nf = normalize(sign(dot(m[0], cof[0])) * (cof * n));
+    float sun = max(dot(nf, uLightDirection), 0.0);
+    vec3 ambient = mix(uGroundColor, uSkyColor, 0.5 + 0.5 * nf.y);
+    vec3 light = ambient + uLightColor * sun;
+#if CONSTANT_FACES
+    vec4 base = uBaseColor * iTint;
+    if (uHasTexture) base *= textureLod(uTexture, aTexcoord, 0.0);
+    vColor = vec4(linearToSrgb(base.rgb * light), base.a);
+#else
+    vBase = uBaseColor * iTint;
+    vLight = light;
+    vTexcoord = aTexcoord;
+#endif
+#else
     vNormal = sign(dot(m[0], cof[0])) * (cof * n);
     vTexcoord = aTexcoord;
     vTint = iTint;
+#endif
     gl_Position = uProjection * (uViewRotation * rel);
 #endif
 }
 )GLSL";
+
+constexpr const char* kSrgbEncode = R"GLSL(
+vec3 linearToSrgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+)GLSL";
+
+constexpr const char* kConstantFragment = R"GLSL(#version 330 core
+flat in vec4 vColor;
+out vec4 fragColor;
+void main() { fragColor = vColor; }
+)GLSL";
+
+constexpr const char* kFlatLightFragment = R"GLSL(#version 330 core
+in vec2 vTexcoord;
+flat in vec4 vBase;
+flat in vec3 vLight;
+uniform sampler2D uTexture;
+uniform bool uHasTexture;
+out vec4 fragColor;
+SRGB_ENCODE
+void main() {
+    vec4 base = vBase;
+    if (uHasTexture) base *= texture(uTexture, vTexcoord);
+    fragColor = vec4(linearToSrgb(base.rgb * vLight), base.a);
+}
+)GLSL";
+
+// Replaces the line SRGB_ENCODE by the encoding function, shared by both shading paths.
+std::string withSrgbEncode(std::string text) {
+    const std::string mark = "SRGB_ENCODE";
+    const std::size_t at = text.find(mark);
+    if (at != std::string::npos) text.replace(at, mark.size(), kSrgbEncode);
+    return text;
+}
 
 constexpr const char* kFragment = R"GLSL(#version 330 core
 in vec3 vRelPosition;
@@ -104,10 +179,7 @@ uniform bool uFlatTint;        // ID renders: the tint as is
 
 out vec4 fragColor;
 
-vec3 linearToSrgb(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
+SRGB_ENCODE
 
 void main() {
     if (uFlatTint) {
@@ -133,9 +205,23 @@ void main() {
 
 std::string vertexShaderSource(int influences, bool feedback) {
     return "#version 330 core\n#define INFLUENCES " + std::to_string(influences) + "\n#define FEEDBACK " +
-           (feedback ? "1" : "0") + "\n" + kVertexBody;
+           (feedback ? "1" : "0") + "\n#define CONSTANT_FACES 0\n#define FLAT_LIGHT 0\n" + withSrgbEncode(kVertexBody);
 }
 
-std::string fragmentShaderSource() { return kFragment; }
+std::string constantFaceVertexShaderSource() {
+    return "#version 330 core\n#define INFLUENCES 0\n#define FEEDBACK 0\n#define CONSTANT_FACES 1\n#define FLAT_LIGHT 0\n" +
+           withSrgbEncode(kVertexBody);
+}
+
+std::string flatLightVertexShaderSource() {
+    return "#version 330 core\n#define INFLUENCES 0\n#define FEEDBACK 0\n#define CONSTANT_FACES 0\n#define FLAT_LIGHT 1\n" +
+           withSrgbEncode(kVertexBody);
+}
+
+std::string flatLightFragmentShaderSource() { return withSrgbEncode(kFlatLightFragment); }
+
+std::string fragmentShaderSource() { return withSrgbEncode(kFragment); }
+
+std::string constantFaceFragmentShaderSource() { return kConstantFragment; }
 
 }  // namespace throng::detail

@@ -20,6 +20,21 @@ enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1 };
 /// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing.
 std::string vertexShaderSource(int influences, bool feedback);
 
+/// The vertex shader of constant faces (rigid, back faces culled): it computes the whole shaded
+/// colour of the fragment shader's formula once per vertex (texture read at level 0, as the
+/// fragment shader does where texture coordinates do not vary) and passes it flat.
+std::string constantFaceVertexShaderSource();
+
+/// The fragment shader of constant faces: writes the colour its vertex shader computed.
+std::string constantFaceFragmentShaderSource();
+
+/// The vertex shader of flat-lit faces (one normal at the three vertices, texture coordinates
+/// that vary; rigid, back faces culled): the light is computed once per vertex and passed flat.
+std::string flatLightVertexShaderSource();
+
+/// The fragment shader of flat-lit faces: texture, the flat light, sRGB encoding.
+std::string flatLightFragmentShaderSource();
+
 /// The shading fragment shader: base colour x texture x tint, hemisphere + sun light, sRGB output.
 std::string fragmentShaderSource();
 

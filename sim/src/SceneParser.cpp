@@ -125,6 +125,27 @@ std::string existingFile(const Reader& r, const std::string& base, bool director
 
 const char* kProcedural[] = {"seed-humanoid", "table3", "bird"};
 
+// Geometric LOD levels {until, share of triangles}, nearest first (templates and the town).
+std::vector<glm::dvec2> geometricLevels(const Reader& lod) {
+    const std::size_t n = lod.array();
+    if (n == 0) lod.fail("must hold at least one level");
+    std::vector<glm::dvec2> out;
+    double previous = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Reader level = lod.at(i);
+        level.object({"until", "triangles"});
+        double until = std::numeric_limits<double>::infinity();
+        if (level.has("until")) until = level.at("until").positive();
+        else if (i + 1 < n) level.fail("needs 'until': only the last level may reach to any distance");
+        if (!(until > previous)) level.at("until").fail("must exceed the previous level's distance");
+        const double share = level.has("triangles") ? level.at("triangles").positive() : 1.0;
+        if (share > 1.0) level.at("triangles").fail("is a share of the triangles: at most 1");
+        out.push_back({until, share});
+        previous = until;
+    }
+    return out;
+}
+
 }  // namespace
 
 SceneDescription parseScene(const std::string& text, const std::string& baseDirectory, const std::string& file) {
@@ -154,7 +175,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("town")) {
         const Reader t = root.at("town");
-        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders"});
+        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod"});
         TownDescription town;
         if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
         if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
@@ -162,6 +183,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (t.has("tileSize")) town.tileSize = t.at("tileSize").positive();
         if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
         if (t.has("occluders")) town.occluders = t.at("occluders").boolean();
+        if (t.has("lod")) town.lod = geometricLevels(t.at("lod"));
         town.tiles = existingFile(t.at("tiles"), baseDirectory, true);
         for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
             if (!fs::is_regular_file(fs::path(town.tiles) / needed))
@@ -197,24 +219,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
             if (!(d.jointMinAngle >= 0.0 && d.jointMinAngle < 0.1)) t.at("jointMinAngle").fail("must be in [0, 0.1) radians");
         }
         if (t.has("scale")) d.scale = t.at("scale").positive();
-        if (t.has("lod")) {
-            const Reader lod = t.at("lod");
-            const std::size_t n = lod.array();
-            if (n == 0) lod.fail("must hold at least one level");
-            double previous = 0.0;
-            for (std::size_t i = 0; i < n; ++i) {
-                const Reader level = lod.at(i);
-                level.object({"until", "triangles"});
-                double until = std::numeric_limits<double>::infinity();
-                if (level.has("until")) until = level.at("until").positive();
-                else if (i + 1 < n) level.fail("needs 'until': only the last level may reach to any distance");
-                if (!(until > previous)) level.at("until").fail("must exceed the previous level's distance");
-                const double share = level.has("triangles") ? level.at("triangles").positive() : 1.0;
-                if (share > 1.0) level.at("triangles").fail("is a share of the triangles: at most 1");
-                d.lod.push_back({until, share});
-                previous = until;
-            }
-        }
+        if (t.has("lod")) d.lod = geometricLevels(t.at("lod"));
         s.templates[it.key()] = d;
     }
     if (s.templates.empty()) templates.fail("must declare at least one template");

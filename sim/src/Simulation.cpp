@@ -12,7 +12,9 @@
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/actors/Table3Template.h"
 #include "throng/gltf/GltfLoader.h"
+#include "throng/gltf/MeshSimplifier.h"
 #include "throng/scenegraph/Geometry.h"
+#include "throng/scenegraph/LOD.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
 #include "throng/scenegraph/Occluder.h"
@@ -87,6 +89,26 @@ Mat4 tileTransform(const TownLayout& t, const TilePlacement& p) {
     m[2] = Vec4(std::sin(a) * s, 0.0, std::cos(a) * s, 0.0);
     m[3] = Vec4(t.centre(p.x, p.z), 1.0);
     return m;
+}
+
+// Each tile model at every town LOD level, simplified once with meshoptimizer (share 1: the model).
+using TownLevels = std::map<const MeshDrawable*, std::vector<std::shared_ptr<const MeshDrawable>>>;
+
+// A tile model as the town shows it: its Geometry, or with town LOD (`lod` not empty) an LOD node
+// choosing a level by the distance to the model's centre; beyond a last level's 'until', nothing.
+std::shared_ptr<Node> tileModelNode(const std::shared_ptr<const MeshDrawable>& model, const std::vector<glm::dvec2>& lod,
+                                    TownLevels& levels) {
+    if (lod.empty()) return std::make_shared<Geometry>(model);
+    auto& meshes = levels[model.get()];
+    if (meshes.empty())
+        for (const glm::dvec2& level : lod)
+            meshes.push_back(level.y >= 1.0 ? model : std::make_shared<MeshDrawable>(simplifyMesh(model->mesh(), level.y).mesh));
+    auto node = std::make_shared<LOD>();
+    node->setName("tile lod");
+    node->setCenter(model->localBound().center());
+    for (std::size_t i = 0; i < lod.size(); ++i)
+        node->addChild(std::make_shared<Geometry>(meshes[i]), std::isinf(lod[i].x) ? std::numeric_limits<double>::max() : lod[i].x);
+    return node;
 }
 
 }  // namespace
@@ -170,6 +192,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
     auto town = std::make_shared<Group>();
     town->setName("town");
     std::map<std::pair<int, int>, std::shared_ptr<Group>> chunks;
+    TownLevels levels;
     for (const TilePlacement& t : town_->tiles) {
         auto& chunk = chunks[{t.x / 4, t.z / 4}];
         if (!chunk) {
@@ -180,7 +203,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
         const Mat4 m = tileTransform(*town_, t);
         node->setMatrix(m);
         for (const auto& model : models[t.kind]) {
-            node->addChild(std::make_shared<Geometry>(model));
+            node->addChild(tileModelNode(model, d.town->lod, levels));
             navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
             townTriangles_ += model->primitiveCount();
         }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,20 @@ TEST(SceneParser, AValidSceneSaysWhatItDeclares) {
     const SceneDescription plain = parseScene(scene(kActors), kAssets);
     EXPECT_FALSE(plain.effects.avoidance);
     EXPECT_FALSE(plain.effects.gaze);
+    EXPECT_TRUE(plain.town->lod.empty()) << "no town LOD unless declared";
+}
+
+TEST(SceneParser, TownLodLevelsAreRead) {
+    std::string text = scene(kActors);
+    const std::string tiles = R"("tiles": "town/kenney_city_builder")";
+    text.replace(text.find(tiles), tiles.size(), tiles + R"(, "lod": [{"until": 50}, {"until": 100, "triangles": 0.5}, {"triangles": 0.25}])");
+    const SceneDescription s = parseScene(text, kAssets);
+    ASSERT_EQ(s.town->lod.size(), 3u);
+    EXPECT_DOUBLE_EQ(s.town->lod[0].x, 50.0);
+    EXPECT_DOUBLE_EQ(s.town->lod[0].y, 1.0);
+    EXPECT_DOUBLE_EQ(s.town->lod[1].y, 0.5);
+    EXPECT_TRUE(std::isinf(s.town->lod[2].x));
+    EXPECT_DOUBLE_EQ(s.town->lod[2].y, 0.25);
 }
 
 struct BadScene {
@@ -146,7 +161,21 @@ INSTANTIATE_TEST_SUITE_P(
                  "/templates/x/lod/0/triangles", "at most 1"},
         BadScene{"open-ended lod level before the last",
                  R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"triangles": 1}, {"until": 20}]}}, "actors": []})",
-                 "/templates/x/lod/0", "needs 'until'"}),
+                 "/templates/x/lod/0", "needs 'until'"},
+        BadScene{"town lod distances not increasing",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "lod": [{"until": 60}, {"until": 60, "triangles": 0.5}]},
+                     "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/lod/1/until", "must exceed"},
+        BadScene{"town lod share not positive",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "lod": [{"until": 60}, {"triangles": 0}]},
+                     "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/lod/1/triangles", "positive"},
+        BadScene{"town lod not an array",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "lod": 50}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/lod", "must be an array"},
+        BadScene{"town lod without levels",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "lod": []}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/lod", "at least one level"}),
     [](const auto& param) {
         std::string name = param.param.what;
         for (char& c : name)

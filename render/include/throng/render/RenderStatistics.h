@@ -9,6 +9,8 @@ namespace throng {
 struct RenderStatistics {
     std::uint64_t drawCalls = 0;           ///< glDraw* calls issued
     std::uint64_t triangles = 0;           ///< triangles sent (all instances)
+    std::uint64_t constantTriangles = 0;   ///< of those, constant faces shaded per vertex (RendererOptions::constantFaces)
+    std::uint64_t flatLitTriangles = 0;    ///< of those, faces of one normal lit per vertex (same option)
     std::uint64_t instances = 0;           ///< mesh items drawn
     std::uint64_t gpuSkinnedVertices = 0;  ///< vertices skinned in the vertex shader
     std::uint64_t cpuSkinnedVertices = 0;  ///< vertices skinned on the CPU

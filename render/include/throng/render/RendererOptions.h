@@ -15,7 +15,15 @@ struct RendererOptions {
     bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
-    bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders)
+    bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
+    /// Draws nearer items first (groups by their nearest instance, instances near to far), so the
+    /// depth test rejects hidden fragments before they are shaded. Same picture, less shading.
+    bool frontToBack = true;
+    /// Shades triangles of one colour (one normal and one texture coordinate at their three
+    /// vertices, rigid meshes, back faces culled) once per vertex instead of once per pixel: the
+    /// same formula, evaluated where it cannot vary; triangles of one normal are lit once per vertex
+    /// and textured per pixel. Other triangles are shaded per pixel.
+    bool constantFaces = true;
     glm::vec3 lightDirection{0.35f, 0.85f, 0.40f};  ///< towards the sun, world space (normalised on use)
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
     glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)

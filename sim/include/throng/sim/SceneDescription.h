@@ -25,6 +25,10 @@ struct TownDescription {
     std::uint64_t seed = 1;     ///< layout
     std::string tiles;          ///< folder of the tile models (relative to the scene file)
     bool occluders = false;     ///< buildings get occluder boxes fitted inside them (for occlusion culling)
+    /// Geometric levels of every tile model {until distance from the tile's centre, share of
+    /// triangles}, nearest first, as for templates; the last may reach to any distance. Empty: no
+    /// town LOD (the full tiles everywhere, nothing simplified).
+    std::vector<glm::dvec2> lod;
 };
 
 /// An actor template: a glTF file, or a procedural one ("seed-humanoid", "table3", "bird").
