@@ -14,6 +14,10 @@
 namespace throng::cascade {
 namespace {
 
+// The Sklsroot Bsphere is tested against the occlusion buffer after CULL 2 only when its radius is
+// below this share of the Refpoint Bsphere's.
+constexpr double kSecondOcclusionTest = 0.75;
+
 // Updates the hybrid tier of actor `id` at squared detail distance `detail2`; true while it is an
 // impostor. Hysteresis works on squared distances: no square root per actor.
 bool impostorTier(const CascadeFrame& f, ActorId id, const ActorTemplate& tmpl, double detail2) {
@@ -64,7 +68,9 @@ void cullSkeletonRoots(CascadeFrame& f) {
                 s.actorClass[id] = ActorClass::B;
                 ++counts.b;
             }
-            if (f.occlusion) {
+            // Occlusion again only where the Sklsroot Bsphere is much smaller than the Refpoint
+            // Bsphere that was just found visible: a sphere nearly as large rarely hides now.
+            if (f.occlusion && s.sklsRadius[id] < kSecondOcclusionTest * s.refSphereWorld[id].radius()) {
                 ++counts.occlusionTests;
                 if (f.occlusion->occluded(BoundingSphere(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]))) {
                     // Undo the class counted above: the actor leaves the cascade here.
