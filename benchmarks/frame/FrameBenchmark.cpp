@@ -374,7 +374,7 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
 // The town's DRAW alone: the old drawing, each improvement alone and all together.
 struct TownVariant {
     std::string name;
-    bool frontToBack = false, constantFaces = false, lod = false;
+    bool frontToBack = false, constantFaces = false, lod = false, occlusion = false;
     std::vector<double> ms;         // mean town pass per camera sample (wall clock)
     std::vector<double> cpuMs;      // the same in CPU time of the whole process (every GL thread)
     double triangles = 0;           // mean town triangles drawn per frame
@@ -382,12 +382,14 @@ struct TownVariant {
 
 std::vector<TownVariant> townVariants() {
     std::vector<TownVariant> v;
-    v.push_back({"old drawing", false, false, false, {}, {}, 0});
-    v.push_back({"front to back", true, false, false, {}, {}, 0});
-    v.push_back({"constant faces", false, true, false, {}, {}, 0});
-    v.push_back({"town LOD", false, false, true, {}, {}, 0});
-    v.push_back({"front to back + constant faces", true, true, false, {}, {}, 0});
-    v.push_back({"all together", true, true, true, {}, {}, 0});
+    v.push_back({"old drawing", false, false, false, false, {}, {}, 0});
+    v.push_back({"front to back", true, false, false, false, {}, {}, 0});
+    v.push_back({"constant faces", false, true, false, false, {}, {}, 0});
+    v.push_back({"town LOD", false, false, true, false, {}, {}, 0});
+    v.push_back({"occlusion culling", false, false, false, true, {}, {}, 0});
+    v.push_back({"front to back + constant faces", true, true, false, false, {}, {}, 0});
+    v.push_back({"front to back + constant faces + occlusion (default scene)", true, true, false, true, {}, {}, 0});
+    v.push_back({"all together", true, true, true, true, {}, {}, 0});
     return v;
 }
 
@@ -427,10 +429,14 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
     full.town->lod.clear();
     std::unique_ptr<sim::Simulation> worlds[2] = {sim::Simulation::build(std::move(full)), sim::Simulation::build(std::move(scene))};
     context->resize(o.width, o.height);
-    std::unique_ptr<ActorProcessor> processors[2];
+    // Lists: full tiles, LOD tiles, then each of them with the tiles occlusion hides left out.
+    std::unique_ptr<ActorProcessor> processors[4];
+    const OcclusionSettings occlusion = worlds[0]->description().representation.occlusion.value_or(OcclusionSettings{});
     for (int w = 0; w < 2; ++w) {
         if (!worlds[w]) continue;
         processors[w] = std::make_unique<ActorProcessor>(worlds[w]->crowd());
+        processors[w + 2] = std::make_unique<ActorProcessor>(worlds[w]->crowd());
+        processors[w + 2]->setOcclusion(occlusion);
         for (int f = 0; f < std::max(o.warmup, 1); ++f) worlds[w]->step();
     }
     result.variants = townVariants();
@@ -442,16 +448,16 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
         ro.constantFaces = v.constantFaces;
         renderers.push_back(std::make_unique<GlRenderer>(context, ro));
     }
-    DrawList lists[2];
+    DrawList lists[4];
     const double aspect = double(o.width) / double(o.height), duration = worlds[0]->camera().duration();
     const std::size_t nv = result.variants.size();
     std::vector<double> wall(nv), cpu(nv);  // this sample's sums per variant
     for (int sample = -1; sample < o.townSamples; ++sample) {  // sample -1: uploads and JIT, not measured
         const double t = duration * (std::max(sample, 0) + 0.5) / o.townSamples;
         const Camera camera = worlds[0]->camera().at(t, aspect);
-        for (int w = 0; w < 2; ++w) {
+        for (int w = 0; w < 4; ++w) {
             if (!processors[w]) continue;
-            processors[w]->processFrame(worlds[w]->root(), camera, worlds[w]->now().time);
+            processors[w]->processFrame(worlds[w % 2]->root(), camera, worlds[w % 2]->now().time);
             townItems(processors[w]->drawList(), lists[w]);
         }
         std::fill(wall.begin(), wall.end(), 0.0);
@@ -463,7 +469,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
                 r.beginFrame(camera);
                 const double cpu0 = processCpuMs();
                 Stopwatch watch;
-                r.draw(lists[result.variants[k].lod ? 1 : 0]);
+                r.draw(lists[(result.variants[k].lod ? 1 : 0) + (result.variants[k].occlusion ? 2 : 0)]);
                 r.endFrame();
                 wall[k] += watch.elapsedMs();
                 cpu[k] += processCpuMs() - cpu0;
