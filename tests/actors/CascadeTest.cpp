@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -15,6 +16,8 @@
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/Occluder.h"
+#include "throng/scenegraph/OcclusionBuffer.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
 
 using namespace throng;
@@ -233,6 +236,59 @@ TEST(Cascade, ActorsBelowAGenericGroupAreCulledWithItFirst) {
             EXPECT_GT(scene->crowd.referencePoint(id)[3].z, 4000.0);
         }
     EXPECT_EQ(s.actorsInScene, s.culledWithGroup + s.a + s.b + s.c1 + s.c2 + s.c3_1 + s.c3_2);
+}
+
+// A wall across the middle of a random crowd: with occlusion the actors behind it leave the cascade
+// as Occluded (their class and the counters say at which stage), everything drawn is drawn without
+// occlusion too, nothing is hidden that the buffer does not hide, and threads change nothing.
+TEST(Cascade, OcclusionRejectsOnlyWhatTheBufferHidesWhateverTheThreads) {
+    auto scene = makeRandomCrowd(11, 1500, 60.0);
+    auto wall = std::make_shared<Transform>();
+    wall->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, 0)));
+    wall->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-70, -20, -1), glm::vec3(70, 20, 1)}},
+                                              AxisBox{glm::vec3(-71, -21, -2), glm::vec3(71, 21, 2)}));
+    scene->root->addChild(wall);
+    Camera camera;
+    camera.setPerspective(1.0, 1.6, 0.1, 500.0);
+    camera.setLookAt(Vec3(0, 5, 90), Vec3(0, 0, 0), Vec3(0, 1, 0));
+
+    ActorProcessor plain(scene->crowd);
+    const ActorFrameStatistics off = plain.processFrame(*scene->root, camera, 0.0);
+    EXPECT_EQ(off.occlusionTests, 0u);
+    EXPECT_EQ(off.occludersDrawn, 0u);
+    std::vector<std::pair<ActorId, std::uint32_t>> drawnOff;
+    for (const DrawItem& item : plain.drawList().items()) drawnOff.emplace_back(item.actor, item.part);
+
+    std::vector<ActorClass> classes[2];
+    std::vector<std::pair<ActorId, std::uint32_t>> drawn[2];
+    for (unsigned threads : {1u, 2u}) {
+        ActorProcessor occluding(scene->crowd);
+        occluding.setThreads(threads);
+        occluding.setOcclusion(OcclusionSettings{});
+        const ActorFrameStatistics s = occluding.processFrame(*scene->root, camera, 0.0);
+        EXPECT_EQ(s.occludersDrawn, 1u);
+        const std::uint64_t hidden = s.occludedWithGroup + s.occludedRefpoint + s.occludedSklsroot;
+        EXPECT_GT(hidden, 200u);
+        EXPECT_EQ(s.actorsInScene, s.culledWithGroup + s.a + s.b + s.c1 + s.c2 + s.c3_1 + s.c3_2 + hidden);
+        const OcclusionBuffer& buffer = occluding.occlusion()->buffer();
+        std::uint64_t occluded = 0;
+        for (ActorId id : scene->ids) {
+            classes[threads - 1].push_back(scene->crowd.actorClass(id));
+            if (scene->crowd.actorClass(id) != ActorClass::Occluded) continue;
+            ++occluded;
+            EXPECT_TRUE(buffer.occluded(scene->crowd.state().refSphereWorld[id]) ||
+                        buffer.occluded(BoundingSphere(Vec3(scene->crowd.state().sklsWorld[id][3]), scene->crowd.state().sklsRadius[id])))
+                << "actor " << id << " was rejected but neither of its spheres is hidden";
+            EXPECT_LT(scene->crowd.state().refSphereWorld[id].center().z, 1.0) << "actor " << id << " is in front of the wall";
+        }
+        EXPECT_EQ(occluded, s.occludedRefpoint + s.occludedSklsroot + s.occludedWithGroup);
+        for (const DrawItem& item : occluding.drawList().items()) {
+            drawn[threads - 1].emplace_back(item.actor, item.part);
+            EXPECT_NE(std::find(drawnOff.begin(), drawnOff.end(), std::make_pair(item.actor, item.part)), drawnOff.end());
+        }
+    }
+    EXPECT_EQ(classes[0], classes[1]);
+    EXPECT_EQ(drawn[0], drawn[1]);
 }
 
 TEST(Cascade, AHeldObjectEnlargesBothSpheresAndIsDrawnWithTheActor) {

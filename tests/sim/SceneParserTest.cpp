@@ -175,12 +175,41 @@ INSTANTIATE_TEST_SUITE_P(
                  "/town/lod", "must be an array"},
         BadScene{"town lod without levels",
                  R"({"town": {"tiles": "town/kenney_city_builder", "lod": []}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
-                 "/town/lod", "at least one level"}),
+                 "/town/lod", "at least one level"},
+        BadScene{"occluders not a boolean",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "occluders": 1}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/occluders", "true or false"},
+        BadScene{"occlusion buffer too small",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"width": 4}}})",
+                 "/representation/occlusion/width", "at least 8"},
+        BadScene{"occlusion buffer too large",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"height": 5000}}})",
+                 "/representation/occlusion/height", "at most 4096"},
+        BadScene{"no occluder allowed",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"maxOccluders": 0}}})",
+                 "/representation/occlusion/maxOccluders", "at least 1"},
+        BadScene{"unknown occlusion field",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"depth": 3}}})",
+                 "/representation/occlusion/depth", "not a known field"}),
     [](const auto& param) {
         std::string name = param.param.what;
         for (char& c : name)
             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
         return name;
     });
+
+TEST(SceneParser, OcclusionIsReadOnlyWhenDeclared) {
+    EXPECT_FALSE(parseScene(scene(kActors), kAssets).representation.occlusion.has_value());
+    EXPECT_FALSE(parseScene(scene(kActors), kAssets).town->occluders);
+    std::string text = scene(kActors, R"(, "representation": {"occlusion": {"width": 320, "height": 180, "maxOccluders": 40}})");
+    const std::string tiles = R"("tiles": "town/kenney_city_builder")";
+    text.replace(text.find(tiles), tiles.size(), tiles + R"(, "occluders": true)");
+    const SceneDescription s = parseScene(text, kAssets);
+    ASSERT_TRUE(s.representation.occlusion.has_value());
+    EXPECT_EQ(s.representation.occlusion->width, 320);
+    EXPECT_EQ(s.representation.occlusion->height, 180);
+    EXPECT_EQ(s.representation.occlusion->maxOccluders, 40);
+    EXPECT_TRUE(s.town->occluders);
+}
 
 TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }
