@@ -4,6 +4,7 @@
 
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/ImageOverlay.h"
 #include "throng/render/TextOverlay.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawList.h"
@@ -33,4 +34,33 @@ TEST(TextOverlay, DrawsTextWhereAsked) {
     EXPECT_GT(red, 100) << "letters drawn";
     EXPECT_EQ(redOutside, 0) << "only where asked";
     EXPECT_GT(dark, 200) << "over a translucent panel";
+}
+
+// An image overlay lands where asked, at the size asked, top row at the top.
+TEST(ImageOverlay, DrawsAnImageWhereAskedTopRowUp) {
+    auto context = createContext({.width = 200, .height = 100});
+    GlRenderer renderer(context);
+    ImageOverlay overlay(*context);
+    Image image;
+    image.name = "two rows";
+    image.width = 2;
+    image.height = 2;
+    image.rgba = {255, 0, 0, 255, 255, 0, 0, 255,    // top row red
+                  0, 0, 255, 255, 0, 0, 255, 255};  // bottom row blue
+    renderer.beginFrame(Camera());
+    renderer.draw(DrawList());
+    overlay.draw(image, 100, 20, 80, 60);
+    const Image frame = renderer.readFrame();
+    const auto at = [&](int x, int y) { return &frame.rgba[std::size_t(y * frame.width + x) * 4]; };
+    EXPECT_GT(at(140, 35)[0], 200);  // upper half of the rectangle: red
+    EXPECT_LT(at(140, 35)[2], 60);
+    EXPECT_GT(at(140, 65)[2], 200);  // lower half: blue
+    EXPECT_LT(at(140, 65)[0], 60);
+    for (const auto& [x, y] : {std::pair{95, 50}, std::pair{185, 50}, std::pair{140, 15}, std::pair{140, 85}}) {
+        const std::uint8_t* p = at(x, y);  // outside: the background
+        EXPECT_FALSE((p[0] > 200 && p[2] < 60) || (p[2] > 200 && p[0] < 60)) << x << ", " << y;
+    }
+    Image broken = image;
+    broken.rgba.pop_back();
+    EXPECT_THROW(overlay.draw(broken, 0, 0, 10, 10), std::invalid_argument);
 }
