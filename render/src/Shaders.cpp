@@ -43,7 +43,7 @@ uniform vec3 uGroundColor;
 out vec3 vRelPosition;
 out vec3 vNormal;
 out vec2 vTexcoord;
-out vec4 vTint;
+flat out vec4 vTint;  // one per instance: not interpolated, so an ID render reads back exactly
 #endif
 
 #if CONSTANT_FACES
@@ -165,7 +165,7 @@ constexpr const char* kFragment = R"GLSL(#version 330 core
 in vec3 vRelPosition;
 in vec3 vNormal;
 in vec2 vTexcoord;
-in vec4 vTint;
+flat in vec4 vTint;
 
 uniform vec4 uBaseColor;
 uniform sampler2D uTexture;
