@@ -298,21 +298,9 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
     r.options = options;
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
-    const int influences[3] = {0, 4, 8};
-    for (int k = 0; k < 5; ++k) {
-        ProgramState& p = k < 3 ? r.programs[k] : k == 3 ? r.constantFaces : r.flatLight;
-        if (k < 3)
-            p.program = std::make_unique<ShaderProgram>(
-                *r.context, "GlRenderer shader (" + std::to_string(influences[k]) + " joint influences)",
-                detail::vertexShaderSource(influences[k], false), detail::fragmentShaderSource());
-        else if (k == 3)
-            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (constant faces)",
-                                                        detail::constantFaceVertexShaderSource(),
-                                                        detail::constantFaceFragmentShaderSource());
-        else
-            p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (flat-lit faces)",
-                                                        detail::flatLightVertexShaderSource(),
-                                                        detail::flatLightFragmentShaderSource());
+    // Builds one program and finds its uniforms (absent ones read -1 and are ignored by GL).
+    const auto build = [&](ProgramState& p, const std::string& name, const std::string& vertex, const std::string& fragment) {
+        p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (" + name + ")", vertex, fragment);
         const ShaderProgram& s = *p.program;
         p.baseColor = s.uniformLocation("uBaseColor");
         p.hasTexture = s.uniformLocation("uHasTexture");
@@ -327,7 +315,13 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         gl.UseProgram(s.id());
         gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
         gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
-    }
+    };
+    const int influences[3] = {0, 4, 8};
+    for (int k = 0; k < 3; ++k)
+        build(r.programs[k], std::to_string(influences[k]) + " joint influences", detail::vertexShaderSource(influences[k], false),
+              detail::fragmentShaderSource());
+    build(r.constantFaces, "constant faces", detail::constantFaceVertexShaderSource(), detail::constantFaceFragmentShaderSource());
+    build(r.flatLight, "flat-lit faces", detail::flatLightVertexShaderSource(), detail::flatLightFragmentShaderSource());
     gl.UseProgram(0);
     gl.GenBuffers(1, &r.instanceBuffer);
     gl.GenBuffers(1, &r.streamBuffer);

@@ -69,6 +69,12 @@ void OcclusionBuffer::begin(const Camera& camera) {
         throw std::invalid_argument("OcclusionBuffer::begin: the camera's projection is not a perspective projection");
     view_ = camera.view();
     sx_ = p[0][0], sy_ = p[1][1], ox_ = p[2][0], oy_ = p[2][1], near_ = nearDistance;
+    nearReach_ = 0.0;
+    for (double x : {-1.0, 1.0})
+        for (double y : {-1.0, 1.0}) {
+            const double xq = (x + ox_) / sx_, yq = (y + oy_) / sy_;
+            nearReach_ = std::max(nearReach_, near_ * std::sqrt(1.0 + xq * xq + yq * yq));
+        }
     std::fill(levels_[0].r.begin(), levels_[0].r.end(), 0.0f);
     pixelsWritten_ = 0;
 }

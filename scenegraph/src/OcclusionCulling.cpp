@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -24,8 +23,7 @@ const OcclusionSettings& checked(const OcclusionSettings& s) {
 // Collects the Occluder nodes in the frustum, skipping generic subtrees outside it.
 class Gatherer : public NodeVisitor {
 public:
-    template <class Add>
-    Gatherer(const Frustum& frustum, Add add) : frustum_(frustum), add_(std::move(add)) {}
+    Gatherer(const Frustum& frustum, std::vector<const Occluder*>& found) : frustum_(frustum), found_(found) {}
     void apply(Group& group) override {
         const BoundingSphere& b = group.worldBound();
         if (b.valid() && frustum_.classify(b) == Containment::Outside) return;
@@ -33,27 +31,13 @@ public:
     }
     void apply(Occluder& occluder) override {
         const BoundingSphere& b = occluder.worldOccluderBound();
-        if (b.valid() && frustum_.classify(b) != Containment::Outside) add_(occluder);
+        if (b.valid() && frustum_.classify(b) != Containment::Outside) found_.push_back(&occluder);
     }
 
 private:
     const Frustum& frustum_;
-    std::function<void(Occluder&)> add_;
+    std::vector<const Occluder*>& found_;
 };
-
-// Distance from the eye to the farthest point of the near plane's rectangle: an occluder whose shell
-// is nearer than this may be cut open by the near plane, showing its inside.
-double nearReach(const Camera& camera) {
-    const Mat4& p = camera.projection();
-    const double nearDistance = p[3][2] / (p[2][2] - 1.0);
-    double reach = 0.0;
-    for (double x : {-1.0, 1.0})
-        for (double y : {-1.0, 1.0}) {
-            const double xq = (x + p[2][0]) / p[0][0], yq = (y + p[2][1]) / p[1][1];
-            reach = std::max(reach, nearDistance * std::sqrt(1.0 + xq * xq + yq * yq));
-        }
-    return reach;
-}
 
 }  // namespace
 
@@ -65,15 +49,17 @@ const OcclusionStatistics& OcclusionCulling::build(Node& root, const Camera& cam
     stats_ = OcclusionStatistics{};
     buffer_.begin(camera);
     const Vec3 eye = camera.eye();
-    candidates_.clear();
-    Gatherer gather(frustum, [&](Occluder& o) {
-        const BoundingSphere& b = o.worldOccluderBound();
-        candidates_.push_back(Candidate{std::max(glm::length(b.center() - eye) - b.radius(), 0.0), &o});
-    });
+    found_.clear();
+    Gatherer gather(frustum, found_);
     root.accept(gather);
+    candidates_.clear();
+    for (const Occluder* o : found_) {
+        const BoundingSphere& b = o->worldOccluderBound();
+        candidates_.push_back(Candidate{std::max(glm::length(b.center() - eye) - b.radius(), 0.0), o});
+    }
     stats_.occludersInView = candidates_.size();
     std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
-    const double margin = 2.0 * nearReach(camera);
+    const double margin = 2.0 * buffer_.nearReach();  // where the near plane may cut a shell open
     for (const Candidate& c : candidates_) {
         if (stats_.occludersDrawn >= static_cast<std::uint64_t>(settings_.maxOccluders)) break;
         if (c.occluder->shellContains(eye, margin)) {

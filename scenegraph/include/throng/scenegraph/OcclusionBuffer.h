@@ -55,6 +55,9 @@ public:
     /// Farthest depth (metres from the eye along the view axis) hidden by occluders at pixel
     /// (x, y), row 0 at the bottom; +infinity where nothing was drawn.
     double depthAt(int x, int y) const;
+    /// Distance from the eye to the farthest corner of the near plane's rectangle (from begin()):
+    /// geometry nearer than this may be cut open by the near plane.
+    double nearReach() const { return nearReach_; }
     /// Pixels written by the last frame (one per pixel per occluder covering it).
     std::uint64_t pixelsWritten() const { return pixelsWritten_; }
 
@@ -67,7 +70,7 @@ private:
     int width_, height_;
     std::vector<Level> levels_;   // level 0 is the buffer itself
     Mat4 view_{1.0};
-    double sx_ = 1, sy_ = 1, ox_ = 0, oy_ = 0, near_ = 0.1;
+    double sx_ = 1, sy_ = 1, ox_ = 0, oy_ = 0, near_ = 0.1, nearReach_ = 0.1;
     std::uint64_t pixelsWritten_ = 0;
     std::vector<float> rowMin_;   // scratch of drawBox
 };

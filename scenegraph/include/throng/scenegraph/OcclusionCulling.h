@@ -58,6 +58,7 @@ private:
     OcclusionSettings settings_;
     OcclusionBuffer buffer_;
     OcclusionStatistics stats_;
+    std::vector<const Occluder*> found_;
     std::vector<Candidate> candidates_;
 };
 
