@@ -13,6 +13,8 @@ packages=(
   python3 python3-glad xvfb xauth
   # task scheduler (per-actor phases), command lines, the OpenSceneGraph peer benchmark
   libtbb-dev libcli11-dev libopenscenegraph-dev
+  # exact key-pose selection (an integer program) to measure the greedy cache against
+  libglpk-dev
 )
 
 missing=()

@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "throng/scenegraph/FrameArena.h"
+#include "throng/scenegraph/KeyPoseSource.h"
 #include "throng/scenegraph/Math.h"
 
 namespace throng {
@@ -24,6 +25,7 @@ class Node;
 enum class Representation : std::uint8_t {
     Mesh,      ///< a mesh (rigid, or skinned when the item has a palette)
     Impostor,  ///< an image-based stand-in placed at the actor's Reference Point
+    KeyPose,   ///< a skinned mesh whose vertices come from a key-pose cache (see `keyPose`)
 };
 
 /// Marks an item that belongs to no actor (generic scene geometry).
@@ -45,6 +47,7 @@ struct DrawItem {
     Representation representation = Representation::Mesh;  ///< how it is shown
     std::int32_t clip = -1;              ///< the clip the actor plays (its main clip for impostors), or -1
     double clipTime = 0.0;               ///< seconds into `clip` the actor shows this frame
+    KeyPoseRef keyPose;                  ///< Representation::KeyPose: the cached poses shown
 };
 
 /// An ordered list of draw items with running totals, reused from frame to frame without reallocating.

@@ -1,0 +1,74 @@
+#include "throng/actors/KeyPoseRows.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace throng {
+
+KeyPoseRows::KeyPoseRows(std::uint32_t rows, std::uint32_t poseCount)
+    : poseRow_(poseCount, kNone), rowPose_(rows, kNone), rowUsed_(rows, 0), wantedNow_(rows, 0) {
+    if (rows == 0) throw std::invalid_argument("KeyPoseRows: a cache needs at least one row");
+}
+
+std::uint32_t KeyPoseRows::hold(std::span<const std::uint32_t> wanted, std::uint64_t frame) {
+    if (wanted.size() > rowPose_.size())
+        throw std::invalid_argument("KeyPoseRows::hold: " + std::to_string(wanted.size()) + " poses wanted but the cache has " +
+                                    std::to_string(rowPose_.size()) + " rows");
+    for (const std::uint32_t p : wanted)
+        if (p >= poseRow_.size())
+            throw std::invalid_argument("KeyPoseRows::hold: pose " + std::to_string(p) + " is out of range (the cache knows " +
+                                        std::to_string(poseRow_.size()) + " poses)");
+    std::vector<std::uint32_t> sorted(wanted.begin(), wanted.end());
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+        throw std::invalid_argument("KeyPoseRows::hold: pose " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
+                                    " is wanted twice");
+    std::fill(wantedNow_.begin(), wantedNow_.end(), std::uint8_t{0});
+    for (const std::uint32_t p : wanted)
+        if (poseRow_[p] != kNone) {
+            wantedNow_[poseRow_[p]] = 1;
+            rowUsed_[poseRow_[p]] = frame;
+        }
+    std::uint32_t updates = 0;
+    for (const std::uint32_t p : wanted) {
+        if (poseRow_[p] != kNone) continue;
+        // An empty row first, else the least recently used row not wanted now (lowest index on ties).
+        std::uint32_t victim = kNone;
+        for (std::uint32_t r = 0; r < rowPose_.size(); ++r) {
+            if (wantedNow_[r]) continue;
+            if (rowPose_[r] == kNone) {
+                victim = r;
+                break;
+            }
+            if (victim == kNone || rowUsed_[r] < rowUsed_[victim]) victim = r;
+        }
+        if (rowPose_[victim] != kNone) poseRow_[rowPose_[victim]] = kNone;
+        rowPose_[victim] = p;
+        poseRow_[p] = victim;
+        rowUsed_[victim] = frame;
+        wantedNow_[victim] = 1;
+        ++updates;
+    }
+    return updates;
+}
+
+void KeyPoseRows::touch(std::uint32_t pose, std::uint64_t frame) {
+    const std::uint32_t r = rowOf(pose);
+    if (r != kNone) rowUsed_[r] = frame;
+}
+
+std::vector<std::uint32_t> KeyPoseRows::held() const {
+    std::vector<std::uint32_t> poses;
+    for (const std::uint32_t p : rowPose_)
+        if (p != kNone) poses.push_back(p);
+    return poses;
+}
+
+void KeyPoseRows::clear() {
+    std::fill(poseRow_.begin(), poseRow_.end(), kNone);
+    std::fill(rowPose_.begin(), rowPose_.end(), kNone);
+    std::fill(rowUsed_.begin(), rowUsed_.end(), std::uint64_t{0});
+}
+
+}  // namespace throng

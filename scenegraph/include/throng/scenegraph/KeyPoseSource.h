@@ -1,0 +1,36 @@
+#pragma once
+// Skinned key-poses a renderer may keep in a cache of rows and draw instances from (seed 004): the
+// CPU side (actors' KeyPoseCache) decides which pose each row holds and which actors it serves; the
+// renderer skins a row again only when the pose its own copy holds differs, so a pose kept across
+// frames is skinned once. Scenegraph-level so that DRAW needs nothing of actors.
+
+#include <cstdint>
+#include <span>
+
+#include <glm/mat4x4.hpp>
+
+namespace throng {
+
+/// The key-poses of one template and the rows of its cache.
+class KeyPoseSource {
+public:
+    virtual ~KeyPoseSource() = default;
+    /// Rows of the cache: the number of key-poses it holds at once.
+    virtual std::uint32_t rowCount() const = 0;
+    /// Key-poses the source knows (indices 0 .. poseCount() - 1 over every clip it serves).
+    virtual std::uint32_t poseCount() const = 0;
+    /// Skin palette (joint to Skeleton Root, times the inverse bind matrix) of skin `skin` in
+    /// key-pose `pose`; empty when either index is out of range. Safe to call from any thread.
+    virtual std::span<const glm::mat4> palette(std::uint32_t skin, std::uint32_t pose) const = 0;
+};
+
+/// For an item drawn from a key-pose cache (Representation::KeyPose): what its instance shows.
+struct KeyPoseRef {
+    const KeyPoseSource* source = nullptr;  ///< the poses and the cache they live in
+    std::uint32_t skin = 0;                 ///< the skin of the source the item's mesh is bound to
+    std::uint32_t pose[2] = {0, 0};         ///< key-poses shown (intermittent: both the same)
+    std::uint32_t row[2] = {0, 0};          ///< the cache rows holding them
+    float blend = 0.0f;                     ///< weight of pose[1] (0: pose[0] alone)
+};
+
+}  // namespace throng
