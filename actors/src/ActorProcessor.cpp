@@ -5,6 +5,7 @@
 
 #include "cascade/CascadeFrame.h"
 #include "throng/actors/Crowd.h"
+#include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/AppVisitor.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/CullVisitor.h"
@@ -74,6 +75,22 @@ void ActorProcessor::setImpostorDistance(double distance, double hysteresis) {
     if (distance == 0.0) impostorTier_.clear();
 }
 
+void ActorProcessor::setKeyPoseDistance(double distance, double hysteresis) {
+    if (!(distance >= 0.0) || !std::isfinite(distance) || !(hysteresis >= 0.0) || !std::isfinite(hysteresis))
+        throw std::invalid_argument("ActorProcessor::setKeyPoseDistance: distance and hysteresis must be finite and >= 0");
+    keyPoseDistance_ = distance;
+    keyPoseHysteresis_ = hysteresis;
+    if (distance == 0.0) keyPoseTier_.clear();
+}
+
+void ActorProcessor::setKeyPoseCache(std::shared_ptr<KeyPoseCache> cache) {
+    if (!cache) throw std::invalid_argument("ActorProcessor::setKeyPoseCache: argument 'cache' is null");
+    std::erase_if(keyPoseCaches_, [&](const auto& c) { return &c->actorTemplate() == &cache->actorTemplate(); });
+    keyPoseCaches_.push_back(std::move(cache));
+}
+
+void ActorProcessor::clearKeyPoseCaches() { keyPoseCaches_.clear(); }
+
 void ActorProcessor::setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor) {
     std::erase_if(impostors_, [&](const auto& e) { return e.first == &tmpl; });
     if (impostor) impostors_.emplace_back(&tmpl, std::move(impostor));
@@ -141,10 +158,13 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     f.frustum = cullingFrustum_ ? *cullingFrustum_ : camera.frustum();
     f.eye = camera.eye();
     f.context = FrameContext{time, frame_ == 0 ? 0.0 : time - lastTime_, frame_, c};
-    f.settings = cascade::Settings{lodScale_ * lodScale_, skeletalLod_, behaviouralLod_, impostorDistance_, impostorHysteresis_, &impostors_};
+    f.settings = cascade::Settings{lodScale_ * lodScale_, skeletalLod_,           behaviouralLod_,    impostorDistance_,
+                                   impostorHysteresis_,   &impostors_,            keyPoseDistance_,   keyPoseHysteresis_,
+                                   &keyPoseCaches_};
     f.stats = &stats_;
     f.drawList = &list;
     f.impostorTier = &impostorTier_;
+    f.keyPoseTier = &keyPoseTier_;
     f.candidates.clear();
     f.occlusion = nullptr;
 

@@ -45,6 +45,10 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("on|off")
         ->check(oneOf({"on", "off"}))
         ->default_str("on");
+    app.add_option("--key-pose-cache", o.keyPoseCache, "key-pose caches as the scene declares them (off: never)")
+        ->type_name("on|off")
+        ->check(oneOf({"on", "off"}))
+        ->default_str("on");
     app.add_option("--lod-scale", o.lodScale, "multiplies every LOD distance")
         ->type_name("X")
         ->check(positiveNumber())

@@ -22,6 +22,7 @@ struct TownOptions {
     int threads = 1;                        ///< threads for the per-actor phases and the step
     bool pipeline = true;                   ///< DRAW of frame N overlaps step, APP and CULL of N+1
     bool occlusion = true;                  ///< occlusion culling when the scene declares it (off: never)
+    bool keyPoseCache = true;               ///< key-pose caches when the scene declares them (off: never)
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
 };

@@ -77,7 +77,8 @@ const char* kCsvHeader =
     "draw_ms,scene_ms,mesh_ms,impostor_ms,morph_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
-    "occlusion_cells_hidden,occlusion_tests,nodes_occluded\n";
+    "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
+    "key_pose_select_ms,key_pose_fills\n";
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
     const ActorFrameStatistics& s = f.stats;
@@ -92,7 +93,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << ',' << s.impostors << ',' << r.morphs.synthesized << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
-      << s.occlusionTests << ',' << s.nodesOccluded << '\n';
+      << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
+      << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << '\n';
     return o.str();
 }
 
@@ -126,6 +128,7 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   "posed %llu, skeleton nodes %llu, draw items %llu, triangles %llu\n"
                   "APP+CULL %.2f ms (APP %.2f, refpoints %.2f, bounds %.2f, CULL1 %.2f, roots %.2f, CULL2 %.2f, poses %.2f, CULL3 %.2f, list %.2f)\n"
                   "occlusion: %llu occluders drawn in %.2f ms; hidden: %llu with their group, %llu Refpoint, %llu Sklsroot, %llu tiles (O: buffer)\n"
+                  "key-pose caches: %llu actors in the band, %llu drawn from a cache, %llu skinned (pose did not fit), %llu poses stored\n"
                   "LOD scale %.2f (+/-)   culling pyramid %s (C)   camera %s (Tab)   %s",
                   world.description().name.c_str(), fps, s.processing == Processing::Actor ? "actor" : "traditional",
                   pipelined ? ", DRAW overlapped" : "", paused ? "   PAUSED" : "", (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
@@ -135,7 +138,8 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   s.appCullMs(), s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs,
                   s.cull3Ms, s.drawListMs, (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
                   (unsigned long long)s.occludedWithGroup, (unsigned long long)s.occludedRefpoint, (unsigned long long)s.occludedSklsroot,
-                  (unsigned long long)s.nodesOccluded, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
+                  (unsigned long long)s.nodesOccluded, (unsigned long long)s.keyPoseBand, (unsigned long long)s.keyPoseActors,
+                  (unsigned long long)s.keyPoseMisses, (unsigned long long)s.keyPoseUpdates, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
                   "W/A/S/D/Q/E move, drag to look, Space pause, P processing, Esc quit");
     return buf;
 }
@@ -215,6 +219,13 @@ int main(int argc, char** argv) {
     processor.setLodScale(lodScale);
     // Occlusion culling when the scene declares it (and --occlusion does not turn it off).
     if (o.occlusion && world->description().representation.occlusion) processor.setOcclusion(world->description().representation.occlusion);
+    // Key-pose caches for the middle band when the scene declares them (and --key-pose-cache does
+    // not turn them off).
+    if (o.keyPoseCache && world->description().representation.keyPoseCache) {
+        const sim::KeyPoseCacheDescription& k = *world->description().representation.keyPoseCache;
+        for (auto& cache : world->makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
+        processor.setKeyPoseDistance(k.distance, world->description().representation.hysteresis * k.distance);
+    }
     // Far actors as impostors when the scene asks for them (or --impostor-distance does).
     const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
     std::unique_ptr<ImpostorSet> impostors;

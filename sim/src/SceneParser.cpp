@@ -278,7 +278,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("representation")) {
         const Reader r = root.at("representation");
-        r.object({"impostorDistance", "hysteresis", "lodScale", "occlusion"});
+        r.object({"impostorDistance", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
         if (r.has("impostorDistance")) {
             s.representation.impostorDistance = r.at("impostorDistance").number();
             if (s.representation.impostorDistance < 0) r.at("impostorDistance").fail("must not be negative");
@@ -306,6 +306,36 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
                 settings.maxOccluders = static_cast<int>(v);
             }
             s.representation.occlusion = settings;
+        }
+        if (r.has("keyPoseCache")) {
+            const Reader k = r.at("keyPoseCache");
+            k.object({"distance", "mode", "keyPosesPerSecond", "rows"});
+            KeyPoseCacheDescription cache;
+            if (k.has("distance")) cache.distance = k.at("distance").positive();
+            if (k.has("mode")) {
+                const std::string mode = k.at("mode").string();
+                if (mode == "intermittent") cache.mode = KeyPoseMode::Intermittent;
+                else if (mode == "interpolative") cache.mode = KeyPoseMode::Interpolative;
+                else k.at("mode").fail("must be \"intermittent\" or \"interpolative\", got \"" + mode + "\"");
+            }
+            if (k.has("keyPosesPerSecond")) {
+                cache.keyPosesPerSecond = k.at("keyPosesPerSecond").positive();
+                if (cache.keyPosesPerSecond > 1000) k.at("keyPosesPerSecond").fail("must be at most 1000");
+            }
+            const Reader rows = k.at("rows");
+            rows.anyObject();  // its keys are template names
+            for (auto it = rows.value().begin(); it != rows.value().end(); ++it) {
+                const Reader row(it.value(), rows.path() + "/" + it.key(), file);
+                if (!s.templates.count(it.key())) row.fail("names no declared template");
+                const std::int64_t n = row.atLeast(1);
+                if (n > 65535) row.fail("must be at most 65535, got " + std::to_string(n));
+                cache.rows[it.key()] = static_cast<std::uint32_t>(n);
+            }
+            if (cache.rows.empty()) rows.fail("must give rows for at least one template");
+            if (s.representation.impostorDistance > 0 && cache.distance >= s.representation.impostorDistance)
+                k.at("distance").fail("must be below impostorDistance (" + std::to_string(s.representation.impostorDistance) +
+                                      "): the band lies between skinned actors and impostors");
+            s.representation.keyPoseCache = cache;
         }
     }
 

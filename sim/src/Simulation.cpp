@@ -355,4 +355,26 @@ void Simulation::buildActors(const BuildProgress& progress) {
         if (b) behaviours_.push_back(b);
 }
 
+std::vector<std::shared_ptr<KeyPoseCache>> Simulation::makeKeyPoseCaches() {
+    std::vector<std::shared_ptr<KeyPoseCache>> caches;
+    const auto& declared = description_.representation.keyPoseCache;
+    if (!declared) return caches;
+    for (const TemplateInUse& t : templates_) {
+        const std::string name = t.name.substr(0, t.name.find('#'));  // a standing copy shares its template's rows
+        const auto rows = declared->rows.find(name);
+        if (rows == declared->rows.end()) continue;
+        KeyPoseCacheSettings settings;
+        settings.rows = rows->second;
+        settings.mode = declared->mode;
+        settings.keyPosesPerSecond = declared->keyPosesPerSecond;
+        try {
+            caches.push_back(std::make_shared<KeyPoseCache>(t.tmpl, settings));
+        } catch (const std::invalid_argument& e) {
+            throw SceneError(description_.file, "/representation/keyPoseCache/rows/" + name, e.what());
+        }
+        effects_.constructed("key-pose cache");
+    }
+    return caches;
+}
+
 }  // namespace throng::sim

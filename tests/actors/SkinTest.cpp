@@ -16,43 +16,6 @@
 using namespace throng;
 using namespace throng::testing;
 
-namespace {
-
-// A 2 m bar skinned to two joints: "base" at the origin and "arm" 1 m up, which turns about Z.
-std::shared_ptr<const ActorTemplate> skinnedBar() {
-    SkeletonNode base;
-    base.name = "base";
-    SkeletonNode arm;
-    arm.name = "arm";
-    arm.parent = 0;
-    arm.restTranslation = glm::vec3(0, 1, 0);
-    arm.dofs = {Dof::rotation(glm::vec3(0, 0, 1), -3.2f, 3.2f)};
-    arm.deactivationDistance = 20.0;
-    arm.inverseBind = glm::mat4(1.0f);
-    arm.inverseBind[3] = glm::vec4(0, -1, 0, 1);  // inverse of the bind pose's translation
-    auto mesh = makeBox("bar", glm::vec3(0, 1, 0), glm::vec3(0.05f, 1.0f, 0.05f));
-    for (const glm::vec3& p : mesh->positions) {
-        mesh->joints0.push_back(glm::u16vec4(p.y < 1.0f ? 0 : 1, 0, 0, 0));
-        mesh->weights0.push_back(glm::vec4(1, 0, 0, 0));
-    }
-    // Joint spheres from the vertices each dominates, in the joint's frame.
-    base.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
-    arm.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
-    ActorTemplateBuilder real("bar");
-    real.addNode(base);
-    real.addNode(arm);
-    const int skin = real.addSkin(Skin{"bar", {0, 1}});
-    real.rootGeometry().addLevel(1000.0, std::make_shared<MeshDrawable>(mesh), skin);
-    ClipChannel bend;
-    bend.node = 1;
-    bend.times = {0.0f, 1.0f, 2.0f};  // bends in the first second, holds in the next (the clip loops)
-    bend.values = {0.0f, std::numbers::pi_v<float> / 2.0f, std::numbers::pi_v<float> / 2.0f};
-    real.addClip(std::make_shared<AnimationClip>("bend", std::vector<ClipChannel>{bend}));
-    return real.build();
-}
-
-}  // namespace
-
 TEST(Skin, PaletteIsIdentityInTheBindPoseAndMovesVerticesWithTheirJoint) {
     const auto t = skinnedBar();
     std::vector<Affine> model(2);

@@ -190,7 +190,25 @@ INSTANTIATE_TEST_SUITE_P(
                  "/representation/occlusion/maxOccluders", "at least 1"},
         BadScene{"unknown occlusion field",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"depth": 3}}})",
-                 "/representation/occlusion/depth", "not a known field"}),
+                 "/representation/occlusion/depth", "not a known field"},
+        BadScene{"key-pose cache of an unknown template",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"rows": {"y": 8}}}})",
+                 "/representation/keyPoseCache/rows/y", "no declared template"},
+        BadScene{"key-pose cache without rows",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"rows": {}}}})",
+                 "/representation/keyPoseCache/rows", "at least one template"},
+        BadScene{"key-pose cache of no row",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"rows": {"x": 0}}}})",
+                 "/representation/keyPoseCache/rows/x", "at least 1"},
+        BadScene{"key-pose cache mode unknown",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"mode": "lazy", "rows": {"x": 8}}}})",
+                 "/representation/keyPoseCache/mode", "intermittent"},
+        BadScene{"key-pose band beyond the impostors",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorDistance": 30, "keyPoseCache": {"distance": 40, "rows": {"x": 8}}}})",
+                 "/representation/keyPoseCache/distance", "below impostorDistance"},
+        BadScene{"key-pose rate negative",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"keyPosesPerSecond": -1, "rows": {"x": 8}}}})",
+                 "/representation/keyPoseCache/keyPosesPerSecond", "positive"}),
     [](const auto& param) {
         std::string name = param.param.what;
         for (char& c : name)
@@ -210,6 +228,18 @@ TEST(SceneParser, OcclusionIsReadOnlyWhenDeclared) {
     EXPECT_EQ(s.representation.occlusion->height, 180);
     EXPECT_EQ(s.representation.occlusion->maxOccluders, 40);
     EXPECT_TRUE(s.town->occluders);
+}
+
+TEST(SceneParser, KeyPoseCachesAreReadOnlyWhenDeclared) {
+    EXPECT_FALSE(parseScene(scene(kActors), kAssets).representation.keyPoseCache.has_value());
+    const std::string text = scene(kActors, R"(, "representation": {"keyPoseCache": {"distance": 12, "mode": "interpolative",
+        "keyPosesPerSecond": 10, "rows": {"cesium": 48}}})");
+    const SceneDescription s = parseScene(text, kAssets);
+    ASSERT_TRUE(s.representation.keyPoseCache.has_value());
+    EXPECT_EQ(s.representation.keyPoseCache->distance, 12.0);
+    EXPECT_EQ(s.representation.keyPoseCache->mode, throng::KeyPoseMode::Interpolative);
+    EXPECT_EQ(s.representation.keyPoseCache->keyPosesPerSecond, 10.0);
+    EXPECT_EQ(s.representation.keyPoseCache->rows.at("cesium"), 48u);
 }
 
 TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }

@@ -21,6 +21,12 @@ void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
     into.occludersDrawn += from.occludersDrawn;
     into.actorsPosed += from.actorsPosed;
     into.impostors += from.impostors;
+    into.keyPoseBand += from.keyPoseBand;
+    into.keyPoseActors += from.keyPoseActors;
+    into.keyPoseMisses += from.keyPoseMisses;
+    into.keyPoseUpdates += from.keyPoseUpdates;
+    into.keyPosesWanted += from.keyPosesWanted;
+    into.keyPosesHeld += from.keyPosesHeld;
     into.skeletonNodesEvaluated += from.skeletonNodesEvaluated;
     into.internalSpheresComputed += from.internalSpheresComputed;
     into.spheresTested += from.spheresTested;

@@ -28,6 +28,7 @@ namespace throng {
 
 class ActorTemplate;
 class Crowd;
+class KeyPoseCache;
 class Drawable;
 class Node;
 class OcclusionBuffer;
@@ -52,6 +53,7 @@ enum Outcome : std::uint8_t {
     kRejected = 0,  ///< Sklsroot Bsphere outside (C1)
     kPosed = 1,     ///< goes on to phases 5-7 with its geometry
     kImpostor = 2,  ///< drawn as an impostor; no Skeleton node processed
+    kCached = 3,    ///< in a key-pose cache's band: drawn from the cache if its poses are held
 };
 
 /// Which parts of a posed actor CULL 3 left visible.
@@ -82,6 +84,10 @@ struct Settings {
     double impostorHysteresis = 0.0;        ///< metres either side of the distance
     /// Impostor drawable of each template that has one.
     const std::vector<std::pair<const ActorTemplate*, std::shared_ptr<const Drawable>>>* impostors = nullptr;
+    double keyPoseDistance = 0.0;           ///< start of the key-pose band (0: no caches)
+    double keyPoseHysteresis = 0.0;         ///< metres either side of it
+    /// Key-pose cache of each template that has one.
+    const std::vector<std::shared_ptr<KeyPoseCache>>* keyPoseCaches = nullptr;
 };
 
 /// What one chunk of a parallel phase produced.
@@ -137,6 +143,13 @@ struct CascadeFrame {
     std::vector<BoundingSphere> geometry, subtree;  ///< per node: internal spheres, Skeleton Root frame
     std::vector<PlaneMask> masks;           ///< per node: planes still crossed
     std::vector<std::uint8_t>* impostorTier = nullptr;  ///< per actor, kept across frames: 1 while an impostor
+    std::vector<std::uint8_t>* keyPoseTier = nullptr;   ///< per actor, kept across frames: 1 while in the key-pose band
+
+    // Phase 4, key-pose caches: per survivor in the band, its cache and the poses it needs; per
+    // posed-or-cached shown actor, what phase 7 draws from the cache.
+    std::vector<std::uint16_t> cacheOf;     ///< per survivor: index in settings.keyPoseCaches (kCached only)
+    std::vector<KeyPoseRef> keyPoseOf;      ///< per survivor: poses needed, then the rows holding them
+    std::vector<std::uint32_t> demandCount; ///< per pose of the cache being selected: actors needing it (as first pose)
 
     std::vector<ChunkOutput> chunks;        ///< one per chunk of the current parallel loop
 
@@ -182,6 +195,10 @@ void computeSkeletonRoots(CascadeFrame& f);
 /// Phase 4: CULL 2 on Sklsroot Bspheres, then occlusion; one eye distance per actor; impostor
 /// tier; skeletal LOD.
 void cullSkeletonRoots(CascadeFrame& f);
+/// Phase 4, key-pose caches: chooses the poses each cache holds from what the actors in its band
+/// need (greedy, seed 004 §4.2), updates the rows; actors whose poses are held stay kCached, the
+/// others are posed as usual. Serial and in candidate order: deterministic whatever the threads.
+void selectKeyPoses(CascadeFrame& f);
 /// Phase 5: behaviour of the active Skeleton nodes at each posed actor's level, and their matrices.
 void evaluateBehaviours(CascadeFrame& f);
 /// Phase 6: CULL 3 on internal spheres, only for actors whose Sklsroot Bsphere crosses a plane.

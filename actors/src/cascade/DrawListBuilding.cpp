@@ -80,6 +80,26 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
     }
 }
 
+// The item of an actor drawn from its template's key-pose cache: the skinned mesh of its vaLod
+// level, placed by its Skeleton Root, its vertices read from the cache rows `ref` names.
+void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, const detail::ActorItemBase& a) {
+    const Crowd::State& s = f.crowd->state();
+    const ActorTemplate& t = *s.tmpl[a.id];
+    const int level = t.rootGeometry().selectSquared(f.detail2[survivor]);
+    if (level < 0) return;
+    const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(level)];
+    if (!lv.drawable) return;
+    const std::uint32_t part = static_cast<std::uint32_t>(t.nodeCount());
+    DrawItem item = detail::actorPartItem(a, *lv.drawable, part, level, lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
+    if (lv.skin >= 0) {
+        item.keyPose = f.keyPoseOf[survivor];
+        item.keyPose.skin = static_cast<std::uint32_t>(lv.skin);
+    }
+    out.items.add(item, lv.drawable->primitiveCount(), s.sklsWorld[a.id]);
+    ++out.counts.drawItems;
+    out.counts.primitives += lv.drawable->primitiveCount();
+}
+
 }  // namespace
 
 void buildDrawList(CascadeFrame& f) {
@@ -94,6 +114,10 @@ void buildDrawList(CascadeFrame& f) {
             const detail::ActorItemBase a = detail::actorItemBase(s, cand.id, cand.node, cand.member, time);
             if (j != CascadeFrame::kNotPosed) {
                 emitPosed(f, out, j, a, nodeOps);
+                continue;
+            }
+            if (f.outcome[f.shown[k]] == kCached) {
+                emitCached(f, out, f.shown[k], a);
                 continue;
             }
             // An impostor: one item at the Reference Point, no Skeleton node processed.

@@ -8,8 +8,10 @@
 
 #include "CascadeFrame.h"
 #include "throng/actors/Crowd.h"
+#include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/OcclusionBuffer.h"
+#include "throng/scenegraph/Stopwatch.h"
 
 namespace throng::cascade {
 namespace {
@@ -33,6 +35,24 @@ bool impostorTier(const CascadeFrame& f, ActorId id, const ActorTemplate& tmpl, 
     return tier != 0;
 }
 
+// The key-pose cache of `tmpl`, as its index in the settings, or -1.
+int cacheOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
+    const auto& caches = *f.settings.keyPoseCaches;
+    for (std::size_t i = 0; i < caches.size(); ++i)
+        if (&caches[i]->actorTemplate() == &tmpl) return static_cast<int>(i);
+    return -1;
+}
+
+// Updates the key-pose tier of actor `id` (the band beyond the key-pose distance); true while in it.
+bool keyPoseBand(const CascadeFrame& f, ActorId id, double detail2) {
+    std::uint8_t& tier = (*f.keyPoseTier)[id];
+    const double out = f.settings.keyPoseDistance + f.settings.keyPoseHysteresis;
+    const double in = std::max(f.settings.keyPoseDistance - f.settings.keyPoseHysteresis, 0.0);
+    if (tier != 0 && detail2 < in * in) tier = 0;
+    else if (tier == 0 && detail2 > out * out) tier = 1;
+    return tier != 0;
+}
+
 }  // namespace
 
 void cullSkeletonRoots(CascadeFrame& f) {
@@ -43,6 +63,12 @@ void cullSkeletonRoots(CascadeFrame& f) {
     f.level.resize(n);
     if (f.impostorTier->size() < f.crowd->size()) f.impostorTier->resize(f.crowd->size(), 0);
     const bool impostors = f.settings.impostorDistance > 0.0;
+    const bool caches = f.settings.keyPoseDistance > 0.0 && f.settings.keyPoseCaches && !f.settings.keyPoseCaches->empty();
+    if (caches) {
+        if (f.keyPoseTier->size() < f.crowd->size()) f.keyPoseTier->resize(f.crowd->size(), 0);
+        f.cacheOf.resize(n);
+        f.keyPoseOf.resize(n);
+    }
     f.parallel(n, kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         OpCounter* c = f.counterOf(out);
         OpTally* testOps = tallyFor(c, OpCategory::BsphereFrustumTest);
@@ -97,8 +123,32 @@ void cullSkeletonRoots(CascadeFrame& f) {
             }
             f.outcome[k] = kPosed;
             f.level[k] = f.settings.behaviouralLod ? s.behaviour[id]->levelFor(std::sqrt(d2)) : 0;
+            // In a key-pose cache's band (and holding nothing a cache cannot show): the poses it
+            // needs; selectKeyPoses decides whether the cache holds them.
+            if (!caches || s.held[id] >= 0) continue;
+            const int cache = cacheOf(f, t);
+            if (cache < 0 || !keyPoseBand(f, id, d2)) continue;
+            const Behaviour& behaviour = *s.behaviour[id];
+            const int clip = behaviour.mainClip(s.slot[id]);
+            if (clip < 0) continue;
+            const KeyPoseCache& kc = *(*f.settings.keyPoseCaches)[static_cast<std::size_t>(cache)];
+            const KeyPoseSample sample = kc.sample(clip, behaviour.clipTime(s.slot[id], f.context.time));
+            f.outcome[k] = kCached;
+            f.cacheOf[k] = static_cast<std::uint16_t>(cache);
+            KeyPoseRef& ref = f.keyPoseOf[k];
+            ref = KeyPoseRef{};
+            ref.source = &kc;
+            ref.pose[0] = sample.a;
+            ref.pose[1] = sample.b;
+            ref.blend = sample.blend;
+            ++counts.keyPoseBand;
         }
     });
+    if (caches) {
+        Stopwatch watch;
+        selectKeyPoses(f);
+        f.stats->keyPoseSelectMs += watch.elapsedMs();
+    }
 
     // The actors shown, in candidate order; the posed ones get their room in the per-node arrays.
     f.shown.clear();
@@ -109,7 +159,7 @@ void cullSkeletonRoots(CascadeFrame& f) {
     for (std::uint32_t k = 0; k < n; ++k) {
         if (f.outcome[k] == kRejected) continue;
         f.shown.push_back(k);
-        if (f.outcome[k] == kImpostor) {
+        if (f.outcome[k] == kImpostor || f.outcome[k] == kCached) {
             f.posedOf.push_back(CascadeFrame::kNotPosed);
             continue;
         }

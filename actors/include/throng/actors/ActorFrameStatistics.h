@@ -29,7 +29,8 @@ struct ActorFrameStatistics {
     double occlusionBufferMs = 0; ///< occlusion: gathering and drawing the occluders, the pyramid
     double refpointOcclusionMs = 0;///< occlusion of the Refpoint Bspheres that passed CULL 1
     double skeletonRootMs = 0;    ///< phase 3: Skeleton Roots of the survivors
-    double cull2Ms = 0;           ///< phase 4: CULL 2, eye distances, skeletal LOD
+    double cull2Ms = 0;           ///< phase 4: CULL 2, eye distances, skeletal LOD (key-pose selection included)
+    double keyPoseSelectMs = 0;   ///< of cull2Ms: choosing the key-poses the caches hold
     double poseMs = 0;            ///< phase 5: behaviour of active nodes and their matrices
     double cull3Ms = 0;           ///< phase 6: CULL 3 on internal spheres
     double drawListMs = 0;        ///< phase 7: the draw list
@@ -58,6 +59,14 @@ struct ActorFrameStatistics {
     // Work.
     std::uint64_t actorsPosed = 0;            ///< actors whose behaviour posed them this frame
     std::uint64_t impostors = 0;              ///< actors drawn as impostors (no Skeleton node processed)
+
+    // Key-pose caches (seed 004; zero when none is set).
+    std::uint64_t keyPoseBand = 0;            ///< actors in the caches' band this frame
+    std::uint64_t keyPoseActors = 0;          ///< of those, drawn from a cache (no Skeleton node processed)
+    std::uint64_t keyPoseMisses = 0;          ///< of those, posed and skinned as usual: a pose did not fit
+    std::uint64_t keyPoseUpdates = 0;         ///< key-poses newly stored in a row (each skinned once in DRAW)
+    std::uint64_t keyPosesWanted = 0;         ///< distinct key-poses the band's actors needed
+    std::uint64_t keyPosesHeld = 0;           ///< key-poses held in the rows after the update
     std::uint64_t skeletonNodesEvaluated = 0; ///< Skeleton nodes whose DOFs and matrix were computed
     std::uint64_t internalSpheresComputed = 0;///< internal spheres recomputed
     std::uint64_t spheresTested = 0;          ///< sphere-frustum tests, all kinds

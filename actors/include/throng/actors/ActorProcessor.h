@@ -7,7 +7,7 @@
 //      frame's occlusion buffer (cells of nearby actors first) - rejects the hidden;
 //   3. Skeleton Roots of the survivors;
 //   4. CULL 2: Sklsroot Bspheres - rejects C1, then the hidden; one eye distance per actor;
-//      skeletal LOD;
+//      impostor and key-pose cache tiers (the cache's poses chosen for the frame); skeletal LOD;
 //   5. behaviour of the active Skeleton nodes at the actor's behavioural level, and their matrices;
 //   6. CULL 3: internal spheres, only for actors whose Sklsroot Bsphere crosses a plane;
 //   7. the draw list, each part at its vaLod level.
@@ -35,6 +35,7 @@ class Camera;
 class Crowd;
 class DrawBackend;
 class Drawable;
+class KeyPoseCache;
 class Node;
 class ThreadTeam;
 namespace cascade {
@@ -74,6 +75,22 @@ public:
     void setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor);
     /// Whether actor `id` was drawn as an impostor in the last frame.
     bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
+    /// Key-pose caches (seed 004): an actor nearer than the impostor distance but beyond `distance`
+    /// metres (scaled like every LOD distance; entering beyond distance + hysteresis, leaving
+    /// within distance - hysteresis), whose template has a cache and whose behaviour plays a main
+    /// clip, is drawn from its template's cache when the key-poses it needs are held: no Skeleton
+    /// node is processed for it. The others are posed and skinned as usual. Distance 0 (the
+    /// default) turns caches off. Throws std::invalid_argument for negative or non-finite values.
+    void setKeyPoseDistance(double distance, double hysteresis = 0.0);
+    /// The key-pose distance (0: off).
+    double keyPoseDistance() const { return keyPoseDistance_; }
+    /// Gives `cache`'s template that cache (replacing the one it had). A cache serves one processor
+    /// (its rows are this processor's state). Throws std::invalid_argument if `cache` is null.
+    void setKeyPoseCache(std::shared_ptr<KeyPoseCache> cache);
+    /// Removes every key-pose cache.
+    void clearKeyPoseCaches();
+    /// The key-pose caches.
+    const std::vector<std::shared_ptr<KeyPoseCache>>& keyPoseCaches() const { return keyPoseCaches_; }
     /// Occlusion culling with a buffer of `settings` (null, the default: off, nothing built), in
     /// both methods: the scene's Occluder nodes are drawn each frame, generic nodes and actor
     /// groups are tested during the traversal, actors after CULL 1 and CULL 2. Throws
@@ -120,6 +137,9 @@ private:
     double impostorDistance_ = 0.0, impostorHysteresis_ = 0.0;
     std::vector<std::pair<const ActorTemplate*, std::shared_ptr<const Drawable>>> impostors_;
     std::vector<std::uint8_t> impostorTier_;    // per actor: 1 while drawn as an impostor
+    double keyPoseDistance_ = 0.0, keyPoseHysteresis_ = 0.0;
+    std::vector<std::shared_ptr<KeyPoseCache>> keyPoseCaches_;
+    std::vector<std::uint8_t> keyPoseTier_;     // per actor: 1 while in the key-pose band
     double lodScale_ = 1.0;
     bool skeletalLod_ = true;
     bool behaviouralLod_ = true;

@@ -12,6 +12,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/OcclusionCulling.h"
 
 namespace throng::sim {
@@ -90,6 +91,14 @@ struct CameraDescription {
     std::vector<CameraKey> path;           ///< keys in time order (linear between them; held after the last)
 };
 
+/// Key-pose caches (seed 004): skinned key-poses shared by the actors of a middle band.
+struct KeyPoseCacheDescription {
+    double distance = 15.0;                 ///< the band starts here (metres; impostors end it)
+    KeyPoseMode mode = KeyPoseMode::Intermittent;  ///< nearest key-pose, or a blend of two
+    double keyPosesPerSecond = 15.0;        ///< key-poses per second of clip
+    std::map<std::string, std::uint32_t> rows;  ///< rows per template name (only these get a cache)
+};
+
 /// Distances choosing how actors are drawn.
 struct RepresentationDescription {
     double impostorDistance = 0.0;         ///< beyond it, impostors (0: never)
@@ -97,6 +106,8 @@ struct RepresentationDescription {
     double lodScale = 1.0;                 ///< multiplies every LOD distance
     /// Occlusion culling against the scene's occluders with this buffer; none: off, nothing built.
     std::optional<OcclusionSettings> occlusion;
+    /// Key-pose caches for the templates named; none: no cache built, no band.
+    std::optional<KeyPoseCacheDescription> keyPoseCache;
 };
 
 /// A whole scene.

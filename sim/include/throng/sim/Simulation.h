@@ -86,6 +86,11 @@ public:
     std::span<const ActorGroupInfo> groups() const { return groups_; }
     /// The templates in use, each with its main clip.
     std::span<const TemplateInUse> templates() const { return templates_; }
+    /// New key-pose caches for the templates the scene's representation/keyPoseCache names (one per
+    /// template in use of that name; none when the scene declares no cache). Each call builds a
+    /// fresh set, since a cache serves one processor. Throws SceneError naming the template if it
+    /// cannot be cached (no skinned mesh, rigid parts).
+    std::vector<std::shared_ptr<KeyPoseCache>> makeKeyPoseCaches();
     /// Triangles of the town's tiles.
     std::uint64_t townTriangles() const { return townTriangles_; }
 
