@@ -32,6 +32,7 @@
 #include <string_view>
 #include <vector>
 
+#include "FrameWorld.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
@@ -48,6 +49,13 @@
 using namespace throng;
 
 namespace {
+
+using bench::bakeImpostors;
+using bench::cameraTime;
+using bench::impostorDistance;
+using bench::stateDigest;
+
+[[noreturn]] void fail(const std::string& why) { bench::fail("bench_frame", why); }
 
 struct Options {
     std::vector<std::int64_t> actors{2000, 6000, 10000};
@@ -69,9 +77,6 @@ struct Options {
     std::vector<std::string> sections{"methods", "scaling", "pipeline"};
     bool has(const char* section) const { return std::find(sections.begin(), sections.end(), section) != sections.end(); }
 };
-
-// Times on the scene's camera path: in a street (eye 2.75 m up) and over the town.
-double cameraTime(const std::string& name) { return name == "street" ? 9.0 : 0.0; }
 
 const char* kMethods[] = {"traditional", "actor", "actor + impostors", "actor + occlusion", "actor + impostors + occlusion"};
 constexpr int kMethodCount = 5;
@@ -115,45 +120,10 @@ struct Row {
     }
 };
 
-// FNV-1a over every actor's Reference Point: the simulation state a processor sees.
-std::uint64_t stateDigest(const Crowd& crowd) {
-    std::uint64_t h = 1469598103934665603ull;
-    const auto& ref = crowd.state().refLocal;
-    const auto* bytes = reinterpret_cast<const unsigned char*>(ref.data());
-    for (std::size_t i = 0; i < ref.size() * sizeof(Mat4); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
-}
-
-std::unique_ptr<sim::Simulation> buildWorld(const Options& o, std::int64_t actors) {
-    sim::SceneDescription scene = sim::parseSceneFile(o.scene);
-    if (actors > 0) sim::scaleActors(scene, actors);
-    return sim::Simulation::build(std::move(scene));
-}
-
-// The impostors throng-town draws: every template in use from its main clip, 64 px cells.
-std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world) {
-    std::vector<ImpostorSet::Source> sources;
-    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
-    ImpostorBakeOptions bake;
-    bake.cellSize = 64;
-    return std::make_unique<ImpostorSet>(context, sources, bake);
-}
-
-std::pair<double, double> impostorDistance(const sim::Simulation& world) {
-    const auto& r = world.description().representation;
-    const double distance = r.impostorDistance > 0.0 ? r.impostorDistance : 40.0;
-    return {distance, r.hysteresis * distance};
-}
-
-[[noreturn]] void fail(const std::string& why) {
-    std::fprintf(stderr, "bench_frame: %s\n", why.c_str());
-    std::exit(1);
-}
-
 // The methods on the same ticks, for each camera.
 std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context,
                                 std::uint64_t* ticksChecked) {
-    auto world = buildWorld(o, actors);
+    auto world = bench::buildWorld(o.scene, actors);
     auto impostors = bakeImpostors(context, *world);
     context->resize(o.width, o.height);
     ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd()), occluding(world->crowd()),
@@ -213,7 +183,7 @@ struct Scaling {
 };
 
 std::vector<Scaling> threadScaling(const Options& o) {
-    std::unique_ptr<sim::Simulation> worlds[2] = {buildWorld(o, o.scalingActors), buildWorld(o, o.scalingActors)};
+    std::unique_ptr<sim::Simulation> worlds[2] = {bench::buildWorld(o.scene, o.scalingActors), bench::buildWorld(o.scene, o.scalingActors)};
     std::unique_ptr<ActorProcessor> actor[2], traditional[2];
     for (int k = 0; k < 2; ++k) {
         worlds[k]->setThreads(unsigned(k + 1));
@@ -268,7 +238,7 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
         std::int64_t frames = 0;
     } runs[2];
     auto impostors = [&] {
-        auto world = buildWorld(o, o.pipelineActors);
+        auto world = bench::buildWorld(o.scene, o.pipelineActors);
         return bakeImpostors(context, *world);
     }();
     context->resize(o.width, o.height);
@@ -277,7 +247,7 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
     PipelineResult result;
     for (int k = 0; k < 2; ++k) {
         Run& r = runs[k];
-        r.world = buildWorld(o, o.pipelineActors);
+        r.world = bench::buildWorld(o.scene, o.pipelineActors);
         r.processor = std::make_unique<ActorProcessor>(r.world->crowd());
         r.pipeline = std::make_unique<FramePipeline>(k == 1);
         // The same templates, baked once: the processor only needs the drawables of its templates.
@@ -329,7 +299,7 @@ struct OcclusionRow {
 std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
     const int sizes[][2] = {{0, 0}, {64, 36}, {128, 72}, {256, 144}, {512, 288}, {1024, 576}};
     constexpr int kSizes = 6;
-    auto world = buildWorld(o, o.occlusionActors);
+    auto world = bench::buildWorld(o.scene, o.occlusionActors);
     *actorsOut = std::int64_t(world->crowd().size());
     auto impostors = bakeImpostors(context, *world);
     const auto [distance, hysteresis] = impostorDistance(*world);

@@ -29,8 +29,11 @@ void selectKeyPoses(CascadeFrame& f) {
             second[ref.pose[0]] = ref.pose[1];
             any = true;
         }
-        if (!any) continue;
         demand.clear();
+        if (!any) {
+            cache.recordDemand(demand);
+            continue;
+        }
         std::vector<std::uint8_t> needed(cache.poseCount(), 0);
         for (std::uint32_t p = 0; p < cache.poseCount(); ++p) {
             if (!f.demandCount[p]) continue;
@@ -38,6 +41,7 @@ void selectKeyPoses(CascadeFrame& f) {
             needed[p] = needed[second[p]] = 1;
         }
         for (const std::uint8_t x : needed) stats.keyPosesWanted += x;
+        cache.recordDemand(demand);
         KeyPoseRows& rows = cache.rows();
         const std::vector<std::uint32_t> resident = rows.held();
         const std::vector<std::uint32_t> chosen = selectKeyPosesGreedy(demand, rows.rowCount(), resident);

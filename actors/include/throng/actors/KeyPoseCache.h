@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "throng/actors/KeyPoseRows.h"
+#include "throng/actors/KeyPoseSelection.h"
 #include "throng/scenegraph/KeyPoseSource.h"
 
 namespace throng {
@@ -65,6 +66,11 @@ public:
     KeyPoseRows& rows() { return rows_; }
     /// The rows, read-only.
     const KeyPoseRows& rows() const { return rows_; }
+    /// What the actors in the band needed in the last frame (ActorProcessor records it each frame),
+    /// for inspection and for measuring the selection against the optimum.
+    std::span<const KeyPoseDemand> lastDemand() const { return lastDemand_; }
+    /// Records a frame's demand (ActorProcessor does, before choosing the poses).
+    void recordDemand(std::span<const KeyPoseDemand> demand) { lastDemand_.assign(demand.begin(), demand.end()); }
     /// Bytes of the palettes computed at construction.
     std::size_t paletteBytes() const { return palettes_.size() * sizeof(glm::mat4); }
 
@@ -80,6 +86,7 @@ private:
     std::vector<std::size_t> skinBase_;         // per skin: first matrix of its pose 0
     std::vector<glm::mat4> palettes_;           // skin by skin, pose by pose
     KeyPoseRows rows_;
+    std::vector<KeyPoseDemand> lastDemand_;
 };
 
 }  // namespace throng

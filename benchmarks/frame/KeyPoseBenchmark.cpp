@@ -1,0 +1,460 @@
+// bench_keypose: seed 004's key-pose cache on the town crowd, every setting on the identical state.
+//
+// Each tick the simulation steps once, outside every processor; then plain skinning (the scene's
+// own representation: skinned near, impostors far, occlusion as declared) and the intermittent and
+// interpolative caches at each size (the same, with the middle band drawn from the caches) each run
+// APP and CULL on that state and DRAW their own list, the GL finished after each pass. Every method
+// must see the same state digest. Figures in the style of seed 004:
+//   - Fig. 9: frame time (APP+CULL, mesh draw, whole frame) against cache size, each mode beside
+//     plain skinning;
+//   - Fig. 11: share of the band's actors the cache serves, frame by frame along the camera path;
+//   - Fig. 7 on recorded frames: `--demands FILE` writes what the band needed each frame, for
+//     bench_keypose_selection (greedy against the exact selection).
+// Accuracy: the vertex error (mean and maximum, millimetres, world space) of the cached actors
+// against the same actors skinned by plain skinning, and the image error of the whole frame against
+// plain skinning's (PSNR, SSIM, share of pixels off by more than 8/255), written in the common
+// accuracy CSV (`--accuracy-csv`).
+//
+// usage: bench_keypose --help
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "FrameWorld.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/KeyPoseCache.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/CpuSkinning.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/ImageCompare.h"
+#include "throng/render/ImageSimilarity.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/sim/SceneParser.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
+#include "throng/vtk/Chart.h"
+
+using namespace throng;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& why) { bench::fail("bench_keypose", why); }
+
+struct Options {
+    std::vector<std::int64_t> actors{10000};
+    std::vector<std::string> cameras{"street", "overview"};
+    std::vector<std::int64_t> sizes{8, 16, 32, 64, 128, 256};
+    int frames = 20;            // measured ticks per camera
+    int warmup = 60;            // ticks simulated first
+    int errorEvery = 5;         // ticks between accuracy measurements (images read back, vertices compared)
+    int errorSamples = 48;      // cached actors compared per method and measured tick
+    int pathFrames = 90;        // frames along the camera path for Fig. 11 (0: skip)
+    double distance = 0;        // start of the band (0: the scene's declaration, else 15 m)
+    double rate = 0;            // key-poses per second (0: the scene's declaration, else 15)
+    std::int64_t demandSize = 32;  // cache size whose interpolative demands --demands records
+    int width = 1280, height = 720;
+    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string csv, accuracyCsv, demands, plots, markdown;
+};
+
+// One setting: plain skinning (size 0) or a cache mode and size.
+struct Method {
+    std::string name;
+    KeyPoseMode mode = KeyPoseMode::Intermittent;
+    std::uint32_t size = 0;
+    std::unique_ptr<ActorProcessor> processor;
+};
+
+// Means over the measured ticks of one method on one camera.
+struct Row {
+    std::int64_t actors = 0;
+    std::string camera, method;
+    std::uint32_t size = 0;
+    double appCull = 0, pose = 0, select = 0, mesh = 0, draw = 0, frame = 0;
+    double band = 0, served = 0, misses = 0, updates = 0, fills = 0, posed = 0, cacheBytes = 0;
+    double vertexSum = 0, vertexCount = 0, vertexMax = 0;  // metres
+    double psnr = 0, ssim = 0, off8 = 0, images = 0;
+    void add(const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double stepMs, double drawMs) {
+        appCull += s.appCullMs();
+        pose += s.poseMs;
+        select += s.keyPoseSelectMs;
+        mesh += r.meshMs;
+        draw += drawMs;
+        frame += stepMs + s.appCullMs() + drawMs;
+        band += double(s.keyPoseBand);
+        served += double(s.keyPoseActors);
+        misses += double(s.keyPoseMisses);
+        updates += double(s.keyPoseUpdates);
+        fills += double(r.meshes.keyPoseFills);
+        posed += double(s.actorsPosed);
+        cacheBytes = std::max(cacheBytes, double(r.meshes.keyPoseCacheBytes));
+    }
+    void divide(double n) {
+        for (double* v : {&appCull, &pose, &select, &mesh, &draw, &frame, &band, &served, &misses, &updates, &fills, &posed}) *v /= n;
+        if (images > 0) psnr /= images, ssim /= images, off8 /= images;
+    }
+    double vertexMeanMm() const { return vertexCount > 0 ? 1000.0 * vertexSum / vertexCount : 0.0; }
+};
+
+// Caches for every template in use that can have one (skinned, no rigid parts), `size` rows each.
+void attachCaches(ActorProcessor& p, const sim::Simulation& world, KeyPoseMode mode, std::uint32_t size, double rate) {
+    for (const auto& t : world.templates()) {
+        KeyPoseCacheSettings s;
+        s.rows = size;
+        s.mode = mode;
+        s.keyPosesPerSecond = rate;
+        try {
+            p.setKeyPoseCache(std::make_shared<KeyPoseCache>(t.tmpl, s));
+        } catch (const std::invalid_argument&) {
+            // A template drawn by rigid parts (the birds): no cache, as in a scene file.
+        }
+    }
+}
+
+// Vertices of `item`'s mesh skinned with `palette` and placed in the world (its world matrix).
+void worldVertices(const DrawItem& item, std::span<const glm::mat4> palette, std::vector<glm::vec3>& out) {
+    const MeshData& mesh = static_cast<const MeshDrawable*>(item.drawable)->mesh();
+    std::vector<glm::vec3> local(mesh.vertexCount());
+    skinMesh(mesh, palette, local, {});
+    out.resize(local.size());
+    for (std::size_t i = 0; i < local.size(); ++i) out[i] = glm::vec3(*item.worldMatrix * Vec4(Vec3(local[i]), 1.0));
+}
+
+// Vertex error of up to `samples` cached actors of `list` against the same actors in `plain`.
+void vertexError(const DrawList& list, const DrawList& plain, int samples, Row& row) {
+    std::vector<const DrawItem*> skinned;
+    for (const DrawItem& item : plain.items())
+        if (item.actor != kNoActor && item.skinPalette) {
+            if (skinned.size() <= item.actor) skinned.resize(item.actor + 1, nullptr);
+            skinned[item.actor] = &item;
+        }
+    std::vector<const DrawItem*> cached;
+    for (const DrawItem& item : list.items())
+        if (item.representation == Representation::KeyPose && item.actor < skinned.size() && skinned[item.actor]) cached.push_back(&item);
+    const std::size_t stride = std::max<std::size_t>(1, cached.size() / std::size_t(std::max(samples, 1)));
+    std::vector<glm::vec3> exact, a, b;
+    for (std::size_t k = 0; k < cached.size(); k += stride) {
+        const DrawItem& item = *cached[k];
+        const DrawItem& truth = *skinned[item.actor];
+        if (truth.drawable != item.drawable) continue;  // another vaLod level: not comparable vertex by vertex
+        const KeyPoseRef& ref = item.keyPose;
+        worldVertices(truth, {truth.skinPalette, truth.skinPaletteSize}, exact);
+        worldVertices(item, ref.source->palette(ref.skin, ref.pose[0]), a);
+        if (ref.blend > 0.0f) worldVertices(item, ref.source->palette(ref.skin, ref.pose[1]), b);
+        for (std::size_t v = 0; v < exact.size(); ++v) {
+            const glm::vec3 shown = ref.blend > 0.0f ? a[v] * (1.0f - ref.blend) + b[v] * ref.blend : a[v];
+            const double e = glm::length(shown - exact[v]);
+            row.vertexSum += e;
+            row.vertexCount += 1;
+            row.vertexMax = std::max(row.vertexMax, e);
+        }
+    }
+}
+
+struct Result {
+    std::vector<Row> rows;
+    std::vector<double> pathTimes;                 // Fig. 11: camera path times
+    std::vector<std::vector<double>> pathServed;   // per cache method: served share of the band per frame
+    std::vector<std::string> pathMethods;
+    std::uint64_t ticks = 0;
+};
+
+Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context, std::ofstream* demandsOut) {
+    auto world = bench::buildWorld(o.scene, actors);
+    auto impostors = bench::bakeImpostors(context, *world);
+    context->resize(o.width, o.height);
+    const auto& declared = world->description().representation.keyPoseCache;
+    const double distance = o.distance > 0 ? o.distance : declared ? declared->distance : 15.0;
+    const double rate = o.rate > 0 ? o.rate : declared ? declared->keyPosesPerSecond : 15.0;
+    const double hysteresis = world->description().representation.hysteresis * distance;
+    const auto [impostorDistance, impostorHysteresis] = bench::impostorDistance(*world);
+    std::vector<Method> methods;
+    methods.push_back({"plain skinning", KeyPoseMode::Intermittent, 0, nullptr});
+    for (KeyPoseMode mode : {KeyPoseMode::Intermittent, KeyPoseMode::Interpolative})
+        for (std::int64_t size : o.sizes)
+            methods.push_back({std::string(mode == KeyPoseMode::Intermittent ? "intermittent " : "interpolative ") + std::to_string(size),
+                               mode, std::uint32_t(size), nullptr});
+    for (Method& m : methods) {
+        m.processor = std::make_unique<ActorProcessor>(world->crowd());
+        impostors->attach(*m.processor, impostorDistance, impostorHysteresis);
+        if (world->description().representation.occlusion) m.processor->setOcclusion(world->description().representation.occlusion);
+        if (m.size == 0) continue;
+        attachCaches(*m.processor, *world, m.mode, m.size, rate);
+        m.processor->setKeyPoseDistance(distance, hysteresis);
+    }
+    CrowdRendererOptions ro;
+    ro.finishPasses = true;
+    CrowdRenderer renderer(context, ro);
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    Result result;
+    const double aspect = double(o.width) / double(o.height);
+    Image plainFrame;
+    for (const std::string& cameraName : o.cameras) {
+        const Camera camera = world->camera().at(bench::cameraTime(cameraName), aspect);
+        std::vector<Row> rows(methods.size());
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+            rows[m].actors = std::int64_t(world->crowd().size());
+            rows[m].camera = cameraName;
+            rows[m].method = methods[m].name;
+            rows[m].size = methods[m].size;
+        }
+        for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks fill the caches and warm the GL
+            const FrameContext& now = world->step();
+            const double stepMs = world->lastStepMs();
+            const bool measureError = f >= 0 && f % o.errorEvery == 0;
+            std::uint64_t digest = 0;
+            for (std::size_t m = 0; m < methods.size(); ++m) {
+                ActorProcessor& p = *methods[m].processor;
+                const ActorFrameStatistics s = p.processFrame(world->root(), camera, now.time);
+                const std::uint64_t d = bench::stateDigest(world->crowd());
+                if (m == 0) digest = d;
+                else if (d != digest) fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
+                Stopwatch watch;
+                renderer.drawFrame(camera, p.drawList());
+                const double drawMs = watch.elapsedMs();
+                if (f < 0) continue;
+                rows[m].add(s, renderer.statistics(), stepMs, drawMs);
+                if (!measureError) continue;
+                const Image frame = renderer.readFrame();
+                if (m == 0) {
+                    plainFrame = frame;
+                    continue;
+                }
+                vertexError(p.drawList(), methods[0].processor->drawList(), o.errorSamples, rows[m]);
+                const ImageDifference diff = compareImages(frame, plainFrame, 8);
+                rows[m].psnr += std::min(diff.psnr, 99.0);
+                rows[m].ssim += structuralSimilarity(frame, plainFrame);
+                rows[m].off8 += diff.fractionOverThreshold;
+                rows[m].images += 1;
+            }
+            if (f >= 0) ++result.ticks;
+        }
+        for (Row& r : rows) {
+            r.divide(o.frames);
+            result.rows.push_back(r);
+        }
+        std::fprintf(stderr, "bench_keypose: %lld actors, %s camera done\n", (long long)actors, cameraName.c_str());
+    }
+    // Fig. 11: the camera follows its path; served share of the band for every cache method.
+    if (o.pathFrames > 0) {
+        for (std::size_t m = 1; m < methods.size(); ++m) result.pathMethods.push_back(methods[m].name);
+        result.pathServed.resize(methods.size() - 1);
+        const double duration = world->camera().duration();
+        for (int f = 0; f < o.pathFrames; ++f) {
+            const double t = duration * f / std::max(o.pathFrames - 1, 1);
+            const Camera camera = world->camera().at(t, aspect);
+            const FrameContext& now = world->step();
+            result.pathTimes.push_back(t);
+            for (std::size_t m = 1; m < methods.size(); ++m) {
+                const ActorFrameStatistics& s = methods[m].processor->processFrame(world->root(), camera, now.time);
+                result.pathServed[m - 1].push_back(s.keyPoseBand ? double(s.keyPoseActors) / double(s.keyPoseBand) : 1.0);
+                if (demandsOut && methods[m].mode == KeyPoseMode::Interpolative && methods[m].size == std::uint32_t(o.demandSize))
+                    for (const auto& cache : methods[m].processor->keyPoseCaches())
+                        for (const KeyPoseDemand& d : cache->lastDemand())
+                            *demandsOut << now.frame << ',' << cache->actorTemplate().name() << ',' << d.a << ',' << d.b << ','
+                                        << d.actors << '\n';
+            }
+        }
+        std::fprintf(stderr, "bench_keypose: %lld actors, camera path done\n", (long long)actors);
+    }
+    return result;
+}
+
+std::string table(const std::vector<Row>& rows) {
+    std::ostringstream t;
+    char line[1024];
+    t << "| actors | camera | method | APP+CULL | poses | selection | mesh draw | DRAW | whole frame | band | from cache | skinned in band | "
+         "cache updates | rows skinned (DRAW) | posed | vertex error mean / max mm | PSNR dB | SSIM | pixels off > 8 |\n"
+         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows) {
+        std::snprintf(line, sizeof line,
+                      "| %lld | %s | %s | %.2f | %.2f | %.3f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %.2f / %.1f | %s | %s | %s |\n",
+                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.appCull, r.pose, r.select, r.mesh, r.draw, r.frame,
+                      r.band, r.served, r.misses, r.updates, r.fills, r.posed, r.vertexMeanMm(), 1000.0 * r.vertexMax,
+                      r.images ? std::to_string(r.psnr).substr(0, 5).c_str() : "-", r.images ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
+                      r.images ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-");
+        t << line;
+    }
+    return t.str();
+}
+
+// The figures as PNG (VTK charts need a display: under xvfb-run).
+void plots(const Options& o, const std::vector<Result>& results) {
+    namespace fs = std::filesystem;
+    fs::create_directories(o.plots);
+    for (const Result& res : results) {
+        if (res.rows.empty()) continue;
+        const std::string tag = std::to_string(res.rows.front().actors);
+        for (const std::string& cameraName : o.cameras) {
+            vtk::Chart chart;
+            chart.title = "Frame time against cache size, " + tag + " actors, " + cameraName + " camera (seed 004 Fig. 9)";
+            chart.xLabel = "cache size (key-poses per template)";
+            chart.yLabel = "ms per frame";
+            chart.logX = true;
+            const char* names[] = {"intermittent", "interpolative"};
+            int colour = 0;
+            for (const char* what : {"whole frame", "APP+CULL", "mesh draw"}) {
+                for (int mode = 0; mode < 3; ++mode) {
+                    vtk::ChartSeries s;
+                    s.name = std::string(mode == 0 ? "plain skinning" : names[mode - 1]) + ": " + what;
+                    for (const Row& r : res.rows) {
+                        if (r.camera != cameraName) continue;
+                        const double v = std::string(what) == "whole frame" ? r.frame : std::string(what) == "APP+CULL" ? r.appCull : r.mesh;
+                        if (mode == 0 && r.size == 0) {
+                            for (std::int64_t size : o.sizes) s.x.push_back(double(size)), s.y.push_back(v);
+                        } else if (mode > 0 && r.size > 0 && r.method.rfind(names[mode - 1], 0) == 0) {
+                            s.x.push_back(double(r.size));
+                            s.y.push_back(v);
+                        }
+                    }
+                    s.style = mode == 0 ? vtk::ChartSeries::Style::DashedLine : vtk::ChartSeries::Style::LineAndPoints;
+                    vtk::paletteColour(colour++, s.rgb);
+                    chart.series.push_back(s);
+                }
+            }
+            vtk::writeChartPng(chart, (fs::path(o.plots) / ("keypose-frame-time-" + tag + "-" + cameraName + ".png")).string());
+            vtk::Chart served;
+            served.title = "Actors of the band drawn from the cache, " + tag + " actors, " + cameraName + " camera";
+            served.xLabel = "cache size (key-poses per template)";
+            served.yLabel = "share of the band";
+            served.logX = true;
+            for (int mode = 0; mode < 2; ++mode) {
+                vtk::ChartSeries s;
+                s.name = names[mode];
+                for (const Row& r : res.rows)
+                    if (r.camera == cameraName && r.size > 0 && r.method.rfind(names[mode], 0) == 0 && r.band > 0)
+                        s.x.push_back(double(r.size)), s.y.push_back(r.served / r.band);
+                s.style = vtk::ChartSeries::Style::LineAndPoints;
+                vtk::paletteColour(mode, s.rgb);
+                served.series.push_back(s);
+            }
+            vtk::writeChartPng(served, (fs::path(o.plots) / ("keypose-served-" + tag + "-" + cameraName + ".png")).string());
+        }
+        if (res.pathTimes.empty()) continue;
+        vtk::Chart path;
+        path.title = "Share of the band drawn from the cache along the camera path, " + tag + " actors (seed 004 Fig. 11)";
+        path.xLabel = "camera path time (s)";
+        path.yLabel = "share of the band";
+        path.legend = vtk::Chart::Legend::Bottom;
+        for (std::size_t m = 0; m < res.pathMethods.size(); ++m) {
+            vtk::ChartSeries s;
+            s.name = res.pathMethods[m];
+            s.x = res.pathTimes;
+            s.y = res.pathServed[m];
+            s.style = res.pathMethods[m].rfind("interpolative", 0) == 0 ? vtk::ChartSeries::Style::DashedLine : vtk::ChartSeries::Style::Line;
+            vtk::paletteColour(int(m % o.sizes.size()), s.rgb);
+            path.series.push_back(s);
+        }
+        vtk::writeChartPng(path, (fs::path(o.plots) / ("keypose-path-" + tag + ".png")).string());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    support::CommandLine cl("bench_keypose",
+                            "Seed 004's key-pose cache on the town crowd: plain skinning, intermittent and interpolative caches\n"
+                            "of each size, on the identical state, side by side; frame time, cache use and accuracy.");
+    CLI::App& app = cl.app();
+    using support::wholeNumber;
+    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")
+        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--cameras", o.cameras, "cameras")->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"street", "overview"}));
+    app.add_option("--sizes", o.sizes, "cache sizes (key-poses per template)")->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 65535));
+    app.add_option("--frames", o.frames, "measured ticks per camera")->type_name("N")->check(wholeNumber(1, 1'000'000));
+    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->type_name("N")->check(wholeNumber(0, 1'000'000));
+    app.add_option("--error-every", o.errorEvery, "ticks between accuracy measurements")->type_name("N")->check(wholeNumber(1, 1'000'000));
+    app.add_option("--error-samples", o.errorSamples, "cached actors compared per method and measured tick")
+        ->type_name("N")->check(wholeNumber(1, 1'000'000));
+    app.add_option("--path-frames", o.pathFrames, "frames along the camera path for the served share (0: skip)")
+        ->type_name("N")->check(wholeNumber(0, 1'000'000));
+    app.add_option("--distance", o.distance, "start of the cache band, metres (default: the scene's, else 15)")
+        ->type_name("M")->check(support::positiveNumber());
+    app.add_option("--rate", o.rate, "key-poses per second of clip (default: the scene's, else 15)")
+        ->type_name("HZ")->check(support::positiveNumber());
+    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
+    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
+    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
+    app.add_option("--csv", o.csv, "also write the rows as CSV")->type_name("FILE");
+    app.add_option("--accuracy-csv", o.accuracyCsv, "write the accuracy rows in the common accuracy CSV")->type_name("FILE");
+    app.add_option("--demands", o.demands, "write what the band needed each frame of the camera path (frame,template,a,b,actors)")
+        ->type_name("FILE");
+    app.add_option("--demand-size", o.demandSize, "the interpolative cache size whose demands --demands writes")
+        ->type_name("N")->check(wholeNumber(1, 65535));
+    app.add_option("--plots", o.plots, "write the figures as PNG into DIR (needs a display: xvfb-run -a)")->type_name("DIR");
+    app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
+    if (const auto code = cl.parse(argc, argv)) return *code;
+    if (!o.demands.empty() && std::find(o.sizes.begin(), o.sizes.end(), o.demandSize) == o.sizes.end())
+        fail("--demand-size " + std::to_string(o.demandSize) + " is not one of --sizes");
+
+    std::ostringstream report;
+    std::vector<Result> results;
+    try {
+        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        std::ofstream demands;
+        if (!o.demands.empty()) {
+            demands.open(o.demands);
+            if (!demands) fail("cannot write " + o.demands);
+            demands << "frame,template,a,b,actors\n";
+        }
+        std::uint64_t ticks = 0;
+        for (std::int64_t n : o.actors) {
+            std::fprintf(stderr, "bench_keypose: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n, o.frames);
+            results.push_back(run(o, n, context, demands.is_open() ? &demands : nullptr));
+            ticks += results.back().ticks;
+        }
+        report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n"
+               << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
+               << ", one thread, the GL finished after each pass; means over " << o.frames << " ticks (`bench_keypose";
+        for (int i = 1; i < argc; ++i) {
+            const std::string_view arg = argv[i];
+            if (arg == "--markdown" || arg == "--csv" || arg == "--accuracy-csv" || arg == "--demands" || arg == "--plots") ++i;
+            else report << ' ' << arg;
+        }
+        std::vector<Row> all;
+        for (const Result& r : results) all.insert(all.end(), r.rows.begin(), r.rows.end());
+        report << "`). Vertex and image errors against plain skinning of the same tick, every " << o.errorEvery << " ticks.\n\n"
+               << table(all);
+        if (!o.csv.empty()) {
+            std::ofstream csv(o.csv);
+            csv << "actors,camera,method,size,app_cull_ms,pose_ms,select_ms,mesh_ms,draw_ms,frame_ms,band,served,misses,updates,fills,posed,"
+                   "vertex_error_mean_mm,vertex_error_max_mm,psnr_db,ssim,pixels_off_8\n";
+            for (const Row& r : all)
+                csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.size << ',' << r.appCull << ',' << r.pose << ',' << r.select
+                    << ',' << r.mesh << ',' << r.draw << ',' << r.frame << ',' << r.band << ',' << r.served << ',' << r.misses << ','
+                    << r.updates << ',' << r.fills << ',' << r.posed << ',' << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ','
+                    << r.psnr << ',' << r.ssim << ',' << r.off8 << '\n';
+        }
+        if (!o.accuracyCsv.empty()) {
+            std::ofstream csv(o.accuracyCsv);
+            csv << "knob,value,camera,actors,scene,vertex_error_mean_mm,vertex_error_max_mm,psnr_db,ssim,pixels_off_8,app_cull_ms,mesh_draw_ms,"
+                   "frame_ms,memory_bytes\n";
+            for (const Row& r : all) {
+                const std::string knob = r.size == 0 ? "key_pose_cache" : r.method.rfind("intermittent", 0) == 0 ? "key_pose_cache_intermittent"
+                                                                                                                 : "key_pose_cache_interpolative";
+                csv << knob << ',' << (r.size == 0 ? std::string("off") : std::to_string(r.size)) << ',' << r.camera << ',' << r.actors
+                    << ",town," << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ',' << (r.size == 0 ? 99.0 : r.psnr) << ','
+                    << (r.size == 0 ? 1.0 : r.ssim) << ',' << r.off8 << ',' << r.appCull << ',' << r.mesh << ',' << r.frame << ','
+                    << std::int64_t(r.cacheBytes) << '\n';
+            }
+        }
+        if (!o.plots.empty()) {
+            if (vtk::displayAvailable()) plots(o, results);
+            else std::fprintf(stderr, "bench_keypose: no display, no plots (run under xvfb-run -a)\n");
+        }
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
+    std::fputs(report.str().c_str(), stdout);
+    if (!o.markdown.empty()) std::ofstream(o.markdown) << report.str();
+    return 0;
+}
