@@ -171,7 +171,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["meanMs"]["step"] = sums.step / n;  // the simulation step, before APP+CULL
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
-    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders"}) {
+    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders", "key-pose cache"}) {
         const auto c = world.effects().of(effect);
         j["effects"][effect] = {{"constructed", c.constructed}, {"ticks", c.ticks}};
     }

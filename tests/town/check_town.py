@@ -91,13 +91,13 @@ def effects(exe, scenes, work):
         run(exe, out, "--scene", os.path.join(scenes, scene + ".json"), "--headless", "--frames", "30", "--every", "0",
             "--width", "160", "--height", "90")
         summaries[scene] = json.load(open(os.path.join(out, "summary.json")))["effects"]
-    for effect in ("avoidance", "gaze", "flight", "occluders"):
+    for effect in ("avoidance", "gaze", "flight", "occluders", "key-pose cache"):
         off = summaries["plain"][effect]
         on = summaries["effects"][effect]
         if off["constructed"] != 0 or off["ticks"] != 0:
             sys.exit(f"undeclared {effect} was constructed {off['constructed']} times and ticked {off['ticks']} times")
-        # Occluders are scene nodes: built, never ticked; what they do shows in stats.csv below.
-        if on["constructed"] < 1 or (on["ticks"] < 1 and effect != "occluders"):
+        # Occluders and key-pose caches are built, never ticked; what they do shows in stats.csv below.
+        if on["constructed"] < 1 or (on["ticks"] < 1 and effect not in ("occluders", "key-pose cache")):
             sys.exit(f"declared {effect} was not running: {on}")
     for effect in ("locomotion", "idle"):
         if summaries["plain"][effect]["ticks"] < 1:
@@ -111,6 +111,13 @@ def effects(exe, scenes, work):
             sys.exit(f"declared occlusion drew {drawn} occluders and made {tests} tests")
         if not declared and (drawn != 0 or tests != 0 or any(float(r["occlusion_buffer_ms"]) != 0 for r in rows)):
             sys.exit(f"undeclared occlusion drew {drawn} occluders and made {tests} tests")
+        # Key-pose caches: declared, actors of the band are drawn from them; undeclared, no band.
+        band = sum(int(r["key_pose_band"]) for r in rows)
+        cached = sum(int(r["key_pose_actors"]) for r in rows)
+        if declared and (band == 0 or cached == 0):
+            sys.exit(f"declared key-pose caches saw {band} actors in their band and served {cached}")
+        if not declared and (band != 0 or cached != 0 or any(int(r["key_pose_fills"]) != 0 for r in rows)):
+            sys.exit(f"undeclared key-pose caches saw {band} actors in their band and served {cached}")
     print(json.dumps(summaries, indent=1))
 
 
