@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "throng/actors/ActorProcessor.h"
+#include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 
@@ -102,4 +103,43 @@ TEST(SimulationStep, ACrowdRefusesToStepBackInTime) {
     EXPECT_THROW(world->crowd().step(back), std::invalid_argument);
     back.time = std::nan("");
     EXPECT_THROW(world->crowd().step(back), std::invalid_argument);
+}
+
+// Key-pose caches come only from the scene's declaration: one per template in use that it names,
+// fresh at each call (a cache serves one processor); a template that cannot be cached is an error
+// naming it in the scene.
+TEST(SimulationKeyPoseCaches, OnePerDeclaredTemplateInUseAndNoneUndeclared) {
+    const std::string base = R"({
+      "seed": 3,
+      "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
+      "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"}},
+      "actors": [{"template": "cesium", "count": 20, "behaviour": "walk"}, {"template": "cesium", "count": 6, "behaviour": "idle"},
+                 {"template": "person", "count": 4, "behaviour": "walk"}])";
+    auto plain = sim::Simulation::build(sim::parseScene(base + "}", THRONG_SHARED_ASSETS));
+    EXPECT_TRUE(plain->makeKeyPoseCaches().empty());
+    EXPECT_EQ(plain->effects().of("key-pose cache").constructed, 0u);
+
+    auto cached = sim::Simulation::build(sim::parseScene(
+        base + R"(, "representation": {"keyPoseCache": {"mode": "interpolative", "rows": {"cesium": 24}}}})", THRONG_SHARED_ASSETS));
+    const auto caches = cached->makeKeyPoseCaches();
+    std::size_t cesiums = 0;  // templates in use named cesium (a standing copy counts apart when it has its own clip)
+    for (const auto& t : cached->templates()) cesiums += t.name.rfind("cesium", 0) == 0;
+    ASSERT_GE(cesiums, 1u);
+    ASSERT_EQ(caches.size(), cesiums) << "one cache per template in use of the name declared, none for person";
+    EXPECT_EQ(cached->effects().of("key-pose cache").constructed, cesiums);
+    for (const auto& c : caches) {
+        EXPECT_EQ(c->rowCount(), 24u);
+        EXPECT_EQ(c->settings().mode, KeyPoseMode::Interpolative);
+    }
+    EXPECT_NE(caches[0].get(), cached->makeKeyPoseCaches()[0].get()) << "each call builds fresh caches";
+
+    auto rigid = sim::Simulation::build(
+        sim::parseScene(base + R"(, "representation": {"keyPoseCache": {"rows": {"person": 8}}}})", THRONG_SHARED_ASSETS));
+    try {
+        rigid->makeKeyPoseCaches();
+        FAIL() << "a template of rigid parts was cached";
+    } catch (const sim::SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/representation/keyPoseCache/rows/person"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no skinned actor-level mesh"), std::string::npos) << e.what();
+    }
 }
