@@ -44,6 +44,9 @@ void CrowdRenderer::draw(const DrawList& list) {
     for (const DrawItem& item : list.items()) {
         if (item.representation == Representation::Impostor) {
             impostors = true;
+        } else if (item.representation == Representation::KeyPose) {  // an actor's, whatever its actor field says
+            actorItems_.add(item, 0);
+            ++stats_.keyPoseItems;
         } else if (item.actor == kNoActor) {
             sceneItems_.add(item, 0);
         } else {

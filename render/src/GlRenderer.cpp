@@ -35,14 +35,37 @@ std::int32_t distanceBand(float distance) {
     return 1 + static_cast<std::int32_t>(std::log2(std::min(distance, 1e30f) / 16.0f));
 }
 
-// Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix.
+// Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix
+// (key-pose items: the first texel of row 0, the first texel of row 1 and row 1's weight).
 struct InstanceData {
     float model[16];
     float tint[4];
     std::int32_t paletteBase;
-    std::int32_t pad[3];
+    std::int32_t row1Base;
+    float blend;
+    std::int32_t pad;
 };
 static_assert(sizeof(InstanceData) == 96, "instance attributes assume a 96-byte stride");
+static_assert(GlRenderer::kKeyPoseVertexBytes == detail::kKeyPoseVertexBytes, "one key-pose vertex layout");
+
+// One key-pose cache on the GPU: the rows of one (mesh, KeyPoseSource) pair, rowCount() x the mesh's
+// vertex count texels of kKeyPoseVertexBytes, read by the key-pose vertex shader as a texture
+// buffer. The renderer's own record of what each row holds decides what is skinned: a row is
+// filled only when the pose (and skin) an item wants there is not the one it holds.
+struct KeyPoseGpu {
+    const KeyPoseSource* source = nullptr;  // known by address (GlRenderer::releaseKeyPoses)
+    std::uint32_t rows = 0, poses = 0;      // the source's rowCount() and poseCount() as last seen
+    GLuint buffer = 0, texture = 0;         // made on the first fill
+    std::size_t bytes = 0;                  // of `buffer`
+    std::vector<std::uint32_t> heldPose, heldSkin;  // per row: what it holds (kNone: nothing yet)
+    // This draw()'s wants, per row (valid where wantStamp is the draw's stamp): the pose, its skin
+    // and the first item that wanted it (named in a conflict).
+    std::vector<std::uint32_t> wantPose, wantSkin, wantItem;
+    std::vector<std::uint64_t> wantStamp;
+    std::uint64_t stamp = 0;  // draw() call that set `group` and `order`
+    std::uint32_t order = 0;  // first appearance among this draw's caches (fills go in that order)
+    std::uint32_t group[4] = {0, 0, 0, 0};  // this draw's groups: [interpolative * 2 + mirrored]
+};
 
 struct MeshEntry {
     std::weak_ptr<const MeshData> source;  // to notice when the mesh is gone (and its address reused)
@@ -52,6 +75,7 @@ struct MeshEntry {
     glm::vec4 baseColor{1.0f};
     std::uint64_t stamp = 0;  // draw() call that set `group`
     std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [skinned * 2 + mirrored]
+    std::vector<std::unique_ptr<KeyPoseGpu>> keyPoses;       // its key-pose caches, one per source
 };
 
 struct TextureEntry {
@@ -59,7 +83,7 @@ struct TextureEntry {
     GLuint name = 0;
 };
 
-enum class Path : std::uint8_t { Rigid, GpuSkinned, CpuSkinned };
+enum class Path : std::uint8_t { Rigid, GpuSkinned, CpuSkinned, KeyPose, KeyPoseBlend };
 
 // Items drawn with one mesh and one path: one instanced draw call (CPU-skinned: one item each).
 struct Group {
@@ -71,6 +95,16 @@ struct Group {
     std::uint32_t filled = 0;         // slots written so far
     std::uint32_t cpuVertexBase = 0;  // CPU-skinned: first vertex in the stream buffer
     std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
+    KeyPoseGpu* keyPose = nullptr;    // key-pose paths: the cache its items read
+};
+
+// A key-pose cache row to skin this draw.
+struct KeyPoseFill {
+    KeyPoseGpu* cache = nullptr;
+    MeshEntry* mesh = nullptr;
+    std::uint32_t row = 0, pose = 0, skin = 0;
+    const glm::mat4* palette = nullptr;  // the source's, at least the mesh's requiredPalette long
+    std::uint32_t paletteBase = 0;       // where it goes in the palette buffer
 };
 
 struct ProgramState {
@@ -108,6 +142,10 @@ struct GlRenderer::Impl {
     ProgramState programs[3];  // 0, 4 and 8 influences
     ProgramState constantFaces;  // rigid triangles of one colour, shaded per vertex
     ProgramState flatLight;      // rigid triangles of one normal, lit per vertex
+    ProgramState keyPosePrograms[2];  // key-pose items: one row, two rows blended
+    std::unique_ptr<ShaderProgram> fillPrograms[2];  // key-pose fills, 4 and 8 influences
+    GLint fillBase[2] = {-1, -1}, fillStride[2] = {-1, -1};
+    std::size_t keyPoseBytes = 0;     // GPU bytes of every key-pose cache
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
     std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
     GLint maxTextureBufferTexels = 0;
@@ -128,6 +166,8 @@ struct GlRenderer::Impl {
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
     std::vector<glm::vec3> cpuPositions, cpuNormals;
+    std::vector<KeyPoseFill> fills;   // rows to skin this draw
+    std::uint32_t keyPoseCaches = 0;  // caches met this draw
     const MeshData* lastMesh = nullptr;  // shortcut for runs of clones sharing a mesh
     MeshEntry* lastEntry = nullptr;
 
@@ -165,10 +205,20 @@ struct GlRenderer::Impl {
         return entry.name;
     }
 
+    void destroyKeyPose(KeyPoseGpu& k) {
+        if (k.buffer) gl.DeleteBuffers(1, &k.buffer);
+        if (k.texture) gl.DeleteTextures(1, &k.texture);
+        k.buffer = k.texture = 0;
+        keyPoseBytes -= k.bytes;
+        k.bytes = 0;
+    }
+
     void destroyEntry(MeshEntry& e) {
         detail::destroyMesh(gl, e.gpu);
         if (e.cpuVao) gl.DeleteVertexArrays(1, &e.cpuVao);
         e.cpuVao = 0;
+        for (auto& k : e.keyPoses) destroyKeyPose(*k);
+        e.keyPoses.clear();
     }
 
     // Instance attributes come from the shared instance buffer; their offsets are set per draw.
@@ -181,6 +231,10 @@ struct GlRenderer::Impl {
         gl.VertexAttribDivisor(detail::kTint, 1);
         gl.EnableVertexAttribArray(detail::kPaletteBase);
         gl.VertexAttribDivisor(detail::kPaletteBase, 1);
+        gl.EnableVertexAttribArray(detail::kKeyPoseRow1);
+        gl.VertexAttribDivisor(detail::kKeyPoseRow1, 1);
+        gl.EnableVertexAttribArray(detail::kKeyPoseBlend);
+        gl.VertexAttribDivisor(detail::kKeyPoseBlend, 1);
     }
 
     MeshEntry& entryFor(const std::shared_ptr<const MeshData>& mesh) {
@@ -233,6 +287,137 @@ struct GlRenderer::Impl {
         gl.VertexAttribPointer(detail::kTint, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + offsetof(InstanceData, tint)));
         gl.VertexAttribIPointer(detail::kPaletteBase, 1, GL_INT, stride,
                                 byteOffset(base + offsetof(InstanceData, paletteBase)));
+        gl.VertexAttribIPointer(detail::kKeyPoseRow1, 1, GL_INT, stride, byteOffset(base + offsetof(InstanceData, row1Base)));
+        gl.VertexAttribPointer(detail::kKeyPoseBlend, 1, GL_FLOAT, GL_FALSE, stride,
+                               byteOffset(base + offsetof(InstanceData, blend)));
+    }
+
+    // Key-pose item `i` (in drawing order, with mesh `e`): checks it, finds (or makes the record
+    // of) its cache, records the rows it wants this draw and schedules a fill for each row whose
+    // record differs. Throws std::invalid_argument naming the item; a fill is only scheduled, so
+    // nothing changes on the GPU or in the records before every item has been checked.
+    KeyPoseGpu& wantKeyPoses(std::uint32_t i, const DrawItem& item, MeshEntry& e) {
+        const KeyPoseRef& k = item.keyPose;
+        const auto fail = [&](const std::string& what) {
+            throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + ": " + what);
+        };
+        if (!k.source) fail("a key-pose item without a source");
+        if (e.gpu.influences == 0)
+            fail("a key-pose item whose mesh '" + static_cast<const MeshDrawable*>(item.drawable)->mesh().name +
+                 "' has no skin (key-poses are skinned into the cache)");
+        if (!(k.blend >= 0.0f && k.blend <= 1.0f))
+            fail("key-pose blend " + std::to_string(k.blend) + " is not in [0, 1]");
+        const std::uint32_t rows = k.source->rowCount(), poses = k.source->poseCount();
+        KeyPoseGpu* cache = nullptr;
+        for (auto& c : e.keyPoses)
+            if (c->source == k.source) cache = c.get();
+        if (!cache && !e.keyPoses.empty() && !e.keyPoses.back()->source) cache = e.keyPoses.back().get();  // left by a failed check
+        if (!cache) cache = e.keyPoses.emplace_back(std::make_unique<KeyPoseGpu>()).get();
+        KeyPoseGpu& c = *cache;
+        if (c.source != k.source || c.rows != rows || c.poses != poses) {  // new, or the source changed shape
+            if (static_cast<std::uint64_t>(rows) * e.gpu.vertexCount > static_cast<std::uint64_t>(maxTextureBufferTexels))
+                throw std::runtime_error("GlRenderer::draw: " + itemName(i, *item.drawable) + ": a key-pose cache of " +
+                                         std::to_string(rows) + " rows of " + std::to_string(e.gpu.vertexCount) +
+                                         " vertices needs more texels than this GL's texture buffer limit of " +
+                                         std::to_string(maxTextureBufferTexels));
+            c.source = k.source;
+            c.rows = rows;
+            c.poses = poses;
+            c.heldPose.assign(rows, kNone);
+            c.heldSkin.assign(rows, kNone);
+            c.wantPose.assign(rows, kNone);
+            c.wantSkin.assign(rows, kNone);
+            c.wantItem.assign(rows, kNone);
+            c.wantStamp.assign(rows, 0);
+        }
+        if (c.stamp != drawStamp) {
+            c.stamp = drawStamp;
+            c.order = keyPoseCaches++;
+            c.group[0] = c.group[1] = c.group[2] = c.group[3] = kNone;
+        }
+        const int slots = k.blend != 0.0f ? 2 : 1;  // intermittent: row[1] is not read
+        for (int s = 0; s < slots; ++s) {
+            const std::uint32_t row = k.row[s], pose = k.pose[s];
+            const std::string which = "key-pose " + std::to_string(s);
+            if (row >= rows)
+                fail(which + " is in row " + std::to_string(row) + " but its source's cache has " + std::to_string(rows) + " rows");
+            if (pose >= poses)
+                fail(which + " is pose " + std::to_string(pose) + " but its source has " + std::to_string(poses) + " poses");
+            if (c.wantStamp[row] == drawStamp) {
+                if (c.wantPose[row] != pose || c.wantSkin[row] != k.skin)
+                    fail("wants pose " + std::to_string(pose) + " (skin " + std::to_string(k.skin) + ") in row " +
+                         std::to_string(row) + ", where item " + std::to_string(c.wantItem[row]) + " of the list wants pose " +
+                         std::to_string(c.wantPose[row]) + " (skin " + std::to_string(c.wantSkin[row]) + ")");
+                continue;
+            }
+            const std::span<const glm::mat4> posePalette = k.source->palette(k.skin, pose);
+            if (posePalette.size() < e.gpu.requiredPalette)
+                fail("the palette of skin " + std::to_string(k.skin) + " in pose " + std::to_string(pose) + " has " +
+                     std::to_string(posePalette.size()) + " matrices but its mesh's joint indices need " +
+                     std::to_string(e.gpu.requiredPalette));
+            c.wantStamp[row] = drawStamp;
+            c.wantPose[row] = pose;
+            c.wantSkin[row] = k.skin;
+            c.wantItem[row] = i;
+            if (c.heldPose[row] != pose || c.heldSkin[row] != k.skin)
+                fills.push_back(KeyPoseFill{&c, &e, row, pose, k.skin, posePalette.data(), 0});
+        }
+        return c;
+    }
+
+    // Skins the scheduled rows into their caches (transform feedback of the skinning vertex
+    // shader, rasteriser off): one instanced draw per run of consecutive rows of one cache, each
+    // instance with its own palette. The palette buffer and the instance buffer are filled.
+    void fillKeyPoses() {
+        gl.ActiveTexture(GL_TEXTURE0 + detail::kPaletteUnit);
+        gl.BindTexture(GL_TEXTURE_BUFFER, paletteTexture);
+        gl.Enable(GL_RASTERIZER_DISCARD);
+        gl.BindBuffer(GL_ARRAY_BUFFER, instanceBuffer);
+        for (std::size_t f = 0; f < fills.size();) {
+            KeyPoseGpu& c = *fills[f].cache;
+            MeshEntry& e = *fills[f].mesh;
+            const std::size_t rowBytes = std::size_t(e.gpu.vertexCount) * detail::kKeyPoseVertexBytes;
+            if (!c.buffer || c.bytes != rowBytes * c.rows) {  // first fill, or the source changed shape
+                if (!c.buffer) gl.GenBuffers(1, &c.buffer);
+                if (!c.texture) gl.GenTextures(1, &c.texture);
+                gl.BindBuffer(GL_TEXTURE_BUFFER, c.buffer);
+                gl.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(std::max<std::size_t>(rowBytes * c.rows, 16)), nullptr,
+                              GL_DYNAMIC_COPY);
+                gl.ActiveTexture(GL_TEXTURE0 + detail::kKeyPoseUnit);
+                gl.BindTexture(GL_TEXTURE_BUFFER, c.texture);
+                gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, c.buffer);
+                keyPoseBytes += rowBytes * c.rows - c.bytes;
+                c.bytes = rowBytes * c.rows;
+            }
+            std::size_t end = f + 1;  // the run: consecutive rows of the same cache
+            while (end < fills.size() && fills[end].cache == &c && fills[end].row == fills[end - 1].row + 1) ++end;
+            const auto count = static_cast<GLsizei>(end - f);
+            const int k = e.gpu.influences == 8 ? 1 : 0;
+            gl.UseProgram(fillPrograms[k]->id());
+            gl.Uniform1i(fillBase[k], static_cast<GLint>(fills[f].paletteBase));
+            gl.Uniform1i(fillStride[k], static_cast<GLint>(e.gpu.requiredPalette));
+            gl.BindVertexArray(e.gpu.vao);
+            pointInstanceAttributes(0);  // unread, but enabled arrays must point at a buffer
+            if (e.gpu.vertexCount > 0) {
+                gl.BindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, c.buffer, static_cast<GLintptr>(rowBytes * fills[f].row),
+                                   static_cast<GLsizeiptr>(rowBytes * std::size_t(count)));
+                gl.BeginTransformFeedback(GL_POINTS);
+                gl.DrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(e.gpu.vertexCount), count);
+                gl.EndTransformFeedback();
+                ++stats.keyPoseFillCalls;
+            }
+            for (std::size_t g = f; g < end; ++g) {
+                c.heldPose[fills[g].row] = fills[g].pose;
+                c.heldSkin[fills[g].row] = fills[g].skin;
+            }
+            stats.keyPoseFills += std::uint64_t(count);
+            f = end;
+        }
+        gl.BindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+        gl.Disable(GL_RASTERIZER_DISCARD);
+        gl.BindVertexArray(0);
+        gl.UseProgram(0);
+        stats.keyPoseCacheBytes = keyPoseBytes;
     }
 
     // Makes a stream buffer hold at least `bytes`, growing it geometrically. Storage is reallocated
@@ -315,6 +500,7 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         gl.UseProgram(s.id());
         gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
         gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
+        gl.Uniform1i(s.uniformLocation("uKeyPoses"), detail::kKeyPoseUnit);
     };
     const int influences[3] = {0, 4, 8};
     for (int k = 0; k < 3; ++k)
@@ -322,6 +508,21 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
               detail::fragmentShaderSource());
     build(r.constantFaces, "constant faces", detail::constantFaceVertexShaderSource(), detail::constantFaceFragmentShaderSource());
     build(r.flatLight, "flat-lit faces", detail::flatLightVertexShaderSource(), detail::flatLightFragmentShaderSource());
+    build(r.keyPosePrograms[0], "key-pose, one row", detail::keyPoseVertexShaderSource(false), detail::fragmentShaderSource());
+    build(r.keyPosePrograms[1], "key-pose, two rows blended", detail::keyPoseVertexShaderSource(true),
+          detail::fragmentShaderSource());
+    const char* const fillVaryings[] = {"tfCache"};
+    for (int k = 0; k < 2; ++k) {
+        const int n = k == 0 ? 4 : 8;
+        r.fillPrograms[k] = std::make_unique<ShaderProgram>(
+            *r.context, "GlRenderer shader (key-pose fill, " + std::to_string(n) + " joint influences)",
+            detail::keyPoseFillVertexShaderSource(n), std::string(), fillVaryings);
+        const ShaderProgram& s = *r.fillPrograms[k];
+        gl.UseProgram(s.id());
+        gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
+        r.fillBase[k] = s.uniformLocation("uFeedbackBase");
+        r.fillStride[k] = s.uniformLocation("uFeedbackStride");
+    }
     gl.UseProgram(0);
     gl.GenBuffers(1, &r.instanceBuffer);
     gl.GenBuffers(1, &r.streamBuffer);
@@ -365,6 +566,7 @@ void GlRenderer::beginFrame(const Camera& camera) {
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
     r.stats = RenderStatistics{};
+    r.stats.keyPoseCacheBytes = r.keyPoseBytes;
     ++r.frameStamp;
     r.inFrame = true;
     // Camera-relative rendering: view = R * T(-eye), so view * T(eye) is the rotation alone, and
@@ -405,6 +607,8 @@ void GlRenderer::draw(const DrawList& list) {
     r.lastMesh = nullptr;
     r.itemGroup.resize(items.size());
     r.groups.clear();
+    r.fills.clear();
+    r.keyPoseCaches = 0;
 
     // 1. Check every item and sort it into a group (first appearance in drawing order: with
     // frontToBack, groups by their nearest item), before any drawing.
@@ -422,6 +626,21 @@ void GlRenderer::draw(const DrawList& list) {
         if (!item.worldMatrix)
             throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + " has no world matrix");
         MeshEntry& e = r.entryFor(meshDrawable->meshPtr());
+        const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
+        const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
+        if (item.representation == Representation::KeyPose) {
+            // Grouped by mesh, cache, one row or two, mirroring and band: one instanced draw each.
+            KeyPoseGpu& c = r.wantKeyPoses(i, item, e);
+            const bool blended = item.keyPose.blend != 0.0f;
+            std::uint32_t& g = c.group[(blended ? 2 : 0) + (mirrored ? 1 : 0)];
+            if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
+                g = static_cast<std::uint32_t>(r.groups.size());
+                r.groups.push_back(Group{&e, blended ? Path::KeyPoseBlend : Path::KeyPose, mirrored, 0, 0, 0, 0, band, &c});
+            }
+            ++r.groups[g].count;
+            r.itemGroup[i] = g;
+            continue;
+        }
         const bool skinned = e.gpu.influences > 0 && item.skinPalette != nullptr;
         if (skinned && item.skinPaletteSize < e.gpu.requiredPalette)
             throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + ": its skin palette has " +
@@ -430,7 +649,6 @@ void GlRenderer::draw(const DrawList& list) {
         const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
         // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
         // apart with the front face flipped, so culling and two-sided lighting stay right.
-        const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
         if (path == Path::CpuSkinned) {
             r.itemGroup[i] = static_cast<std::uint32_t>(r.groups.size());
             r.groups.push_back(Group{&e, path, mirrored, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
@@ -445,13 +663,21 @@ void GlRenderer::draw(const DrawList& list) {
         std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
         // Front to back, a mesh's instances are split by distance band, so that an instanced
         // draw covering the whole town does not put far instances before near ones of other meshes.
-        const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
         if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
             g = static_cast<std::uint32_t>(r.groups.size());
             r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, 0, band});
         }
         ++r.groups[g].count;
         r.itemGroup[i] = g;
+    }
+    // Rows to skin, cache by cache in order of first appearance, rows ascending (runs of
+    // consecutive rows are skinned by one draw); their palettes follow the items' in the buffer.
+    std::sort(r.fills.begin(), r.fills.end(), [](const KeyPoseFill& a, const KeyPoseFill& b) {
+        return a.cache->order != b.cache->order ? a.cache->order < b.cache->order : a.row < b.row;
+    });
+    for (KeyPoseFill& f : r.fills) {
+        f.paletteBase = static_cast<std::uint32_t>(paletteMatrices);
+        paletteMatrices += f.mesh->gpu.requiredPalette;
     }
     if (paletteMatrices * 4 > static_cast<std::size_t>(r.maxTextureBufferTexels))
         throw std::runtime_error("GlRenderer::draw: the list's skin palettes need " + std::to_string(paletteMatrices * 4) +
@@ -466,9 +692,10 @@ void GlRenderer::draw(const DrawList& list) {
     }
     r.instances.resize(slots);
     r.palette.resize(paletteMatrices);
+    for (const KeyPoseFill& f : r.fills) std::copy_n(f.palette, f.mesh->gpu.requiredPalette, r.palette.data() + f.paletteBase);
     r.cpuPositions.resize(cpuVertices);
     r.cpuNormals.resize(cpuVertices);
-    std::size_t paletteCursor = 0;
+    std::size_t paletteCursor = 0;  // the items' palettes come first, then the fills'
     const Vec3 eye = r.eye;
     for (const std::uint32_t i : r.order) {
         if (r.itemGroup[i] == kNone) continue;
@@ -485,7 +712,16 @@ void GlRenderer::draw(const DrawList& list) {
         }
         std::memcpy(d.tint, &item.tint[0], sizeof d.tint);
         d.paletteBase = 0;
-        if (g.path == Path::GpuSkinned) {
+        d.row1Base = 0;
+        d.blend = 0.0f;
+        d.pad = 0;
+        if (g.path == Path::KeyPose || g.path == Path::KeyPoseBlend) {
+            const KeyPoseRef& k = item.keyPose;
+            const std::uint32_t n = g.mesh->gpu.vertexCount;  // rows * n fits the texel limit, checked above
+            d.paletteBase = static_cast<std::int32_t>(k.row[0] * n);
+            d.row1Base = static_cast<std::int32_t>((g.path == Path::KeyPoseBlend ? k.row[1] : k.row[0]) * n);
+            d.blend = g.path == Path::KeyPoseBlend ? k.blend : 0.0f;
+        } else if (g.path == Path::GpuSkinned) {
             d.paletteBase = static_cast<std::int32_t>(paletteCursor);
             std::copy_n(item.skinPalette, g.mesh->gpu.requiredPalette, r.palette.data() + paletteCursor);
             paletteCursor += g.mesh->gpu.requiredPalette;
@@ -517,11 +753,12 @@ void GlRenderer::draw(const DrawList& list) {
                          r.cpuNormals.data());
     }
 
-    // 4. Draw the groups.
+    // 4. Skin the key-pose rows that do not hold what the items want, then draw the groups.
+    if (!r.fills.empty()) r.fillKeyPoses();
     gl.ActiveTexture(GL_TEXTURE0 + detail::kPaletteUnit);
     gl.BindTexture(GL_TEXTURE_BUFFER, r.paletteTexture);
     gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
-    GLuint current = 0;
+    GLuint current = 0, keyPoseTexture = 0;
     bool clockwise = false;  // beginFrame set GL_CCW
     auto useProgram = [&](ProgramState& p, const MeshEntry& e) {
         if (p.program->id() != current) {
@@ -538,7 +775,9 @@ void GlRenderer::draw(const DrawList& list) {
     for (Group& g : r.groups) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;
-        ProgramState& p = r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
+        const bool keyPose = g.path == Path::KeyPose || g.path == Path::KeyPoseBlend;
+        ProgramState& p = keyPose ? r.keyPosePrograms[g.path == Path::KeyPoseBlend ? 1 : 0]
+                                  : r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
         gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
         if (g.mirrored != clockwise) {
             clockwise = g.mirrored;
@@ -555,6 +794,16 @@ void GlRenderer::draw(const DrawList& list) {
         } else {
             gl.BindVertexArray(m.vao);
             if (g.path == Path::GpuSkinned) r.stats.gpuSkinnedVertices += std::uint64_t(m.vertexCount) * g.count;
+        }
+        if (keyPose) {
+            if (g.keyPose->texture != keyPoseTexture) {
+                keyPoseTexture = g.keyPose->texture;
+                gl.ActiveTexture(GL_TEXTURE0 + detail::kKeyPoseUnit);
+                gl.BindTexture(GL_TEXTURE_BUFFER, keyPoseTexture);
+                gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
+            }
+            r.stats.keyPoseInstances += g.count;
+            r.stats.keyPoseVertices += std::uint64_t(m.vertexCount) * g.count * (g.path == Path::KeyPoseBlend ? 2 : 1);
         }
         r.stats.instances += g.count;
         r.stats.triangles += std::uint64_t(m.triangleCount) * g.count;
@@ -672,6 +921,32 @@ void GlRenderer::releaseUnusedResources() {
 std::size_t GlRenderer::cachedMeshCount() const { return impl_->meshes.size(); }
 
 std::size_t GlRenderer::cachedTextureCount() const { return impl_->textures.size(); }
+
+void GlRenderer::releaseKeyPoses(const KeyPoseSource& source) {
+    Impl& r = *impl_;
+    r.context->makeCurrent();
+    for (auto& [key, entry] : r.meshes) {
+        auto& caches = entry->keyPoses;
+        for (auto it = caches.begin(); it != caches.end();) {
+            if ((*it)->source == &source) {
+                r.destroyKeyPose(**it);
+                it = caches.erase(it);
+            } else {
+                ++it;
+            }
+        }
+    }
+    if (r.inFrame) r.stats.keyPoseCacheBytes = r.keyPoseBytes;
+}
+
+std::size_t GlRenderer::cachedKeyPoseCount() const {
+    std::size_t n = 0;
+    for (const auto& [key, entry] : impl_->meshes)
+        for (const auto& c : entry->keyPoses) n += c->buffer != 0;
+    return n;
+}
+
+std::size_t GlRenderer::keyPoseCacheBytes() const { return impl_->keyPoseBytes; }
 
 GlContext& GlRenderer::context() const { return *impl_->context; }
 

@@ -15,15 +15,25 @@ layout(location = 5) in uvec4 aJoints1;
 layout(location = 6) in vec4 aWeights1;
 layout(location = 7) in mat4 iModel;      // model matrix relative to the eye
 layout(location = 11) in vec4 iTint;
-layout(location = 12) in int iPaletteBase; // first matrix of this instance's palette
+layout(location = 12) in int iPaletteBase; // first matrix of this instance's palette (key-pose: first texel of row 0)
+#if KEYPOSE
+layout(location = 13) in int iKeyPoseRow1;  // first texel of row 1
+layout(location = 14) in float iKeyPoseBlend; // weight of row 1
+#endif
 
 uniform samplerBuffer uPalette;
 uniform mat4 uViewRotation;  // the view without its translation: the eye is the origin
 uniform mat4 uProjection;
 
 #if FEEDBACK
+uniform int uFeedbackBase;    // first matrix of instance 0's palette
+uniform int uFeedbackStride;  // matrices from one instance's palette to the next
+#if KEYPOSE_FILL
+flat out uvec4 tfCache;       // one key-pose cache vertex (see packNormal)
+#else
 out vec3 tfPosition;
 out vec3 tfNormal;
+#endif
 #elif CONSTANT_FACES || FLAT_LIGHT
 #if CONSTANT_FACES
 flat out vec4 vColor;
@@ -48,6 +58,37 @@ flat out vec4 vTint;  // one per instance: not interpolated, so an ID render rea
 
 #if CONSTANT_FACES
 SRGB_ENCODE
+#endif
+
+#if KEYPOSE_FILL || KEYPOSE
+// Key-pose cache vertices: the position's float bits as they are (exact), the unit normal
+// octahedron-encoded (the octahedron |x|+|y|+|z| = 1 unfolded onto a square) as two 16-bit snorms,
+// a direction error below 1e-4 rad, far under what shading at 8 bits per channel can show.
+uint snorm16(float v) { return uint(int(round(clamp(v, -1.0, 1.0) * 32767.0))) & 0xffffu; }
+float unsnorm16(uint w) { return float(int(w << 16) >> 16) / 32767.0; }  // arithmetic shift: sign kept
+uint packNormal(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    if (l1 == 0.0) return 0u;  // a mesh without normals: never read
+    vec2 e = n.xy / l1;
+    if (n.z < 0.0) e = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+    return snorm16(e.x) | (snorm16(e.y) << 16);
+}
+vec3 unpackNormal(uint w) {
+    vec2 e = vec2(unsnorm16(w), unsnorm16(w >> 16));
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    float t = max(-n.z, 0.0);
+    n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
+    return normalize(n);
+}
+#endif
+
+#if KEYPOSE
+uniform usamplerBuffer uKeyPoses;  // the cache: one texel per vertex, one row per key-pose
+void cachedVertex(int first, out vec3 p, out vec3 n) {
+    uvec4 t = texelFetch(uKeyPoses, first + gl_VertexID);
+    p = uintBitsToFloat(t.xyz);
+    n = unpackNormal(t.w);
+}
 #endif
 
 mat4 joint(int base, uint j) {
@@ -79,17 +120,32 @@ void main() {
     vec3 n = aNormal;
 #if INFLUENCES > 0
 #if FEEDBACK
-    mat4 s = skinMatrix(0);
+    mat4 s = skinMatrix(uFeedbackBase + gl_InstanceID * uFeedbackStride);
 #else
     mat4 s = skinMatrix(iPaletteBase);
 #endif
     p = (s * vec4(p, 1.0)).xyz;  // palettes are affine: the bottom row is ignored
     n = mat3(s) * n;
 #endif
+#if KEYPOSE
+    cachedVertex(iPaletteBase, p, n);
+#if KEYPOSE == 2
+    vec3 p1, n1;
+    cachedVertex(iKeyPoseRow1, p1, n1);
+    p = mix(p, p1, iKeyPoseBlend);
+    n = mix(n, n1, iKeyPoseBlend);
+    float nl = length(n);
+    n = nl > 0.0 ? n / nl : n1;  // opposite normals blended half-way: take row 1's
+#endif
+#endif
 #if FEEDBACK
-    tfPosition = p;
     float len = length(n);
+#if KEYPOSE_FILL
+    tfCache = uvec4(floatBitsToUint(p), packNormal(len > 0.0 ? n / len : n));
+#else
+    tfPosition = p;
     tfNormal = len > 0.0 ? n / len : n;
+#endif
 #else
     vec4 rel = iModel * vec4(p, 1.0);
 #if !CONSTANT_FACES && !FLAT_LIGHT
@@ -201,22 +257,30 @@ void main() {
 }
 )GLSL";
 
+// The vertex body with its switches set.
+std::string vertexVariant(int influences, bool feedback, bool constantFaces, bool flatLight, int keyPose, bool keyPoseFill) {
+    const auto flag = [](bool b) { return b ? "1" : "0"; };
+    return std::string("#version 330 core\n#define INFLUENCES ") + std::to_string(influences) + "\n#define FEEDBACK " +
+           flag(feedback) + "\n#define CONSTANT_FACES " + flag(constantFaces) + "\n#define FLAT_LIGHT " + flag(flatLight) +
+           "\n#define KEYPOSE " + std::to_string(keyPose) + "\n#define KEYPOSE_FILL " + flag(keyPoseFill) + "\n" +
+           withSrgbEncode(kVertexBody);
+}
+
 }  // namespace
 
 std::string vertexShaderSource(int influences, bool feedback) {
-    return "#version 330 core\n#define INFLUENCES " + std::to_string(influences) + "\n#define FEEDBACK " +
-           (feedback ? "1" : "0") + "\n#define CONSTANT_FACES 0\n#define FLAT_LIGHT 0\n" + withSrgbEncode(kVertexBody);
+    return vertexVariant(influences, feedback, false, false, 0, false);
 }
 
-std::string constantFaceVertexShaderSource() {
-    return "#version 330 core\n#define INFLUENCES 0\n#define FEEDBACK 0\n#define CONSTANT_FACES 1\n#define FLAT_LIGHT 0\n" +
-           withSrgbEncode(kVertexBody);
+std::string keyPoseFillVertexShaderSource(int influences) { return vertexVariant(influences, true, false, false, 0, true); }
+
+std::string keyPoseVertexShaderSource(bool interpolative) {
+    return vertexVariant(0, false, false, false, interpolative ? 2 : 1, false);
 }
 
-std::string flatLightVertexShaderSource() {
-    return "#version 330 core\n#define INFLUENCES 0\n#define FEEDBACK 0\n#define CONSTANT_FACES 0\n#define FLAT_LIGHT 1\n" +
-           withSrgbEncode(kVertexBody);
-}
+std::string constantFaceVertexShaderSource() { return vertexVariant(0, false, true, false, 0, false); }
+
+std::string flatLightVertexShaderSource() { return vertexVariant(0, false, false, true, 0, false); }
 
 std::string flatLightFragmentShaderSource() { return withSrgbEncode(kFlatLightFragment); }
 

@@ -10,15 +10,35 @@ namespace throng::detail {
 enum AttributeLocation : unsigned {
     kPosition = 0, kNormal = 1, kTexcoord = 2, kJoints0 = 3, kWeights0 = 4, kJoints1 = 5, kWeights1 = 6,
     kModel = 7,  // a mat4: locations 7-10
-    kTint = 11, kPaletteBase = 12
+    kTint = 11, kPaletteBase = 12,
+    kKeyPoseRow1 = 13, kKeyPoseBlend = 14  // key-pose items: second row's first texel, weight of that row
 };
 
 /// Texture units.
-enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1 };
+enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1, kKeyPoseUnit = 2 };
+
+/// Bytes of one vertex in a key-pose cache: RGBA32UI, the skinned position's exact float bits in
+/// the first three words, the unit normal octahedron-encoded as two 16-bit snorms in the fourth
+/// (x in the low half). One texel fetch reads a whole vertex.
+inline constexpr unsigned kKeyPoseVertexBytes = 16;
 
 /// The vertex shader for `influences` (0, 4 or 8) joint influences. With `feedback`, it outputs
-/// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing.
+/// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing, with the
+/// palette starting at matrix uFeedbackBase + gl_InstanceID * uFeedbackStride (uniforms; 0 unless
+/// set).
 std::string vertexShaderSource(int influences, bool feedback);
+
+/// The transform-feedback program that fills key-pose cache rows: the feedback variant of
+/// vertexShaderSource(influences, true) (the same skinning), capturing each vertex packed as
+/// kKeyPoseVertexBytes in `tfCache` (a uvec4). Instance k of a draw skins with the palette at
+/// uFeedbackBase + k * uFeedbackStride.
+std::string keyPoseFillVertexShaderSource(int influences);
+
+/// The vertex shader of key-pose items: position and normal read from the key-pose cache (texture
+/// buffer uKeyPoses, texel iPaletteBase + gl_VertexID), or with `interpolative` blended with
+/// texel iKeyPoseRow1 + gl_VertexID by iKeyPoseBlend (normal renormalised); then as the rigid
+/// shader (same outputs for fragmentShaderSource()).
+std::string keyPoseVertexShaderSource(bool interpolative);
 
 /// The vertex shader of constant faces (rigid, back faces culled): it computes the whole shaded
 /// colour of the fragment shader's formula once per vertex (texture read at level 0, as the

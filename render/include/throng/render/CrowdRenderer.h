@@ -51,6 +51,7 @@ struct CrowdRenderStatistics {
     ImpostorRenderStatistics quads;      ///< the quad pass
     std::uint64_t sceneItems = 0;        ///< items of the generic scene (no actor)
     std::uint64_t skinnedItems = 0;      ///< mesh items drawn with a skin palette
+    std::uint64_t keyPoseItems = 0;      ///< items drawn from a key-pose cache (in the actors' mesh pass)
     double sceneMs = 0;                  ///< the generic scene's meshes (a town)
     double meshMs = 0;                   ///< the actors' meshes
     double impostorBatchMs = 0;          ///< impostor selection, batching and morphing
@@ -69,7 +70,8 @@ public:
     CrowdRenderer& operator=(const CrowdRenderer&) = delete;
 
     void beginFrame(const Camera& camera) override;
-    /// Draws `list` in three passes: the generic scene's meshes, the actors' meshes, the impostors.
+    /// Draws `list` in three passes: the generic scene's meshes, the actors' meshes (key-pose items
+    /// included), the impostors.
     void draw(const DrawList& list) override;
     void endFrame() override;
 

@@ -3,7 +3,10 @@
 // uploaded once (keyed on their shared pointers); items sharing a mesh are drawn instanced; skinned
 // items are skinned in the vertex shader from a bone palette in a texture buffer, or on the CPU;
 // model matrices are made relative to the eye in double precision so actors 10^7 m from the origin
-// render as well as at the origin.
+// render as well as at the origin. Key-pose items (Representation::KeyPose, seed 004) are drawn
+// from key-pose caches the renderer keeps per (mesh, KeyPoseSource): rows of skinned vertices
+// filled with the renderer's own GPU skinning only when a row does not yet hold the pose an item
+// wants there, so a pose kept across frames is skinned once.
 
 #include <memory>
 
@@ -15,6 +18,7 @@
 namespace throng {
 
 class GlContext;
+class KeyPoseSource;
 
 /// Draws MeshDrawable items with OpenGL 3.3 core into a GlContext's framebuffer.
 class GlRenderer final : public DrawBackend {
@@ -31,9 +35,15 @@ public:
     /// split into a rotation sent to the GPU and the eye position kept in double).
     void beginFrame(const Camera& camera) override;
     /// Draws the MeshDrawable items of `list` (others are skipped and counted). May be called several
-    /// times per frame. Throws std::logic_error outside beginFrame/endFrame and std::invalid_argument
+    /// times per frame. Key-pose items are drawn instanced per (mesh, source) from the source's cache
+    /// rows (`keyPose.row[0]`, or rows 0 and 1 blended when `keyPose.blend` is not 0), after the rows
+    /// whose poses changed are skinned with `source->palette(skin, pose)`; their skin palette fields
+    /// are ignored. Throws std::logic_error outside beginFrame/endFrame and std::invalid_argument
     /// naming the item if one has no world matrix or a palette shorter than its mesh's joint indices
-    /// need; nothing of `list` is drawn then.
+    /// need, or, for a key-pose item: no source, a mesh without skin, a blend outside [0, 1], a row
+    /// or pose outside its source's, a source palette shorter than the mesh needs, or a row another
+    /// item of the list wants to hold another pose; nothing of `list` is drawn then, and no cache
+    /// changes. Throws std::runtime_error if a cache would exceed the GL's texture buffer size.
     void draw(const DrawList& list) override;
     /// Ends the frame: captures it when options().captureFrames, then presents it.
     void endFrame() override;
@@ -65,6 +75,17 @@ public:
     std::size_t cachedMeshCount() const;
     /// Number of textures with a GPU copy.
     std::size_t cachedTextureCount() const;
+    /// Frees the key-pose caches of `source` (every mesh). A source is known by its address: call
+    /// this before destroying a source this renderer has drawn, or a new source made at the same
+    /// address with the same row and pose counts would be drawn from the old one's rows.
+    void releaseKeyPoses(const KeyPoseSource& source);
+    /// Number of key-pose caches (one per mesh and source) holding GPU rows.
+    std::size_t cachedKeyPoseCount() const;
+    /// GPU bytes held by the key-pose caches (kKeyPoseVertexBytes per vertex per row).
+    std::size_t keyPoseCacheBytes() const;
+    /// Bytes one vertex takes in a key-pose cache: the position's float bits and the normal
+    /// octahedron-encoded in two 16-bit snorms.
+    static constexpr std::size_t kKeyPoseVertexBytes = 16;
     /// The context drawn into.
     GlContext& context() const;
 
