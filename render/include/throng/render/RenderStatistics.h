@@ -14,8 +14,6 @@ struct RenderStatistics {
     std::uint64_t instances = 0;           ///< mesh items drawn
     std::uint64_t gpuSkinnedVertices = 0;  ///< vertices skinned in the vertex shader
     std::uint64_t cpuSkinnedVertices = 0;  ///< vertices skinned on the CPU
-    std::uint64_t keyPoseFills = 0;        ///< key-pose cache rows skinned this frame
-    std::uint64_t keyPoseCacheBytes = 0;   ///< GPU bytes held by key-pose caches
     std::uint64_t skippedItems = 0;        ///< items whose drawable is not a MeshDrawable
     std::uint64_t meshUploads = 0;         ///< meshes uploaded to the GPU this frame
     std::uint64_t textureUploads = 0;      ///< textures uploaded to the GPU this frame
