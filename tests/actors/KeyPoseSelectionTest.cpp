@@ -345,7 +345,10 @@ TEST(KeyPoseRows, KeepsHeldPosesAndFillsEmptyRowsFirst) {
     EXPECT_EQ(rows.poseIn(99), KeyPoseRows::kNone);
     rows.clear();
     EXPECT_TRUE(rows.held().empty());
-    EXPECT_EQ(rows.hold(std::vector<std::uint32_t>{0}, 4), 1u);
+    // An empty row is taken before any held pose, even one last used as long ago as frame 0.
+    EXPECT_EQ(rows.hold(std::vector<std::uint32_t>{0}, 0), 1u);
+    EXPECT_EQ(rows.hold(std::vector<std::uint32_t>{2}, 1), 1u);
+    EXPECT_EQ(asSet(rows.held()), (std::set<std::uint32_t>{0, 2}));
 }
 
 TEST(KeyPoseRows, ReplacesTheLeastRecentlyUsedPoseNotWanted) {
@@ -365,6 +368,11 @@ TEST(KeyPoseRows, ReplacesTheLeastRecentlyUsedPoseNotWanted) {
     // A wanted pose is never the victim even when least recently used.
     EXPECT_EQ(rows.hold(std::vector<std::uint32_t>{6, 8}, 8), 1u);  // 6 (5) is wanted: 1 (6) goes
     EXPECT_EQ(asSet(rows.held()), (std::set<std::uint32_t>{6, 7, 8}));
+    // Nor when every row was used in this frame: the row not wanted goes.
+    rows.touch(7, 9);
+    rows.touch(8, 9);
+    EXPECT_EQ(rows.hold(std::vector<std::uint32_t>{6, 9}, 9), 1u);  // 6 was used at 8, 7 and 8 at 9: 8 goes (lower row)
+    EXPECT_EQ(asSet(rows.held()), (std::set<std::uint32_t>{6, 7, 9}));
 }
 
 TEST(KeyPoseRows, RejectsBadPosesNamingThem) {
