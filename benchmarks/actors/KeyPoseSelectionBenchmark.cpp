@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     try {
         const std::filesystem::path out = outText;
         bench::KeyPoseFrames instances;
-        std::string source;
+        std::string source, shortSource;  // the whole description for the table, a short one for the chart
         bench::KeyPoseStudyOptions options;
         options.exactTimeLimit = timeLimit;
         if (!demandsFile.empty()) {
@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
             if (instances.empty()) throw std::runtime_error(demandsFile + ": no demands");
             if (posesGiven) options.poseCount = poses;
             source = std::to_string(instances.size()) + " frames from " + demandsFile;
+            shortSource = std::to_string(instances.size()) + " frames of " + std::filesystem::path(demandsFile).filename().string();
         } else {
             if (sd <= 0.0) sd = poses / 6.0;
             instances = bench::randomKeyPoseFrames(frames, characters, poses, sd, next, intermittent, seed);
@@ -85,6 +86,8 @@ int main(int argc, char** argv) {
                           poses, sd,
                           intermittent ? "one pose each" : (next >= 1.0 ? "next pose" : next <= 0.0 ? "random second pose" : "second pose the next one or random"));
             source = text;
+            shortSource = std::to_string(characters) + " characters, " + std::to_string(poses) + " key-poses, " + std::to_string(frames) +
+                          " frames";
         }
         if (capacities.empty())
             for (std::uint32_t c = 1, n = bench::keyPoseCount(instances, options.poseCount); c <= n; ++c) capacities.push_back(c);
@@ -106,7 +109,7 @@ int main(int argc, char** argv) {
                         r.exactUnproven, r.greedyMicroseconds, r.exactMicrosecondsMean, r.exactMicrosecondsMax);
 
         vtk::Chart served;
-        served.title = "Actors served by a key-pose cache (" + source + ")";
+        served.title = "Actors served by a key-pose cache (" + shortSource + ")";
         served.xLabel = "cache size (key-poses)";
         served.yLabel = "actors served (mean per frame)";
         served.legend = vtk::Chart::Legend::Bottom;

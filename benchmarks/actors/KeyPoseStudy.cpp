@@ -114,19 +114,20 @@ KeyPoseFrames readKeyPoseDemandsCsv(std::istream& in, const std::string& name) {
 
 std::uint32_t keyPoseCount(const KeyPoseFrames& frames, std::uint32_t given) {
     constexpr std::uint32_t kMostPoses = 1u << 24;
-    std::uint32_t poseCount = given;
-    if (poseCount == 0)
-        for (const auto& demand : frames)
-            for (const KeyPoseDemand& d : demand) poseCount = std::max({poseCount, std::min(d.a, kMostPoses) + 1, std::min(d.b, kMostPoses) + 1});
-    if (poseCount > kMostPoses)
-        throw std::invalid_argument("key-poses: " + std::to_string(poseCount) + " needed, at most " + std::to_string(kMostPoses) +
-                                    " are supported");
+    if (given > kMostPoses)
+        throw std::invalid_argument("key-poses: " + std::to_string(given) + ", at most " + std::to_string(kMostPoses) + " are supported");
+    const std::uint32_t limit = given > 0 ? given : kMostPoses;
+    std::uint32_t most = 0;
     for (std::size_t f = 0; f < frames.size(); ++f)
-        for (const KeyPoseDemand& d : frames[f])
-            if (d.a >= poseCount || d.b >= poseCount)
-                throw std::invalid_argument("key-poses: frame " + std::to_string(f) + " names pose " + std::to_string(std::max(d.a, d.b)) +
-                                            " but there are only " + std::to_string(poseCount));
-    return poseCount;
+        for (const KeyPoseDemand& d : frames[f]) {
+            const std::uint32_t p = std::max(d.a, d.b);
+            if (p >= limit)
+                throw std::invalid_argument("key-poses: frame " + std::to_string(f) + " names pose " + std::to_string(p) +
+                                            (given > 0 ? " but there are only " + std::to_string(given)
+                                                       : ", beyond the " + std::to_string(kMostPoses) + " key-poses supported"));
+            most = std::max(most, p + 1);
+        }
+    return given > 0 ? given : most;
 }
 
 std::vector<KeyPoseStudyRow> studyKeyPoseSelection(const KeyPoseFrames& frames, std::span<const std::uint32_t> capacities,
