@@ -1,0 +1,21 @@
+# FindGLPK: the GNU Linear Programming Kit (Debian libglpk-dev), which ships no CMake package.
+# Defines GLPK_FOUND, GLPK_VERSION (from glpk.h) and the imported target GLPK::GLPK.
+find_path(GLPK_INCLUDE_DIR glpk.h)
+find_library(GLPK_LIBRARY glpk)
+if(GLPK_INCLUDE_DIR AND EXISTS "${GLPK_INCLUDE_DIR}/glpk.h")
+  file(STRINGS "${GLPK_INCLUDE_DIR}/glpk.h" _glpk_version_lines REGEX "#define GLP_M(AJ|IN)OR_VERSION")
+  string(REGEX REPLACE ".*GLP_MAJOR_VERSION +([0-9]+).*" "\\1" _glpk_major "${_glpk_version_lines}")
+  string(REGEX REPLACE ".*GLP_MINOR_VERSION +([0-9]+).*" "\\1" _glpk_minor "${_glpk_version_lines}")
+  set(GLPK_VERSION "${_glpk_major}.${_glpk_minor}")
+  unset(_glpk_version_lines)
+  unset(_glpk_major)
+  unset(_glpk_minor)
+endif()
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(GLPK REQUIRED_VARS GLPK_LIBRARY GLPK_INCLUDE_DIR VERSION_VAR GLPK_VERSION)
+if(GLPK_FOUND AND NOT TARGET GLPK::GLPK)
+  add_library(GLPK::GLPK UNKNOWN IMPORTED)
+  set_target_properties(GLPK::GLPK PROPERTIES IMPORTED_LOCATION "${GLPK_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${GLPK_INCLUDE_DIR}")
+endif()
+mark_as_advanced(GLPK_INCLUDE_DIR GLPK_LIBRARY)
