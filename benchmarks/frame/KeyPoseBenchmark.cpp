@@ -167,7 +167,10 @@ struct Result {
     std::uint64_t ticks = 0;
 };
 
-Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context, std::ofstream* demandsOut) {
+// Runs every method on `actors` actors; with `demandsOut`, writes the demands of the camera path,
+// numbering instances from *instance on.
+Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context, std::ofstream* demandsOut,
+           std::uint64_t* instance) {
     auto world = bench::buildWorld(o.scene, actors);
     auto impostors = bench::bakeImpostors(context, *world);
     context->resize(o.width, o.height);
@@ -256,11 +259,14 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             for (std::size_t m = 1; m < methods.size(); ++m) {
                 const ActorFrameStatistics& s = methods[m].processor->processFrame(world->root(), camera, now.time);
                 result.pathServed[m - 1].push_back(s.keyPoseBand ? double(s.keyPoseActors) / double(s.keyPoseBand) : 1.0);
+                // One selection instance per tick and template (bench_keypose_selection's "frame").
                 if (demandsOut && methods[m].mode == KeyPoseMode::Interpolative && methods[m].size == std::uint32_t(o.demandSize))
-                    for (const auto& cache : methods[m].processor->keyPoseCaches())
+                    for (const auto& cache : methods[m].processor->keyPoseCaches()) {
+                        if (cache->lastDemand().empty()) continue;
                         for (const KeyPoseDemand& d : cache->lastDemand())
-                            *demandsOut << now.frame << ',' << cache->actorTemplate().name() << ',' << d.a << ',' << d.b << ','
-                                        << d.actors << '\n';
+                            *demandsOut << *instance << ',' << d.a << ',' << d.b << ',' << d.actors << '\n';
+                        ++*instance;
+                    }
             }
         }
         std::fprintf(stderr, "bench_keypose: %lld actors, camera path done\n", (long long)actors);
@@ -386,7 +392,9 @@ int main(int argc, char** argv) {
     app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
     app.add_option("--csv", o.csv, "also write the rows as CSV")->type_name("FILE");
     app.add_option("--accuracy-csv", o.accuracyCsv, "write the accuracy rows in the common accuracy CSV")->type_name("FILE");
-    app.add_option("--demands", o.demands, "write what the band needed each frame of the camera path (frame,template,a,b,actors)")
+    app.add_option("--demands", o.demands,
+                   "write what the band needed along the camera path, one instance per frame and template (frame,a,b,actors: "
+                   "bench_keypose_selection --demands reads it)")
         ->type_name("FILE");
     app.add_option("--demand-size", o.demandSize, "the interpolative cache size whose demands --demands writes")
         ->type_name("N")->check(wholeNumber(1, 65535));
@@ -404,12 +412,12 @@ int main(int argc, char** argv) {
         if (!o.demands.empty()) {
             demands.open(o.demands);
             if (!demands) fail("cannot write " + o.demands);
-            demands << "frame,template,a,b,actors\n";
+            demands << "frame,a,b,actors\n";
         }
-        std::uint64_t ticks = 0;
+        std::uint64_t ticks = 0, instance = 0;
         for (std::int64_t n : o.actors) {
             std::fprintf(stderr, "bench_keypose: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n, o.frames);
-            results.push_back(run(o, n, context, demands.is_open() ? &demands : nullptr));
+            results.push_back(run(o, n, context, demands.is_open() ? &demands : nullptr, &instance));
             ticks += results.back().ticks;
         }
         report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n"
