@@ -30,6 +30,7 @@
 #include "FrameWorld.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyPoseCache.h"
+#include "throng/actors/SkeletonPose.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/render/CrowdRenderer.h"
@@ -80,7 +81,8 @@ struct Row {
     std::uint32_t size = 0;
     double appCull = 0, pose = 0, select = 0, mesh = 0, draw = 0, frame = 0;
     double band = 0, served = 0, misses = 0, updates = 0, fills = 0, posed = 0, cacheBytes = 0;
-    double vertexSum = 0, vertexCount = 0, vertexMax = 0;  // metres
+    double vertexSum = 0, vertexCount = 0, vertexMax = 0;  // metres, against plain skinning
+    double keySum = 0, keyMax = 0;                          // metres, against the clip at the actor's own time
     double psnr = 0, ssim = 0, off8 = 0, images = 0;
     void add(const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double stepMs, double drawMs) {
         appCull += s.appCullMs();
@@ -102,6 +104,7 @@ struct Row {
         if (images > 0) psnr /= images, ssim /= images, off8 /= images;
     }
     double vertexMeanMm() const { return vertexCount > 0 ? 1000.0 * vertexSum / vertexCount : 0.0; }
+    double keyMeanMm() const { return vertexCount > 0 ? 1000.0 * keySum / vertexCount : 0.0; }
 };
 
 // Caches for every template in use that can have one (skinned, no rigid parts), `size` rows each.
@@ -128,7 +131,21 @@ void worldVertices(const DrawItem& item, std::span<const glm::mat4> palette, std
     for (std::size_t i = 0; i < local.size(); ++i) out[i] = glm::vec3(*item.worldMatrix * Vec4(Vec3(local[i]), 1.0));
 }
 
-// Vertex error of up to `samples` cached actors of `list` against the same actors in `plain`.
+// The palette of skin `skin` of `tmpl` playing `clip` at `clipTime` at full detail: what the
+// key-pose cache approximates when it snaps (intermittent) or blends (interpolative) key-poses.
+std::vector<glm::mat4> clipPalette(const ActorTemplate& tmpl, int clip, double clipTime, std::uint32_t skin) {
+    std::vector<float> dofs(tmpl.restDofs().begin(), tmpl.restDofs().end());
+    tmpl.clips()[std::size_t(clip)]->sample(tmpl, clipTime, true, {}, dofs);
+    std::vector<Affine> model(tmpl.nodeCount());
+    computeModelTransforms(tmpl, dofs, {}, model);
+    std::vector<glm::mat4> palette(tmpl.skins()[skin].joints.size());
+    computeSkinPalette(tmpl, tmpl.skins()[skin], model, {}, palette);
+    return palette;
+}
+
+// Vertex error of up to `samples` cached actors of `list` against the same actors in `plain` (what
+// the user sees change: the key-pose and everything the cache leaves out, a turned head, a blend
+// into running) and against their own clip at their own time (the key-pose alone).
 void vertexError(const DrawList& list, const DrawList& plain, int samples, Row& row) {
     std::vector<const DrawItem*> skinned;
     for (const DrawItem& item : plain.items())
@@ -140,7 +157,7 @@ void vertexError(const DrawList& list, const DrawList& plain, int samples, Row& 
     for (const DrawItem& item : list.items())
         if (item.representation == Representation::KeyPose && item.actor < skinned.size() && skinned[item.actor]) cached.push_back(&item);
     const std::size_t stride = std::max<std::size_t>(1, cached.size() / std::size_t(std::max(samples, 1)));
-    std::vector<glm::vec3> exact, a, b;
+    std::vector<glm::vec3> exact, a, b, clipExact;
     for (std::size_t k = 0; k < cached.size(); k += stride) {
         const DrawItem& item = *cached[k];
         const DrawItem& truth = *skinned[item.actor];
@@ -149,12 +166,17 @@ void vertexError(const DrawList& list, const DrawList& plain, int samples, Row& 
         worldVertices(truth, {truth.skinPalette, truth.skinPaletteSize}, exact);
         worldVertices(item, ref.source->palette(ref.skin, ref.pose[0]), a);
         if (ref.blend > 0.0f) worldVertices(item, ref.source->palette(ref.skin, ref.pose[1]), b);
+        const auto& cache = dynamic_cast<const KeyPoseCache&>(*ref.source);
+        worldVertices(item, clipPalette(cache.actorTemplate(), item.clip, item.clipTime, ref.skin), clipExact);
         for (std::size_t v = 0; v < exact.size(); ++v) {
             const glm::vec3 shown = ref.blend > 0.0f ? a[v] * (1.0f - ref.blend) + b[v] * ref.blend : a[v];
             const double e = glm::length(shown - exact[v]);
+            const double q = glm::length(shown - clipExact[v]);
             row.vertexSum += e;
+            row.keySum += q;
             row.vertexCount += 1;
             row.vertexMax = std::max(row.vertexMax, e);
+            row.keyMax = std::max(row.keyMax, q);
         }
     }
 }
@@ -193,13 +215,16 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
         attachCaches(*m.processor, *world, m.mode, m.size, rate);
         m.processor->setKeyPoseDistance(distance, hysteresis);
     }
+    // One renderer per method: each keeps its own morph cache and key-pose rows, as throng-town's
+    // one renderer would, so no method draws on what another method's frame left behind.
     CrowdRendererOptions ro;
     ro.finishPasses = true;
-    CrowdRenderer renderer(context, ro);
+    std::vector<std::unique_ptr<CrowdRenderer>> renderers;
+    for (std::size_t m = 0; m < methods.size(); ++m) renderers.push_back(std::make_unique<CrowdRenderer>(context, ro));
     for (int f = 0; f < o.warmup; ++f) world->step();
     Result result;
     const double aspect = double(o.width) / double(o.height);
-    Image plainFrame;
+    std::vector<Image> frames(methods.size());
     for (const std::string& cameraName : o.cameras) {
         const Camera camera = world->camera().at(bench::cameraTime(cameraName), aspect);
         std::vector<Row> rows(methods.size());
@@ -213,32 +238,32 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             const FrameContext& now = world->step();
             const double stepMs = world->lastStepMs();
             const bool measureError = f >= 0 && f % o.errorEvery == 0;
-            std::uint64_t digest = 0;
-            for (std::size_t m = 0; m < methods.size(); ++m) {
+            const std::uint64_t digest = bench::stateDigest(world->crowd());
+            // The methods take turns going first, so none always meets the step's cold caches.
+            for (std::size_t i = 0; i < methods.size(); ++i) {
+                const std::size_t m = (i + std::size_t(f + 2)) % methods.size();
                 ActorProcessor& p = *methods[m].processor;
                 const ActorFrameStatistics s = p.processFrame(world->root(), camera, now.time);
-                const std::uint64_t d = bench::stateDigest(world->crowd());
-                if (m == 0) digest = d;
-                else if (d != digest) fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
+                if (bench::stateDigest(world->crowd()) != digest)
+                    fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
+                CrowdRenderer& renderer = *renderers[m];
                 Stopwatch watch;
                 renderer.drawFrame(camera, p.drawList());
                 const double drawMs = watch.elapsedMs();
                 if (f < 0) continue;
                 rows[m].add(s, renderer.statistics(), stepMs, drawMs);
-                if (!measureError) continue;
-                const Image frame = renderer.readFrame();
-                if (m == 0) {
-                    plainFrame = frame;
-                    continue;
-                }
-                vertexError(p.drawList(), methods[0].processor->drawList(), o.errorSamples, rows[m]);
-                const ImageDifference diff = compareImages(frame, plainFrame, 8);
+                if (measureError) frames[m] = renderer.readFrame();
+            }
+            if (f >= 0) ++result.ticks;
+            if (!measureError) continue;
+            for (std::size_t m = 1; m < methods.size(); ++m) {
+                vertexError(methods[m].processor->drawList(), methods[0].processor->drawList(), o.errorSamples, rows[m]);
+                const ImageDifference diff = compareImages(frames[m], frames[0], 8);
                 rows[m].psnr += std::min(diff.psnr, 99.0);
-                rows[m].ssim += structuralSimilarity(frame, plainFrame);
+                rows[m].ssim += structuralSimilarity(frames[m], frames[0]);
                 rows[m].off8 += diff.fractionOverThreshold;
                 rows[m].images += 1;
             }
-            if (f >= 0) ++result.ticks;
         }
         for (Row& r : rows) {
             r.divide(o.frames);
@@ -278,18 +303,34 @@ std::string table(const std::vector<Row>& rows) {
     std::ostringstream t;
     char line[1024];
     t << "| actors | camera | method | APP+CULL | poses | selection | mesh draw | DRAW | whole frame | band | from cache | skinned in band | "
-         "cache updates | rows skinned (DRAW) | posed | vertex error mean / max mm | PSNR dB | SSIM | pixels off > 8 |\n"
-         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "cache updates | rows skinned (DRAW) | posed | vertex error mean / max mm | key-pose error mean / max mm | PSNR dB | SSIM | "
+         "pixels off > 8 |\n"
+         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows) {
         std::snprintf(line, sizeof line,
-                      "| %lld | %s | %s | %.2f | %.2f | %.3f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %.2f / %.1f | %s | %s | %s |\n",
+                      "| %lld | %s | %s | %.2f | %.2f | %.3f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %.1f / %.0f | %.1f / %.0f | %s | %s | %s |\n",
                       (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.appCull, r.pose, r.select, r.mesh, r.draw, r.frame,
-                      r.band, r.served, r.misses, r.updates, r.fills, r.posed, r.vertexMeanMm(), 1000.0 * r.vertexMax,
+                      r.band, r.served, r.misses, r.updates, r.fills, r.posed, r.vertexMeanMm(), 1000.0 * r.vertexMax, r.keyMeanMm(), 1000.0 * r.keyMax,
                       r.images ? std::to_string(r.psnr).substr(0, 5).c_str() : "-", r.images ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
                       r.images ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-");
         t << line;
     }
     return t.str();
+}
+
+// Writes `chart` without its empty series (a camera that saw no actor in the band has none), and
+// nothing when no series is left; a chart that cannot be written is reported, not fatal.
+void writeChart(vtk::Chart chart, const std::string& path) {
+    std::erase_if(chart.series, [](const vtk::ChartSeries& s) { return s.x.empty(); });
+    if (chart.series.empty()) {
+        std::fprintf(stderr, "bench_keypose: no data for '%s', not drawn\n", chart.title.c_str());
+        return;
+    }
+    try {
+        vtk::writeChartPng(chart, path);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_keypose: %s\n", e.what());
+    }
 }
 
 // The figures as PNG (VTK charts need a display: under xvfb-run).
@@ -326,7 +367,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
                     chart.series.push_back(s);
                 }
             }
-            vtk::writeChartPng(chart, (fs::path(o.plots) / ("keypose-frame-time-" + tag + "-" + cameraName + ".png")).string());
+            writeChart(chart, (fs::path(o.plots) / ("keypose-frame-time-" + tag + "-" + cameraName + ".png")).string());
             vtk::Chart served;
             served.title = "Actors of the band drawn from the cache, " + tag + " actors, " + cameraName + " camera";
             served.xLabel = "cache size (key-poses per template)";
@@ -342,7 +383,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
                 vtk::paletteColour(mode, s.rgb);
                 served.series.push_back(s);
             }
-            vtk::writeChartPng(served, (fs::path(o.plots) / ("keypose-served-" + tag + "-" + cameraName + ".png")).string());
+            writeChart(served, (fs::path(o.plots) / ("keypose-served-" + tag + "-" + cameraName + ".png")).string());
         }
         if (res.pathTimes.empty()) continue;
         vtk::Chart path;
@@ -359,7 +400,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
             vtk::paletteColour(int(m % o.sizes.size()), s.rgb);
             path.series.push_back(s);
         }
-        vtk::writeChartPng(path, (fs::path(o.plots) / ("keypose-path-" + tag + ".png")).string());
+        writeChart(path, (fs::path(o.plots) / ("keypose-path-" + tag + ".png")).string());
     }
 }
 
@@ -435,22 +476,23 @@ int main(int argc, char** argv) {
         if (!o.csv.empty()) {
             std::ofstream csv(o.csv);
             csv << "actors,camera,method,size,app_cull_ms,pose_ms,select_ms,mesh_ms,draw_ms,frame_ms,band,served,misses,updates,fills,posed,"
-                   "vertex_error_mean_mm,vertex_error_max_mm,psnr_db,ssim,pixels_off_8\n";
+                   "vertex_error_mean_mm,vertex_error_max_mm,key_pose_error_mean_mm,key_pose_error_max_mm,psnr_db,ssim,pixels_off_8\n";
             for (const Row& r : all)
                 csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.size << ',' << r.appCull << ',' << r.pose << ',' << r.select
                     << ',' << r.mesh << ',' << r.draw << ',' << r.frame << ',' << r.band << ',' << r.served << ',' << r.misses << ','
                     << r.updates << ',' << r.fills << ',' << r.posed << ',' << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ','
-                    << r.psnr << ',' << r.ssim << ',' << r.off8 << '\n';
+                    << r.keyMeanMm() << ',' << 1000.0 * r.keyMax << ',' << r.psnr << ',' << r.ssim << ',' << r.off8 << '\n';
         }
         if (!o.accuracyCsv.empty()) {
             std::ofstream csv(o.accuracyCsv);
-            csv << "knob,value,camera,actors,scene,vertex_error_mean_mm,vertex_error_max_mm,psnr_db,ssim,pixels_off_8,app_cull_ms,mesh_draw_ms,"
-                   "frame_ms,memory_bytes\n";
+            csv << "knob,value,camera,actors,scene,vertex_error_mean_mm,vertex_error_max_mm,key_pose_error_mean_mm,key_pose_error_max_mm,"
+                   "psnr_db,ssim,pixels_off_8,app_cull_ms,mesh_draw_ms,frame_ms,memory_bytes\n";
             for (const Row& r : all) {
                 const std::string knob = r.size == 0 ? "key_pose_cache" : r.method.rfind("intermittent", 0) == 0 ? "key_pose_cache_intermittent"
                                                                                                                  : "key_pose_cache_interpolative";
                 csv << knob << ',' << (r.size == 0 ? std::string("off") : std::to_string(r.size)) << ',' << r.camera << ',' << r.actors
-                    << ",town," << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ',' << (r.size == 0 ? 99.0 : r.psnr) << ','
+                    << ",town," << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ',' << r.keyMeanMm() << ',' << 1000.0 * r.keyMax
+                    << ',' << (r.size == 0 ? 99.0 : r.psnr) << ','
                     << (r.size == 0 ? 1.0 : r.ssim) << ',' << r.off8 << ',' << r.appCull << ',' << r.mesh << ',' << r.frame << ','
                     << std::int64_t(r.cacheBytes) << '\n';
             }
