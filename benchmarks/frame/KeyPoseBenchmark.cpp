@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -184,7 +185,7 @@ void vertexError(const DrawList& list, const DrawList& plain, int samples, Row& 
 struct Result {
     std::vector<Row> rows;
     std::vector<double> pathTimes;                 // Fig. 11: camera path times
-    std::vector<std::vector<double>> pathServed;   // per cache method: served share of the band per frame
+    std::vector<std::vector<double>> pathServed;   // per cache method: served share of the band per frame (NaN: empty band)
     std::vector<std::string> pathMethods;
     std::uint64_t ticks = 0;
 };
@@ -285,7 +286,8 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             result.pathTimes.push_back(t);
             for (std::size_t m = 1; m < methods.size(); ++m) {
                 const ActorFrameStatistics& s = methods[m].processor->processFrame(world->root(), camera, now.time);
-                result.pathServed[m - 1].push_back(s.keyPoseBand ? double(s.keyPoseActors) / double(s.keyPoseBand) : 1.0);
+                result.pathServed[m - 1].push_back(s.keyPoseBand ? double(s.keyPoseActors) / double(s.keyPoseBand)
+                                                                 : std::numeric_limits<double>::quiet_NaN());
                 // One selection instance per tick and template (bench_keypose_selection's "frame").
                 if (demandsOut && methods[m].mode == KeyPoseMode::Interpolative && methods[m].size == std::uint32_t(o.demandSize))
                     for (const auto& cache : methods[m].processor->keyPoseCaches()) {
@@ -403,8 +405,8 @@ void plots(const Options& o, const std::vector<Result>& results) {
         for (std::size_t m = 0; m < res.pathMethods.size(); ++m) {
             vtk::ChartSeries s;
             s.name = res.pathMethods[m];
-            s.x = res.pathTimes;
-            s.y = res.pathServed[m];
+            for (std::size_t f = 0; f < res.pathTimes.size(); ++f)  // frames with nobody in the band are left out
+                if (!std::isnan(res.pathServed[m][f])) s.x.push_back(res.pathTimes[f]), s.y.push_back(res.pathServed[m][f]);
             s.style = res.pathMethods[m].rfind("interpolative", 0) == 0 ? vtk::ChartSeries::Style::DashedLine : vtk::ChartSeries::Style::Line;
             vtk::paletteColour(int(m % o.sizes.size()), s.rgb);
             path.series.push_back(s);
