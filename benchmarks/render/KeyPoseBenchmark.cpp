@@ -1,5 +1,5 @@
 // DRAW of a walking CesiumMan crowd at middle distance (20 to 40 m from the camera), 1280x720
-// headless (OSMesa, llvmpipe), three ways side by side (seed 004 §5):
+// headless (OSMesa, llvmpipe), skinned and from the key-pose cache side by side (seed 004 §5):
 //
 //   BM_KeyPoseDraw/mode:0/instances:N   skinned: every actor's palette at its own clip time, GPU
 //                                       linear-blend skinning in the vertex shader
@@ -13,9 +13,12 @@
 //                                       cache (the floor: what drawing the triangles costs alone)
 //
 // Each timed iteration is one frame: beginFrame, draw of the whole list (palette upload or row
-// fills included), endFrame (OsMesaContext::present: glFinish). The actors' poses advance 1/30 s per frame; the draw lists
-// of a cycle of frames are built before timing (APP and CULL are not DRAW). At the end the program
-// prints the fastest frame of each case (the median beside it) and the ratios to skinning.
+// fills included), endFrame (OsMesaContext::present: glFinish, so rasterisation is timed too). The
+// actors' poses advance 1/30 s per frame; the draw lists of a cycle of frames are built before
+// timing (APP and CULL are not DRAW). At the end the program prints, per case, the median and the
+// fastest frame by wall time, by CPU time of every thread (the drawing thread's vertex work and
+// llvmpipe's rasteriser threads: on a machine shared with other work, the steadier figure) and by
+// the drawing thread's CPU time alone, and the ratios skinned / case.
 // Run from the dev or release build, the repetitions interleaved with other work on the machine:
 //   ./build/dev/benchmarks/render/bench_keypose --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
