@@ -64,7 +64,7 @@ struct KeyPoseGpu {
     std::vector<std::uint64_t> wantStamp;
     std::uint64_t stamp = 0;  // draw() call that set `group` and `order`
     std::uint32_t order = 0;  // first appearance among this draw's caches (fills go in that order)
-    std::uint32_t group[4] = {0, 0, 0, 0};  // this draw's groups: [interpolative * 2 + mirrored]
+    std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [interpolative * 2 + mirrored]
 };
 
 struct MeshEntry {
@@ -338,11 +338,11 @@ struct GlRenderer::Impl {
         const int slots = k.blend != 0.0f ? 2 : 1;  // intermittent: row[1] is not read
         for (int s = 0; s < slots; ++s) {
             const std::uint32_t row = k.row[s], pose = k.pose[s];
-            const std::string which = "key-pose " + std::to_string(s);
+            const auto which = [s] { return "key-pose " + std::to_string(s); };  // built on failure only
             if (row >= rows)
-                fail(which + " is in row " + std::to_string(row) + " but its source's cache has " + std::to_string(rows) + " rows");
+                fail(which() + " is in row " + std::to_string(row) + " but its source's cache has " + std::to_string(rows) + " rows");
             if (pose >= poses)
-                fail(which + " is pose " + std::to_string(pose) + " but its source has " + std::to_string(poses) + " poses");
+                fail(which() + " is pose " + std::to_string(pose) + " but its source has " + std::to_string(poses) + " poses");
             if (c.wantStamp[row] == drawStamp) {
                 if (c.wantPose[row] != pose || c.wantSkin[row] != k.skin)
                     fail("wants pose " + std::to_string(pose) + " (skin " + std::to_string(k.skin) + ") in row " +
@@ -626,7 +626,11 @@ void GlRenderer::draw(const DrawList& list) {
         if (!item.worldMatrix)
             throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + " has no world matrix");
         MeshEntry& e = r.entryFor(meshDrawable->meshPtr());
+        // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
+        // apart with the front face flipped, so culling and two-sided lighting stay right.
         const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
+        // Front to back, a mesh's instances are split by distance band, so that an instanced
+        // draw covering the whole town does not put far instances before near ones of other meshes.
         const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
         if (item.representation == Representation::KeyPose) {
             // Grouped by mesh, cache, one row or two, mirroring and band: one instanced draw each.
@@ -647,8 +651,6 @@ void GlRenderer::draw(const DrawList& list) {
                                         std::to_string(item.skinPaletteSize) + " matrices but its joint indices need " +
                                         std::to_string(e.gpu.requiredPalette));
         const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
-        // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
-        // apart with the front face flipped, so culling and two-sided lighting stay right.
         if (path == Path::CpuSkinned) {
             r.itemGroup[i] = static_cast<std::uint32_t>(r.groups.size());
             r.groups.push_back(Group{&e, path, mirrored, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
@@ -661,8 +663,6 @@ void GlRenderer::draw(const DrawList& list) {
             e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
         }
         std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
-        // Front to back, a mesh's instances are split by distance band, so that an instanced
-        // draw covering the whole town does not put far instances before near ones of other meshes.
         if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
             g = static_cast<std::uint32_t>(r.groups.size());
             r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, 0, band});
