@@ -53,7 +53,8 @@ static_assert(GlRenderer::kKeyPoseVertexBytes == detail::kKeyPoseVertexBytes, "o
 // buffer. The renderer's own record of what each row holds decides what is skinned: a row is
 // filled only when the pose (and skin) an item wants there is not the one it holds.
 struct KeyPoseGpu {
-    const KeyPoseSource* source = nullptr;  // known by address (GlRenderer::releaseKeyPoses)
+    const KeyPoseSource* source = nullptr;  // known by address and serial (GlRenderer::releaseKeyPoses)
+    std::uint64_t serial = 0;               // the source's serial: a new source at a freed one's address differs
     std::uint32_t rows = 0, poses = 0;      // the source's rowCount() and poseCount() as last seen
     GLuint buffer = 0, texture = 0;         // made on the first fill
     std::size_t bytes = 0;                  // of `buffer`
@@ -314,13 +315,14 @@ struct GlRenderer::Impl {
         if (!cache && !e.keyPoses.empty() && !e.keyPoses.back()->source) cache = e.keyPoses.back().get();  // left by a failed check
         if (!cache) cache = e.keyPoses.emplace_back(std::make_unique<KeyPoseGpu>()).get();
         KeyPoseGpu& c = *cache;
-        if (c.source != k.source || c.rows != rows || c.poses != poses) {  // new, or the source changed shape
+        if (c.source != k.source || c.serial != k.source->serial() || c.rows != rows || c.poses != poses) {  // new, or changed
             if (static_cast<std::uint64_t>(rows) * e.gpu.vertexCount > static_cast<std::uint64_t>(maxTextureBufferTexels))
                 throw std::runtime_error("GlRenderer::draw: " + itemName(i, *item.drawable) + ": a key-pose cache of " +
                                          std::to_string(rows) + " rows of " + std::to_string(e.gpu.vertexCount) +
                                          " vertices needs more texels than this GL's texture buffer limit of " +
                                          std::to_string(maxTextureBufferTexels));
             c.source = k.source;
+            c.serial = k.source->serial();
             c.rows = rows;
             c.poses = poses;
             c.heldPose.assign(rows, kNone);

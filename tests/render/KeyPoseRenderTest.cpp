@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -469,6 +471,17 @@ TEST_F(KeyPoseRenderTest, RowsAreRetainedAcrossFramesAndRefilledOnlyWhenTheirPos
     EXPECT_EQ(renderer.statistics().keyPoseFills, 1u);
     render(renderer, camera, blended);
     EXPECT_EQ(renderer.statistics().keyPoseFills, 0u);
+
+    // A new source made where a freed one lived (same address, same shape) is another source: its
+    // rows are skinned afresh, not read from what the old one left.
+    std::optional<KeyPoseCache> reborn(std::in_place, c.tmpl, settings);
+    const KeyPoseSource* address = &*reborn;
+    render(renderer, camera, list(*reborn));
+    EXPECT_EQ(renderer.statistics().keyPoseFills, 4u);
+    reborn.emplace(c.tmpl, settings);
+    ASSERT_EQ(&*reborn, address);
+    render(renderer, camera, list(*reborn));
+    EXPECT_EQ(renderer.statistics().keyPoseFills, 4u) << "a new source at a freed one's address";
 }
 
 TEST_F(KeyPoseRenderTest, BadKeyPoseItemsThrowNamingTheItemAndDrawNothing) {

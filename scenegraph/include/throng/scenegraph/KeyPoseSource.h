@@ -4,6 +4,7 @@
 // renderer skins a row again only when the pose its own copy holds differs, so a pose kept across
 // frames is skinned once. Scenegraph-level so that DRAW needs nothing of actors.
 
+#include <atomic>
 #include <cstdint>
 #include <span>
 
@@ -14,7 +15,13 @@ namespace throng {
 /// The key-poses of one template and the rows of its cache.
 class KeyPoseSource {
 public:
+    KeyPoseSource() : serial_(nextSerial()) {}
+    KeyPoseSource(const KeyPoseSource&) : serial_(nextSerial()) {}
+    KeyPoseSource& operator=(const KeyPoseSource&) { return *this; }  // a copy is another source: keeps its own serial
     virtual ~KeyPoseSource() = default;
+    /// A number no other source of this process has had: a renderer that meets a new source at a
+    /// freed one's address tells them apart by it.
+    std::uint64_t serial() const { return serial_; }
     /// Rows of the cache: the number of key-poses it holds at once.
     virtual std::uint32_t rowCount() const = 0;
     /// Key-poses the source knows (indices 0 .. poseCount() - 1 over every clip it serves).
@@ -22,6 +29,13 @@ public:
     /// Skin palette (joint to Skeleton Root, times the inverse bind matrix) of skin `skin` in
     /// key-pose `pose`; empty when either index is out of range. Safe to call from any thread.
     virtual std::span<const glm::mat4> palette(std::uint32_t skin, std::uint32_t pose) const = 0;
+
+private:
+    static std::uint64_t nextSerial() {
+        static std::atomic<std::uint64_t> next{1};
+        return next.fetch_add(1, std::memory_order_relaxed);
+    }
+    std::uint64_t serial_;
 };
 
 /// For an item drawn from a key-pose cache (Representation::KeyPose): what its instance shows.

@@ -20,7 +20,7 @@
 // llvmpipe's rasteriser threads: on a machine shared with other work, the steadier figure) and by
 // the drawing thread's CPU time alone, and the ratios skinned / case.
 // Run from the dev or release build, the repetitions interleaved with other work on the machine:
-//   ./build/dev/benchmarks/render/bench_keypose --benchmark_repetitions=5
+//   ./build/dev/benchmarks/render/bench_keypose_draw --benchmark_repetitions=5
 //       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
 // With THRONG_BENCH_FRAMES=<folder>, each case writes its first frame there as PNG.
 
