@@ -5,6 +5,7 @@
 #include <numbers>
 #include <memory>
 #include <random>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -88,8 +89,9 @@ inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int acto
     return scene;
 }
 
-// A 2 m bar skinned to two joints: "base" at the origin and "arm" 1 m up, which turns about Z.
-inline std::shared_ptr<const ActorTemplate> skinnedBar() {
+// A 2 m bar skinned to two joints: "base" at the origin and "arm" 1 m up, which turns about Z
+// (switched off beyond `armOff` metres); no clip yet.
+inline ActorTemplateBuilder skinnedBarBuilder(const std::string& name, double armOff = 20.0) {
     SkeletonNode base;
     base.name = "base";
     SkeletonNode arm;
@@ -97,7 +99,7 @@ inline std::shared_ptr<const ActorTemplate> skinnedBar() {
     arm.parent = 0;
     arm.restTranslation = glm::vec3(0, 1, 0);
     arm.dofs = {Dof::rotation(glm::vec3(0, 0, 1), -3.2f, 3.2f)};
-    arm.deactivationDistance = 20.0;
+    arm.deactivationDistance = armOff;
     arm.inverseBind = glm::mat4(1.0f);
     arm.inverseBind[3] = glm::vec4(0, -1, 0, 1);  // inverse of the bind pose's translation
     auto mesh = makeBox("bar", glm::vec3(0, 1, 0), glm::vec3(0.05f, 1.0f, 0.05f));
@@ -108,17 +110,28 @@ inline std::shared_ptr<const ActorTemplate> skinnedBar() {
     // Joint spheres from the vertices each dominates, in the joint's frame.
     base.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
     arm.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
-    ActorTemplateBuilder real("bar");
-    real.addNode(base);
-    real.addNode(arm);
-    const int skin = real.addSkin(Skin{"bar", {0, 1}});
-    real.rootGeometry().addLevel(1000.0, std::make_shared<MeshDrawable>(mesh), skin);
+    ActorTemplateBuilder b(name);
+    b.addNode(base);
+    b.addNode(arm);
+    const int skin = b.addSkin(Skin{"bar", {0, 1}});
+    b.rootGeometry().addLevel(1000.0, std::make_shared<MeshDrawable>(mesh), skin);
+    return b;
+}
+
+// The bar's clip "bend" (2 s): the arm turns to 90 degrees over the first second and holds.
+inline std::shared_ptr<const AnimationClip> barBendClip() {
     ClipChannel bend;
     bend.node = 1;
-    bend.times = {0.0f, 1.0f, 2.0f};  // bends in the first second, holds in the next (the clip loops)
+    bend.times = {0.0f, 1.0f, 2.0f};
     bend.values = {0.0f, std::numbers::pi_v<float> / 2.0f, std::numbers::pi_v<float> / 2.0f};
-    real.addClip(std::make_shared<AnimationClip>("bend", std::vector<ClipChannel>{bend}));
-    return real.build();
+    return std::make_shared<AnimationClip>("bend", std::vector<ClipChannel>{bend});
+}
+
+// The skinned bar playing "bend".
+inline std::shared_ptr<const ActorTemplate> skinnedBar() {
+    ActorTemplateBuilder b = skinnedBarBuilder("bar");
+    b.addClip(barBendClip());
+    return b.build();
 }
 
 }  // namespace throng::testing

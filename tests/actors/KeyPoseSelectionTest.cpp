@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "ActorTestScenes.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/AnimationClip.h"
 #include "throng/actors/KeyPoseCache.h"
@@ -390,41 +391,16 @@ TEST(KeyPoseRows, RejectsBadPosesNamingThem) {
 
 namespace {
 
-// A 2 m bar skinned to "base" and "arm" (1 m up, turning about Z). Clip "bend" (2 s): the arm
-// turns to 90 degrees over the first second and holds; clip "wave" (1 s): -45 degrees and back.
+// The skinned bar of ActorTestScenes with clips "bend" (2 s: the arm turns to 90 degrees over the
+// first second and holds) and "wave" (1 s: -45 degrees and back).
 ActorTemplateBuilder barBuilder(const std::string& name, bool withClips = true) {
-    SkeletonNode base;
-    base.name = "base";
-    SkeletonNode arm;
-    arm.name = "arm";
-    arm.parent = 0;
-    arm.restTranslation = glm::vec3(0, 1, 0);
-    arm.dofs = {Dof::rotation(glm::vec3(0, 0, 1), -3.2f, 3.2f)};
-    arm.inverseBind = glm::mat4(1.0f);
-    arm.inverseBind[3] = glm::vec4(0, -1, 0, 1);
-    auto mesh = makeBox("bar", glm::vec3(0, 1, 0), glm::vec3(0.05f, 1.0f, 0.05f));
-    for (const glm::vec3& p : mesh->positions) {
-        mesh->joints0.push_back(glm::u16vec4(p.y < 1.0f ? 0 : 1, 0, 0, 0));
-        mesh->weights0.push_back(glm::vec4(1, 0, 0, 0));
-    }
-    base.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
-    arm.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
-    ActorTemplateBuilder b(name);
-    b.addNode(base);
-    b.addNode(arm);
-    const int skin = b.addSkin(Skin{"bar", {0, 1}});
-    b.rootGeometry().addLevel(1000.0, std::make_shared<MeshDrawable>(mesh), skin);
+    ActorTemplateBuilder b = throng::testing::skinnedBarBuilder(name, std::numeric_limits<double>::infinity());
     if (withClips) {
-        const float quarter = std::numbers::pi_v<float> / 2.0f;
-        ClipChannel bend;
-        bend.node = 1;
-        bend.times = {0.0f, 1.0f, 2.0f};
-        bend.values = {0.0f, quarter, quarter};
-        b.addClip(std::make_shared<AnimationClip>("bend", std::vector<ClipChannel>{bend}));
+        b.addClip(throng::testing::barBendClip());
         ClipChannel wave;
         wave.node = 1;
         wave.times = {0.0f, 0.5f, 1.0f};
-        wave.values = {0.0f, -quarter / 2.0f, 0.0f};
+        wave.values = {0.0f, -std::numbers::pi_v<float> / 4.0f, 0.0f};
         b.addClip(std::make_shared<AnimationClip>("wave", std::vector<ClipChannel>{wave}));
     }
     return b;
