@@ -17,6 +17,7 @@
 #include "throng/actors/ActorFrameStatistics.h"
 #include "throng/actors/ActorId.h"
 #include "throng/actors/Affine.h"
+#include "throng/actors/KeyPoseSelection.h"
 #include "throng/scenegraph/BoundingSphere.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/FrameContext.h"
@@ -150,6 +151,9 @@ struct CascadeFrame {
     std::vector<std::uint16_t> cacheOf;     ///< per survivor: index in settings.keyPoseCaches (kCached only)
     std::vector<KeyPoseRef> keyPoseOf;      ///< per survivor: poses needed, then the rows holding them
     std::vector<std::uint32_t> demandCount; ///< per pose of the cache being selected: actors needing it (as first pose)
+    std::vector<std::uint32_t> secondPose;  ///< per pose of the cache being selected: the second pose its actors need
+    std::vector<std::uint8_t> poseNeeded;   ///< per pose of the cache being selected: some actor needs it
+    std::vector<KeyPoseDemand> demand;      ///< the demands of the cache being selected
 
     std::vector<ChunkOutput> chunks;        ///< one per chunk of the current parallel loop
 

@@ -14,13 +14,14 @@ void selectKeyPoses(CascadeFrame& f) {
     const auto& caches = *f.settings.keyPoseCaches;
     const std::size_t n = f.survivors.size();
     ActorFrameStatistics& stats = *f.stats;
-    std::vector<KeyPoseDemand> demand;
+    std::vector<KeyPoseDemand>& demand = f.demand;
     for (std::size_t ci = 0; ci < caches.size(); ++ci) {
         KeyPoseCache& cache = *caches[ci];
         // Demands: in both modes an actor's second pose follows from its first (the same pose, or
         // the next key-pose of the clip), so counting first poses counts the demands.
         f.demandCount.assign(cache.poseCount(), 0);
-        std::vector<std::uint32_t> second(cache.poseCount(), KeyPoseRows::kNone);
+        std::vector<std::uint32_t>& second = f.secondPose;
+        second.assign(cache.poseCount(), KeyPoseRows::kNone);
         bool any = false;
         for (std::size_t k = 0; k < n; ++k) {
             if (f.outcome[k] != kCached || f.cacheOf[k] != ci) continue;
@@ -34,7 +35,8 @@ void selectKeyPoses(CascadeFrame& f) {
             cache.recordDemand(demand);
             continue;
         }
-        std::vector<std::uint8_t> needed(cache.poseCount(), 0);
+        std::vector<std::uint8_t>& needed = f.poseNeeded;
+        needed.assign(cache.poseCount(), 0);
         for (std::uint32_t p = 0; p < cache.poseCount(); ++p) {
             if (!f.demandCount[p]) continue;
             demand.push_back(KeyPoseDemand{p, second[p], f.demandCount[p]});
@@ -60,7 +62,7 @@ void selectKeyPoses(CascadeFrame& f) {
             rows.touch(ref.pose[1], f.context.frame);
             ++stats.keyPoseActors;
         }
-        stats.keyPosesHeld += rows.held().size();
+        stats.keyPosesHeld += rows.heldCount();
     }
 }
 

@@ -20,19 +20,26 @@ namespace {
 // below this share of the Refpoint Bsphere's.
 constexpr double kSecondOcclusionTest = 0.75;
 
+// Updates a tier flag kept across frames at squared detail distance `detail2`: it is set beyond
+// distance + hysteresis and cleared within distance - hysteresis, so actors near the threshold do
+// not flicker; true while set. Squared distances: no square root per actor.
+bool beyondWithHysteresis(std::uint8_t& tier, double detail2, double distance, double hysteresis) {
+    const double out = distance + hysteresis;
+    const double in = std::max(distance - hysteresis, 0.0);
+    if (tier != 0 && detail2 < in * in) tier = 0;
+    else if (tier == 0 && detail2 > out * out) tier = 1;
+    return tier != 0;
+}
+
 // Updates the hybrid tier of actor `id` at squared detail distance `detail2`; true while it is an
-// impostor. Hysteresis works on squared distances: no square root per actor.
+// impostor.
 bool impostorTier(const CascadeFrame& f, ActorId id, const ActorTemplate& tmpl, double detail2) {
     std::uint8_t& tier = (*f.impostorTier)[id];
     const Drawable* impostor = nullptr;
     for (const auto& [t, d] : *f.settings.impostors)
         if (t == &tmpl) impostor = d.get();
     if (!impostor) return tier = 0, false;
-    const double out = f.settings.impostorDistance + f.settings.impostorHysteresis;
-    const double in = std::max(f.settings.impostorDistance - f.settings.impostorHysteresis, 0.0);
-    if (tier != 0 && detail2 < in * in) tier = 0;
-    else if (tier == 0 && detail2 > out * out) tier = 1;
-    return tier != 0;
+    return beyondWithHysteresis(tier, detail2, f.settings.impostorDistance, f.settings.impostorHysteresis);
 }
 
 // The key-pose cache of `tmpl`, as its index in the settings, or -1.
@@ -45,12 +52,7 @@ int cacheOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
 
 // Updates the key-pose tier of actor `id` (the band beyond the key-pose distance); true while in it.
 bool keyPoseBand(const CascadeFrame& f, ActorId id, double detail2) {
-    std::uint8_t& tier = (*f.keyPoseTier)[id];
-    const double out = f.settings.keyPoseDistance + f.settings.keyPoseHysteresis;
-    const double in = std::max(f.settings.keyPoseDistance - f.settings.keyPoseHysteresis, 0.0);
-    if (tier != 0 && detail2 < in * in) tier = 0;
-    else if (tier == 0 && detail2 > out * out) tier = 1;
-    return tier != 0;
+    return beyondWithHysteresis((*f.keyPoseTier)[id], detail2, f.settings.keyPoseDistance, f.settings.keyPoseHysteresis);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // row, else the row of the least recently used pose that is not wanted this frame. Poses held but
 // not wanted stay until their row is needed, so they go on serving actors for free.
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,6 +37,10 @@ public:
     std::uint32_t poseCount() const { return static_cast<std::uint32_t>(poseRow_.size()); }
     /// Poses currently held, in row order.
     std::vector<std::uint32_t> held() const;
+    /// Number of rows holding a pose.
+    std::uint32_t heldCount() const {
+        return static_cast<std::uint32_t>(rowPose_.size() - static_cast<std::size_t>(std::count(rowPose_.begin(), rowPose_.end(), kNone)));
+    }
     /// Empties every row.
     void clear();
 
