@@ -58,6 +58,14 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("D")
         ->check(nonNegativeNumber())
         ->default_str("the scene's");
+    app.add_option("--morph-budget", o.morphBudget, "new morphed impostor cells per template and frame (0: show the nearest stored key-frame)")
+        ->type_name("N")
+        ->check(wholeNumber(0, 100000))
+        ->capture_default_str();
+    app.add_option("--morph", o.morph, "where impostor key-frames are morphed: grid (CPU, warp on a 4 px grid), cpu (every pixel), gl")
+        ->type_name("grid|cpu|gl")
+        ->check(oneOf({"grid", "cpu", "gl"}))
+        ->capture_default_str();
     app.footer(
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
         "+/- LOD scale, C shrink the culling pyramid (watch culling at work), O show the occlusion buffer,\n"

@@ -25,6 +25,8 @@ struct TownOptions {
     bool keyPoseCache = true;               ///< key-pose caches when the scene declares them (off: never)
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
+    int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)
+    std::string morph = "grid";             ///< where impostor cells are morphed: grid (CPU, 4 px warp grid), cpu, gl
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

@@ -86,11 +86,11 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     o.precision(6);
     o << f.number << ',' << f.time << ',' << f.stepMs << ',' << s.appMs << ',' << s.refpointMs << ',' << s.matricesBoundsMs << ','
       << s.cullMs << ',' << s.skeletonRootMs << ',' << s.cull2Ms << ',' << s.poseMs << ',' << s.cull3Ms << ',' << s.drawListMs << ','
-      << drawMs << ',' << r.sceneMs << ',' << r.meshMs << ',' << r.impostorBatchMs << ',' << r.morphs.morphMs << ','
+      << drawMs << ',' << r.sceneMs << ',' << r.meshMs << ',' << r.impostorBatchMs << ',' << r.morphMs << ','
       << r.impostorDrawMs << ',' << frameMs << ','
       << s.actorsInScene << ',' << s.culledWithGroup << ',' << s.a << ',' << s.b << ',' << s.c1 << ',' << s.c2 << ',' << s.c3_1
       << ',' << s.c3_2 << ',' << s.skeletonNodesEvaluated << ',' << s.eyeDistances << ',' << s.drawItems << ',' << r.skinnedItems
-      << ',' << s.impostors << ',' << r.morphs.synthesized << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
+      << ',' << s.impostors << ',' << r.cellsMorphed << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
@@ -242,7 +242,16 @@ int main(int argc, char** argv) {
         bar.finish(std::to_string(impostors->size()) + " templates, " + std::to_string(impostors->textureBytes() >> 20) + " MiB of atlases");
         impostors->attach(processor, impostorDistance, world->description().representation.hysteresis * impostorDistance);
     }
-    CrowdRenderer renderer(context);
+    CrowdRendererOptions rendererOptions;
+    rendererOptions.impostors.morphBudget = o.morphBudget;
+    rendererOptions.impostors.source = o.morph == "gl" ? MorphSource::Gpu : MorphSource::Cpu;
+    rendererOptions.impostors.gridStep = o.morph == "grid" ? 4 : 1;
+    CrowdRenderer renderer(context, rendererOptions);
+    if (impostors) {  // the atlases on the GPU before the first frame, not during it
+        std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
+        for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
+        renderer.preloadImpostors(drawables);
+    }
     const double aspect = double(o.width) / double(o.height);
 
     fs::create_directories(o.out);

@@ -100,8 +100,8 @@ struct Row {
         cull3 += s.cull3Ms;
         list += s.drawListMs;
         appCull += s.appCullMs();
-        batch += r.impostorBatchMs - r.morphs.morphMs;
-        morph += r.morphs.morphMs;
+        batch += r.impostorBatchMs - r.morphMs;
+        morph += r.morphMs;
         town += r.sceneMs;
         meshes += r.meshMs;
         quads += r.impostorDrawMs;

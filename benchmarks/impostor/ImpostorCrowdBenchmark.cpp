@@ -162,7 +162,7 @@ void HybridScene(benchmark::State& state) {
         impostors += static_cast<double>(st.impostors);
         posed += static_cast<double>(st.actorsPosed);
         nodes += static_cast<double>(st.skeletonNodesEvaluated);
-        morphed += static_cast<double>(renderer.statistics().morphs.synthesized);
+        morphed += static_cast<double>(renderer.statistics().cellsMorphed);
         t += 1.0 / 30.0;
         ++frames;
     }

@@ -11,6 +11,7 @@
 #include "throng/render/GlContext.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/GpuMorpher.h"
+#include "throng/render/ImpostorDrawable.h"
 #include "throng/render/TextOverlay.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Stopwatch.h"
@@ -65,22 +66,52 @@ void CrowdRenderer::draw(const DrawList& list) {
     stats_.meshMs += watch.elapsedMs();
     if (!impostors) return;
     if (!batcher_) {  // the first impostor: build the impostor machinery
-        if (options_.gpuMorph) gpu_ = std::make_unique<GpuMorpher>(context_);
-        cache_ = std::make_unique<MorphCache>(options_.morph, gpu_.get());
-        batcher_ = std::make_unique<ImpostorBatcher>(*cache_, options_.smoothstepViews);
-        quads_ = std::make_unique<ImpostorRenderer>(context_);
+        if (options_.morphing == ImpostorMorphing::FrameCache) {
+            if (options_.gpuMorph) gpu_ = std::make_unique<GpuMorpher>(context_);
+            cache_ = std::make_unique<MorphCache>(options_.morph, gpu_.get());
+            batcher_ = std::make_unique<ImpostorBatcher>(*cache_, options_.smoothstepViews);
+        } else {
+            batcher_ = std::make_unique<ImpostorBatcher>(options_.smoothstepViews);
+        }
+        makeQuads();
     }
     watch.restart();
     batcher_->build(list, camera_);
     stats_.impostors = batcher_->statistics();
-    stats_.morphs = cache_->statistics();
+    if (cache_) stats_.morphs = cache_->statistics();
     stats_.impostorBatchMs += watch.elapsedMs();
     watch.restart();
     context_->makeCurrent();
     quads_->draw(camera_, batcher_->instances());
     finish();
     stats_.quads = quads_->statistics();
-    stats_.impostorDrawMs += watch.elapsedMs();
+    const double quadMs = watch.elapsedMs();
+    if (cache_) {
+        stats_.cellsMorphed = stats_.morphs.synthesized;
+        stats_.morphMs = stats_.morphs.morphMs;
+        stats_.impostorDrawMs += quadMs;
+    } else {  // the pool's morphing is impostor work before the quads, whatever pass issues it
+        stats_.cellsMorphed = stats_.quads.cellsMorphed;
+        stats_.morphMs = stats_.quads.morphMs;
+        stats_.impostorBatchMs += stats_.quads.morphMs;
+        stats_.impostorDrawMs += quadMs - stats_.quads.morphMs;
+    }
+}
+
+void CrowdRenderer::makeQuads() {
+    if (quads_) return;
+    ImpostorRendererOptions o = options_.impostors;
+    // FrameCache: a layer per morphed cell of the frame, as the frame cache always had.
+    if (options_.morphing == ImpostorMorphing::FrameCache) o.poolSlots = std::max(o.poolSlots, 256);
+    quads_ = std::make_unique<ImpostorRenderer>(context_, o);
+}
+
+void CrowdRenderer::preloadImpostors(std::span<const std::shared_ptr<const ImpostorDrawable>> drawables) {
+    if (drawables.empty()) return;
+    makeQuads();
+    context_->makeCurrent();
+    for (const auto& d : drawables)
+        if (d) quads_->preload(*d);
 }
 
 void CrowdRenderer::endFrame() {
@@ -98,6 +129,8 @@ void CrowdRenderer::endFrame() {
     meshes_->endFrame();
     stats_.endFrameMs = watch.elapsedMs();
 }
+
+std::size_t CrowdRenderer::impostorTextureBytes() const { return quads_ ? quads_->textureBytes() : 0; }
 
 Image CrowdRenderer::readFrame() { return meshes_->readFrame(); }
 

@@ -23,9 +23,17 @@ void main() {
 )";
 
 // Mirrors BeierNeely.cpp line for line (lineContribution, samplePremultiplied, morphImages).
-const char* const kFragmentShader = R"(#version 330 core
+// Compiled twice: with THRONG_ARRAY_SOURCES both neighbours are layers of one texture array and
+// the cell is written into a layer of another (rows top first, as the atlas stores them); without,
+// the neighbours are two 2-D textures and the result is read back.
+const char* const kFragmentShader = R"(
+#ifdef THRONG_ARRAY_SOURCES
+uniform sampler2DArray uCells;
+uniform ivec2 uLayers;     // from, to
+#else
 uniform sampler2D uFrom;
 uniform sampler2D uTo;
+#endif
 uniform vec4 uTarget[64];
 uniform vec4 uFromLines[64];
 uniform vec4 uToLines[64];
@@ -76,12 +84,16 @@ vec2 sourcePosition(vec2 x, bool second) {
     return (any(isnan(r)) || any(isinf(r))) ? x : r;
 }
 
-vec4 texel(sampler2D image, ivec2 p) {
+vec4 texel(int image, ivec2 p) {
     if (p.x < 0 || p.y < 0 || p.x >= uSize.x || p.y >= uSize.y) return vec4(0.0);
-    return texelFetch(image, p, 0);
+#ifdef THRONG_ARRAY_SOURCES
+    return texelFetch(uCells, ivec3(p, uLayers[image]), 0);
+#else
+    return image == 0 ? texelFetch(uFrom, p, 0) : texelFetch(uTo, p, 0);
+#endif
 }
 
-vec4 samplePremultiplied(sampler2D image, vec2 position) {
+vec4 samplePremultiplied(int image, vec2 position) {
     vec2 f = position - 0.5;
     vec2 f0 = floor(f);
     vec2 w = f - f0;
@@ -93,10 +105,14 @@ vec4 samplePremultiplied(sampler2D image, vec2 position) {
 }
 
 void main() {
-    // Rows are stored top first; gl_FragCoord counts from the bottom.
+#ifdef THRONG_ARRAY_SOURCES
+    vec2 x = gl_FragCoord.xy;  // written into a layer whose rows are stored top first
+#else
+    // Read back top row first; gl_FragCoord counts from the bottom.
     vec2 x = vec2(gl_FragCoord.x, float(uSize.y) - gl_FragCoord.y);
-    vec4 c0 = samplePremultiplied(uFrom, sourcePosition(x, false));
-    vec4 c1 = samplePremultiplied(uTo, sourcePosition(x, true));
+#endif
+    vec4 c0 = samplePremultiplied(0, sourcePosition(x, false));
+    vec4 c1 = samplePremultiplied(1, sourcePosition(x, true));
     colour = clamp(c0 * (1.0 - uT) + c1 * uT, 0.0, 1.0);
 }
 )";
@@ -108,13 +124,49 @@ std::vector<float> packLines(std::span<const FeatureLine> lines) {
     return out;
 }
 
+void checkLines(const char* where, std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
+                std::span<const FeatureLine> targetLines, float t) {
+    if (fromLines.size() != targetLines.size() || toLines.size() != targetLines.size())
+        throw std::invalid_argument(std::string(where) + ": the three line sets differ in size");
+    if (targetLines.size() > GpuMorpher::kMaxLines)
+        throw std::invalid_argument(std::string(where) + ": " + std::to_string(targetLines.size()) + " lines, at most " +
+                                    std::to_string(GpuMorpher::kMaxLines));
+    if (!std::isfinite(t)) throw std::invalid_argument(std::string(where) + ": t is not finite");
+}
+
 }  // namespace
 
 struct GpuMorpher::Impl {
     std::shared_ptr<GlContext> context;  // first member: destroyed last
-    std::unique_ptr<ShaderProgram> program;
-    GLuint vao = 0, fbo = 0, target = 0, sources[2] = {0, 0};
+    std::unique_ptr<ShaderProgram> program;       // 2-D sources, read back
+    std::unique_ptr<ShaderProgram> arrayProgram;  // layers of a texture array, written into a layer
+    GLuint vao = 0, fbo = 0, layerFbo = 0, target = 0, sources[2] = {0, 0};
     int width = 0, height = 0;
+
+    // Sets the line and blend uniforms of `p` and draws the full-cell triangle into the bound
+    // framebuffer.
+    void drawCell(const ShaderProgram& p, std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
+                  std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters, int w, int h) {
+        const GladGLContext& gl = context->gl();
+        gl.UseProgram(p.id());
+        const auto n = static_cast<GLsizei>(targetLines.size());
+        if (n > 0) {
+            gl.Uniform4fv(p.uniformLocation("uTarget"), n, packLines(targetLines).data());
+            gl.Uniform4fv(p.uniformLocation("uFromLines"), n, packLines(fromLines).data());
+            gl.Uniform4fv(p.uniformLocation("uToLines"), n, packLines(toLines).data());
+        }
+        gl.Uniform1i(p.uniformLocation("uCount"), n);
+        gl.Uniform3f(p.uniformLocation("uParams"), parameters.a, parameters.b, parameters.p);
+        gl.Uniform1f(p.uniformLocation("uT"), t);
+        gl.Uniform2i(p.uniformLocation("uSize"), w, h);
+        gl.Viewport(0, 0, w, h);
+        gl.Disable(GL_BLEND);
+        gl.Disable(GL_DEPTH_TEST);
+        gl.Disable(GL_CULL_FACE);
+        gl.BindVertexArray(vao);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        gl.BindVertexArray(0);
+    }
 };
 
 GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
@@ -124,9 +176,13 @@ GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
     s.context = std::move(context);
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
-    s.program = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher shader", kVertexShader, kFragmentShader);
+    const std::string version = "#version 330 core\n";
+    s.program = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher shader", kVertexShader, version + kFragmentShader);
+    s.arrayProgram = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher array shader", kVertexShader,
+                                                     version + "#define THRONG_ARRAY_SOURCES\n" + kFragmentShader);
     gl.GenVertexArrays(1, &s.vao);
     gl.GenFramebuffers(1, &s.fbo);
+    gl.GenFramebuffers(1, &s.layerFbo);
     gl.GenTextures(1, &s.target);
     gl.GenTextures(2, s.sources);
     for (GLuint tex : s.sources) {
@@ -137,6 +193,8 @@ GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
     gl.UseProgram(s.program->id());
     gl.Uniform1i(s.program->uniformLocation("uFrom"), 0);
     gl.Uniform1i(s.program->uniformLocation("uTo"), 1);
+    gl.UseProgram(s.arrayProgram->id());
+    gl.Uniform1i(s.arrayProgram->uniformLocation("uCells"), 0);
     gl.UseProgram(0);
 }
 
@@ -151,8 +209,10 @@ GpuMorpher::~GpuMorpher() {
     gl.DeleteTextures(2, s.sources);
     gl.DeleteTextures(1, &s.target);
     gl.DeleteFramebuffers(1, &s.fbo);
+    gl.DeleteFramebuffers(1, &s.layerFbo);
     gl.DeleteVertexArrays(1, &s.vao);
     s.program.reset();
+    s.arrayProgram.reset();
 }
 
 Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
@@ -161,12 +221,7 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
     if (!from.valid() || !to.valid()) throw std::invalid_argument("GpuMorpher::morph: an image is invalid");
     if (from.width != to.width || from.height != to.height)
         throw std::invalid_argument("GpuMorpher::morph: images of different sizes");
-    if (fromLines.size() != targetLines.size() || toLines.size() != targetLines.size())
-        throw std::invalid_argument("GpuMorpher::morph: the three line sets differ in size");
-    if (targetLines.size() > kMaxLines)
-        throw std::invalid_argument("GpuMorpher::morph: " + std::to_string(targetLines.size()) +
-                                    " lines, at most " + std::to_string(kMaxLines));
-    if (!std::isfinite(t)) throw std::invalid_argument("GpuMorpher::morph: t is not finite");
+    checkLines("GpuMorpher::morph", fromLines, toLines, targetLines, t);
 
     Impl& s = *impl_;
     s.context->makeCurrent();
@@ -190,27 +245,7 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
         gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, images[i]->rgba.data());
     }
     gl.ActiveTexture(GL_TEXTURE0);
-
-    const GLuint program = s.program->id();
-    gl.UseProgram(program);
-    const auto n = static_cast<GLsizei>(targetLines.size());
-    if (n > 0) {
-        gl.Uniform4fv(s.program->uniformLocation("uTarget"), n, packLines(targetLines).data());
-        gl.Uniform4fv(s.program->uniformLocation("uFromLines"), n, packLines(fromLines).data());
-        gl.Uniform4fv(s.program->uniformLocation("uToLines"), n, packLines(toLines).data());
-    }
-    gl.Uniform1i(s.program->uniformLocation("uCount"), n);
-    gl.Uniform3f(s.program->uniformLocation("uParams"), parameters.a, parameters.b, parameters.p);
-    gl.Uniform1f(s.program->uniformLocation("uT"), t);
-    gl.Uniform2i(s.program->uniformLocation("uSize"), w, h);
-
-    gl.Viewport(0, 0, w, h);
-    gl.Disable(GL_BLEND);
-    gl.Disable(GL_DEPTH_TEST);
-    gl.Disable(GL_CULL_FACE);
-    gl.BindVertexArray(s.vao);
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
-    gl.BindVertexArray(0);
+    s.drawCell(*s.program, fromLines, toLines, targetLines, t, parameters, w, h);
 
     Image out;
     out.name = from.name + "~" + to.name;
@@ -226,6 +261,30 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
     gl.UseProgram(0);
     gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
     return out;
+}
+
+void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned target, int targetLayer, int size,
+                           std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
+                           std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters) {
+    if (cells == 0 || target == 0) throw std::invalid_argument("GpuMorpher::morphInto: a texture name is 0");
+    if (cells == target) throw std::invalid_argument("GpuMorpher::morphInto: the sources and the target are one texture");
+    if (fromLayer < 0 || toLayer < 0 || targetLayer < 0 || size <= 0)
+        throw std::invalid_argument("GpuMorpher::morphInto: negative layer or size");
+    checkLines("GpuMorpher::morphInto", fromLines, toLines, targetLines, t);
+    Impl& s = *impl_;
+    s.context->makeCurrent();
+    const GladGLContext& gl = s.context->gl();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.layerFbo);
+    gl.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, targetLayer);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("GpuMorpher::morphInto: layer " + std::to_string(targetLayer) + " of the target is not renderable");
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, cells);
+    gl.UseProgram(s.arrayProgram->id());
+    gl.Uniform2i(s.arrayProgram->uniformLocation("uLayers"), fromLayer, toLayer);
+    s.drawCell(*s.arrayProgram, fromLines, toLines, targetLines, t, parameters, size, size);
+    gl.UseProgram(0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
 }
 
 }  // namespace throng

@@ -9,13 +9,15 @@
 
 namespace throng {
 
-ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep) : cache_(cache), smoothstep_(smoothstep) {}
+ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep) : cache_(&cache), smoothstep_(smoothstep) {}
+
+ImpostorBatcher::ImpostorBatcher(bool smoothstep) : cache_(nullptr), smoothstep_(smoothstep) {}
 
 void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
     Stopwatch watch;
     stats_ = {};
     instances_.clear();
-    cache_.beginFrame();
+    if (cache_) cache_->beginFrame();
     const Vec3 eye = camera.eye();
     for (const DrawItem& item : list.items()) {
         if (item.representation != Representation::Impostor || !item.worldMatrix) continue;
@@ -41,7 +43,8 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
         if (!atlas.stored(inst.keyframe))
             for (int i = 0; i < 3; ++i)
                 if (inst.weights[static_cast<std::size_t>(i)] > 0.0f) {
-                    inst.morphed[static_cast<std::size_t>(i)] = &cache_.request(atlas, inst.views[static_cast<std::size_t>(i)], inst.keyframe);
+                    if (cache_)
+                        inst.morphed[static_cast<std::size_t>(i)] = &cache_->request(atlas, inst.views[static_cast<std::size_t>(i)], inst.keyframe);
                     ++stats_.droppedCells;
                 }
         instances_.push_back(inst);

@@ -11,9 +11,13 @@
 #include <glm/mat3x3.hpp>
 
 #include "throng/render/GlContext.h"
+#include "throng/render/GpuMorpher.h"
+#include "throng/render/GridMorph.h"
+#include "throng/render/MorphPool.h"
 #include "throng/render/ImpostorDrawable.h"
 #include "throng/render/ShaderProgram.h"
 #include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Stopwatch.h"
 
 namespace throng {
 namespace {
@@ -43,16 +47,20 @@ void main() {
 )";
 
 const char* const kFragmentShader = R"(#version 330 core
-uniform sampler2DArray uCells;
+uniform sampler2DArray uCells;  // stored cells
+uniform sampler2DArray uPool;   // morphed cells: layer -1 - l
 in vec2 vUv;
 flat in vec3 vLayers;
 flat in vec3 vWeights;
 flat in vec4 vTint;
 out vec4 fragColor;
+vec4 cell(float layer) {
+    return layer >= 0.0 ? texture(uCells, vec3(vUv, layer)) : texture(uPool, vec3(vUv, -1.0 - layer));
+}
 void main() {
-    vec4 c = vWeights.x * texture(uCells, vec3(vUv, vLayers.x));
-    if (vWeights.y > 0.0) c += vWeights.y * texture(uCells, vec3(vUv, vLayers.y));
-    if (vWeights.z > 0.0) c += vWeights.z * texture(uCells, vec3(vUv, vLayers.z));
+    vec4 c = vWeights.x * cell(vLayers.x);
+    if (vWeights.y > 0.0) c += vWeights.y * cell(vLayers.y);
+    if (vWeights.z > 0.0) c += vWeights.z * cell(vLayers.z);
     if (c.a < 0.5) discard;  // alpha test: quads write depth like the meshes they replace
     fragColor = vec4(c.rgb / c.a * vTint.rgb, 1.0);  // cells are premultiplied
 }
@@ -65,26 +73,38 @@ struct Instance {
     float weights[3];
 };
 
-// One atlas on the GPU: stored cells in layers [0, stored), morphed cells of this frame after.
+// One atlas on the GPU: stored cells in `texture`, morphed ones in `pool`.
 struct GpuAtlas {
-    unsigned texture = 0;
-    int layers = 0, stored = 0, cellSize = 0;
+    unsigned texture = 0, pool = 0;
+    int stored = 0, poolLayers = 0, cellSize = 0;
     std::vector<int> storedLayer;  // per (keyframe, view): layer, or -1 when dropped
-    std::unordered_map<const Image*, int> morphedLayer;  // this frame's morphed cells
+    std::unique_ptr<MorphPool> cells;  // which morphed cells the pool holds
+    std::unordered_map<const Image*, int> morphedLayer;  // this frame's images carried by instances
     std::vector<Instance> instances;
     std::weak_ptr<const ImpostorAtlas> owner;
+    const ImpostorAtlas* atlas = nullptr;
+    bool used = false;  // wanted by this frame
 };
+
+void setArrayParameters(const GladGLContext& gl) {
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);  // no mipmaps: complete with level 0
+}
 
 }  // namespace
 
 struct ImpostorRenderer::Impl {
     std::shared_ptr<GlContext> context;  // first member: destroyed last
+    ImpostorRendererOptions options;
     std::unique_ptr<ShaderProgram> program;
+    std::unique_ptr<GpuMorpher> morpher;  // made on the first GL morph
     unsigned vao = 0, buffer = 0;
     std::unordered_map<const ImpostorAtlas*, GpuAtlas> atlases;
     ImpostorRenderStatistics stats;
     int maxLayers = 256;
-    int morphLayers = 256;
 
     GpuAtlas& upload(const ImpostorDrawable& d) {
         const ImpostorAtlas& atlas = d.atlas();
@@ -93,24 +113,24 @@ struct ImpostorRenderer::Impl {
         const GladGLContext& gl = context->gl();
         GpuAtlas g;
         g.owner = d.atlasPtr();
+        g.atlas = &atlas;
         g.cellSize = atlas.cellSize();
         const std::uint32_t views = atlas.views().viewCount();
         g.storedLayer.assign(static_cast<std::size_t>(atlas.keyframeCount()) * views, -1);
         for (int k = 0; k < atlas.keyframeCount(); ++k)
             if (atlas.stored(k))
                 for (std::uint32_t v = 0; v < views; ++v) g.storedLayer[static_cast<std::size_t>(k) * views + v] = g.stored++;
-        g.layers = g.stored + morphLayers;
-        if (g.layers > maxLayers)
+        g.poolLayers = std::max(options.poolSlots, 1);
+        if (g.stored > maxLayers || g.poolLayers > maxLayers)
             throw std::runtime_error("ImpostorRenderer: atlas '" + atlas.templateName() + "' needs " +
-                                     std::to_string(g.layers) + " layers, the GL allows " + std::to_string(maxLayers));
+                                     std::to_string(std::max(g.stored, g.poolLayers)) + " layers, the GL allows " +
+                                     std::to_string(maxLayers));
+        g.cells = std::make_unique<MorphPool>(options.poolSlots, atlas.keyframeCount(), views);
+        const int s = atlas.cellSize();
         gl.GenTextures(1, &g.texture);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
-        const int s = atlas.cellSize();
-        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, g.layers, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, std::max(g.stored, 1), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+        setArrayParameters(gl);
         gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
         for (int k = 0; k < atlas.keyframeCount(); ++k)
             if (atlas.stored(k))
@@ -119,21 +139,65 @@ struct ImpostorRenderer::Impl {
                     gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.storedLayer[static_cast<std::size_t>(k) * views + v], s, s,
                                      1, GL_RGBA, GL_UNSIGNED_BYTE, cell.rgba.data());
                 }
+        gl.GenTextures(1, &g.pool);
+        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, g.poolLayers, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+        setArrayParameters(gl);
         ++stats.atlasUploads;
         if (it != atlases.end()) {
             gl.DeleteTextures(1, &it->second.texture);
+            gl.DeleteTextures(1, &it->second.pool);
             atlases.erase(it);
         }
         return atlases.emplace(&atlas, std::move(g)).first->second;
     }
+
+    // The stored layer shown for a cell of `keyframe` that is not ready: the nearest stored
+    // key-frame (the earlier on a tie).
+    int fallbackLayer(const GpuAtlas& g, const ImpostorAtlas& atlas, int keyframe, std::uint32_t view) const {
+        int before = keyframe, after = keyframe;
+        float t = 0.0f;
+        if (!atlas.stored(keyframe)) atlas.neighbours(keyframe, before, after, t);
+        const int k = t <= 0.5f ? before : after;
+        return std::max(g.storedLayer[static_cast<std::size_t>(k) * atlas.views().viewCount() + view], 0);
+    }
+
+    // Makes this frame's chosen cells of `g` in its pool: on the GL straight into the layer, or on
+    // the CPU and uploaded.
+    void morphCells(GpuAtlas& g, std::span<const MorphFill> fills) {
+        const ImpostorAtlas& atlas = *g.atlas;
+        const GladGLContext& gl = context->gl();
+        const std::uint32_t views = atlas.views().viewCount();
+        for (const MorphFill& f : fills) {
+            const DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
+            if (options.source == MorphSource::Gpu) {
+                if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
+                morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
+                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.pool, f.slot, g.cellSize,
+                                   c.from, c.to, c.target, c.t, options.morph.parameters);
+            } else {
+                const Image cell = options.gridStep > 1
+                                       ? morphImagesOnGrid(atlas.cell(f.view, c.before), c.from, atlas.cell(f.view, c.after), c.to,
+                                                           c.target, c.t, options.morph.parameters, options.gridStep)
+                                       : morphImages(atlas.cell(f.view, c.before), c.from, atlas.cell(f.view, c.after), c.to, c.target,
+                                                     c.t, options.morph.parameters, options.morph.threads);
+                gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+                gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+                gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                                 cell.rgba.data());
+                ++stats.morphedUploads;
+            }
+        }
+    }
 };
 
-ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, int morphLayers) {
+ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const ImpostorRendererOptions& options) {
     if (!context) throw std::invalid_argument("ImpostorRenderer: argument 'context' is null");
-    if (morphLayers < 0) throw std::invalid_argument("ImpostorRenderer: morphLayers must be >= 0");
+    if (options.poolSlots < 0) throw std::invalid_argument("ImpostorRenderer: poolSlots must be >= 0, not " + std::to_string(options.poolSlots));
+    if (options.gridStep < 1) throw std::invalid_argument("ImpostorRenderer: gridStep must be >= 1, not " + std::to_string(options.gridStep));
     impl_ = std::make_unique<Impl>();
     Impl& r = *impl_;
-    r.morphLayers = morphLayers;
+    r.options = options;
     r.context = std::move(context);
     r.context->makeCurrent();
     const GladGLContext& gl = r.context->gl();
@@ -156,6 +220,7 @@ ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, int morph
     gl.BindVertexArray(0);
     gl.UseProgram(r.program->id());
     gl.Uniform1i(r.program->uniformLocation("uCells"), 0);
+    gl.Uniform1i(r.program->uniformLocation("uPool"), 1);
     gl.UseProgram(0);
 }
 
@@ -167,21 +232,33 @@ ImpostorRenderer::~ImpostorRenderer() {
         return;
     }
     const GladGLContext& gl = r.context->gl();
-    for (auto& [atlas, g] : r.atlases) gl.DeleteTextures(1, &g.texture);
+    for (auto& [atlas, g] : r.atlases) {
+        gl.DeleteTextures(1, &g.texture);
+        gl.DeleteTextures(1, &g.pool);
+    }
     gl.DeleteBuffers(1, &r.buffer);
     gl.DeleteVertexArrays(1, &r.vao);
+    r.morpher.reset();
     r.program.reset();
 }
 
 const ImpostorRenderStatistics& ImpostorRenderer::statistics() const { return impl_->stats; }
 
+const ImpostorRendererOptions& ImpostorRenderer::options() const { return impl_->options; }
+
 std::size_t ImpostorRenderer::textureBytes() const {
     std::size_t bytes = 0;
     for (const auto& entry : impl_->atlases) {
         const GpuAtlas& g = entry.second;
-        bytes += static_cast<std::size_t>(g.layers) * static_cast<std::size_t>(g.cellSize) * static_cast<std::size_t>(g.cellSize) * 4;
+        bytes += static_cast<std::size_t>(g.stored + g.poolLayers) * static_cast<std::size_t>(g.cellSize) *
+                 static_cast<std::size_t>(g.cellSize) * 4;
     }
     return bytes;
+}
+
+void ImpostorRenderer::preload(const ImpostorDrawable& drawable) {
+    impl_->context->makeCurrent();
+    impl_->upload(drawable);
 }
 
 void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstance> instances) {
@@ -189,11 +266,39 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     r.stats = {};
     r.context->makeCurrent();
     const GladGLContext& gl = r.context->gl();
-    for (auto& [atlas, g] : r.atlases) g.instances.clear(), g.morphedLayer.clear();
+    for (auto& [atlas, g] : r.atlases) {
+        g.instances.clear();
+        g.morphedLayer.clear();
+        g.cells->beginFrame();
+        g.used = false;
+    }
+    // Pass 1: which morphed cells the frame wants, per atlas.
     for (const ImpostorInstance& inst : instances) {
         if (!inst.drawable) continue;
         GpuAtlas& g = r.upload(*inst.drawable);
+        g.used = true;
+        if (inst.drawable->atlas().stored(inst.keyframe)) continue;
+        for (std::size_t i = 0; i < 3; ++i)
+            if (inst.weights[i] > 0.0f && !inst.morphed[i]) g.cells->want(inst.keyframe, inst.views[i]);
+    }
+    // The most wanted new cells, within the budget, made now.
+    Stopwatch watch;
+    for (auto& [atlas, g] : r.atlases) {
+        if (!g.used) continue;
+        const std::span<const MorphFill> fills = g.cells->resolve(r.options.morphBudget);
+        r.morphCells(g, fills);
+        const MorphPoolStatistics& p = g.cells->statistics();
+        r.stats.cellsWanted += p.wanted;
+        r.stats.cellsResident += p.resident;
+        r.stats.cellsMorphed += p.made;
+        r.stats.cellsDeferred += p.deferred;
+    }
+    r.stats.morphMs = watch.elapsedMs();
+    // Pass 2: the quads, each cell's layer resolved.
+    for (const ImpostorInstance& inst : instances) {
+        if (!inst.drawable) continue;
         const ImpostorAtlas& atlas = inst.drawable->atlas();
+        GpuAtlas& g = r.atlases.find(&atlas)->second;
         const std::uint32_t views = atlas.views().viewCount();
         Instance out{};
         const glm::dvec3 rel = inst.centre - camera.eye();
@@ -207,23 +312,31 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             int layer = 0;
             if (inst.weights[i] <= 0.0f) {
                 layer = 0;
-            } else if (inst.morphed[i] && !g.morphedLayer.count(inst.morphed[i]) &&
-                       g.stored + static_cast<int>(g.morphedLayer.size()) >= g.layers) {
-                // Pool full: the previous key-frame (always stored next to a dropped one).
-                ++r.stats.poolOverflows;
-                layer = std::max(g.storedLayer[static_cast<std::size_t>(std::max(inst.keyframe - 1, 0)) * views + inst.views[i]], 0);
-            } else if (inst.morphed[i]) {
-                auto [it, added] = g.morphedLayer.emplace(inst.morphed[i], g.stored + static_cast<int>(g.morphedLayer.size()));
-                if (added) {
-                    gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
-                    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-                    gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, it->second, atlas.cellSize(), atlas.cellSize(), 1, GL_RGBA,
-                                     GL_UNSIGNED_BYTE, inst.morphed[i]->rgba.data());
-                    ++r.stats.morphedUploads;
-                }
-                layer = it->second;
-            } else {
+            } else if (atlas.stored(inst.keyframe)) {
                 layer = std::max(g.storedLayer[static_cast<std::size_t>(inst.keyframe) * views + inst.views[i]], 0);
+            } else if (inst.morphed[i]) {
+                // An image the batcher's MorphCache made: uploaded into a pool layer for this frame.
+                auto found = g.morphedLayer.find(inst.morphed[i]);
+                if (found == g.morphedLayer.end() && static_cast<int>(g.morphedLayer.size()) >= g.poolLayers) {
+                    ++r.stats.poolOverflows;
+                    layer = r.fallbackLayer(g, atlas, inst.keyframe, inst.views[i]);
+                } else {
+                    if (found == g.morphedLayer.end()) {
+                        if (g.morphedLayer.empty()) g.cells->clear();  // the pool's layers hold this frame's images
+                        found = g.morphedLayer.emplace(inst.morphed[i], static_cast<int>(g.morphedLayer.size())).first;
+                        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+                        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+                        gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, found->second, atlas.cellSize(), atlas.cellSize(), 1, GL_RGBA,
+                                         GL_UNSIGNED_BYTE, inst.morphed[i]->rgba.data());
+                        ++r.stats.morphedUploads;
+                    }
+                    layer = -1 - found->second;
+                }
+            } else if (const int slot = g.cells->slotOf(inst.keyframe, inst.views[i]); slot >= 0) {
+                layer = -1 - slot;
+            } else {
+                ++r.stats.poolOverflows;
+                layer = r.fallbackLayer(g, atlas, inst.keyframe, inst.views[i]);
             }
             out.layers[i] = static_cast<float>(layer);
         }
@@ -245,10 +358,12 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     gl.UniformMatrix4fv(r.program->uniformLocation("uViewRotationProjection"), 1, GL_FALSE, &vrp[0][0]);
     gl.Uniform3f(r.program->uniformLocation("uRight"), right.x, right.y, right.z);
     gl.Uniform3f(r.program->uniformLocation("uUp"), up.x, up.y, up.z);
-    gl.ActiveTexture(GL_TEXTURE0);
     gl.BindVertexArray(r.vao);
     for (auto& [atlas, g] : r.atlases) {
         if (g.instances.empty()) continue;
+        gl.ActiveTexture(GL_TEXTURE1);
+        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+        gl.ActiveTexture(GL_TEXTURE0);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
         gl.BindBuffer(GL_ARRAY_BUFFER, r.buffer);
         gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(g.instances.size() * sizeof(Instance)), g.instances.data(),

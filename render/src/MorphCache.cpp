@@ -8,25 +8,28 @@
 
 namespace throng {
 
+DroppedCellLines droppedCellLines(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options) {
+    if (keyframe < 0 || keyframe >= atlas.keyframeCount() || view >= atlas.views().viewCount())
+        throw std::invalid_argument("droppedCellLines: view " + std::to_string(view) + " key-frame " +
+                                    std::to_string(keyframe) + " out of range");
+    DroppedCellLines c;
+    atlas.neighbours(keyframe, c.before, c.after, c.t);
+    const std::vector<std::uint32_t> bones = atlas.strongestBones(options.features);
+    for (std::uint32_t b : bones) {
+        c.from.push_back(atlas.lines(view, c.before)[b]);
+        c.to.push_back(atlas.lines(view, c.after)[b]);
+        c.target.push_back(atlas.lines(view, keyframe)[b]);
+    }
+    if (!options.skeletonTargets) interpolateLines(c.from, c.to, c.t, c.target);
+    return c;
+}
+
 Image morphDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options,
                        GpuMorpher* gpu) {
-    if (keyframe < 0 || keyframe >= atlas.keyframeCount() || view >= atlas.views().viewCount())
-        throw std::invalid_argument("morphDroppedCell: view " + std::to_string(view) + " key-frame " +
-                                    std::to_string(keyframe) + " out of range");
-    int before = 0, after = 0;
-    float t = 0.5f;
-    atlas.neighbours(keyframe, before, after, t);
-    const std::vector<std::uint32_t> bones = atlas.strongestBones(options.features);
-    std::vector<FeatureLine> from, to, target;
-    for (std::uint32_t b : bones) {
-        from.push_back(atlas.lines(view, before)[b]);
-        to.push_back(atlas.lines(view, after)[b]);
-        target.push_back(atlas.lines(view, keyframe)[b]);
-    }
-    if (!options.skeletonTargets) interpolateLines(from, to, t, target);
-    const Image a = atlas.cell(view, before), b = atlas.cell(view, after);
-    return gpu ? gpu->morph(a, from, b, to, target, t, options.parameters)
-               : morphImages(a, from, b, to, target, t, options.parameters, options.threads);
+    const DroppedCellLines c = droppedCellLines(atlas, view, keyframe, options);
+    const Image a = atlas.cell(view, c.before), b = atlas.cell(view, c.after);
+    return gpu ? gpu->morph(a, c.from, b, c.to, c.target, c.t, options.parameters)
+               : morphImages(a, c.from, b, c.to, c.target, c.t, options.parameters, options.threads);
 }
 
 MorphCache::MorphCache(const MorphCacheOptions& options, GpuMorpher* gpu) : options_(options), gpu_(gpu) {}

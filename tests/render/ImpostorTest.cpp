@@ -174,6 +174,12 @@ namespace {
 
 // A hybrid scene: one actor near (geometry), four far (impostors) drawn by GlRenderer then
 // ImpostorRenderer; and one far actor drawn both ways covers about the same pixels.
+CrowdRendererOptions cpuMorphing() {
+    CrowdRendererOptions ro;
+    ro.impostors.source = MorphSource::Cpu;
+    return ro;
+}
+
 struct HybridScene {
     Crowd crowd;
     std::shared_ptr<Group> root = std::make_shared<Group>();
@@ -192,12 +198,13 @@ struct HybridScene {
         camera.setLookAt(Vec3(0, 1, 10), Vec3(0, 1, -60));
     }
 
-    Image render(double impostorDistance, std::uint64_t* impostors = nullptr) {
+    // The scene drawn once at clip time `t` (default: a dropped key-frame, so the morph path is
+    // drawn); with `frames` > 1 drawn that many times by one renderer, the last returned.
+    Image render(double impostorDistance, std::uint64_t* impostors = nullptr, CrowdRendererOptions ro = cpuMorphing(),
+                 double t = 0.25, int frames = 1, CrowdRenderStatistics* last = nullptr) {
         BakedHumanoid& b = BakedHumanoid::get();
-        CrowdRendererOptions ro;
         ro.meshes.width = 160, ro.meshes.height = 120;
         ro.meshes.captureFrames = true;
-        ro.gpuMorph = false;
         CrowdRenderer renderer(b.context, ro);
         auto atlas = std::make_shared<ImpostorAtlas>(*b.full);
         atlas->dropOddKeyframes();
@@ -205,9 +212,9 @@ struct HybridScene {
         ActorProcessor processor(crowd);
         processor.setImpostorDistance(impostorDistance, 1.0);
         processor.setImpostor(*b.tmpl, drawable);
-        const double t = 0.25;  // a dropped key-frame (1 of 8 over 2 s): the morph path is drawn
-        processor.processFrame(*root, camera, t, &renderer);
+        for (int f = 0; f < frames; ++f) processor.processFrame(*root, camera, t, &renderer);
         if (impostors) *impostors = renderer.statistics().quads.instances;
+        if (last) *last = renderer.statistics();
         EXPECT_EQ(renderer.statistics().quads.instances, processor.statistics().impostors);
         return renderer.meshes().lastFrame();
     }
@@ -274,6 +281,47 @@ TEST(Impostor, EachImpostorIsDrawnInsideItsActorsSklsrootSphere) {
         drawn += inside;
     }
     EXPECT_GT(drawn, 100u);
+}
+
+// The pool's morphed cells, made by the GL straight into a texture layer, by the CPU, or (as
+// before) through the batcher's MorphCache and read back, show the same impostors.
+TEST(Impostor, PoolMorphsAgreeWithTheFrameCache) {
+    HybridScene scene({Vec3(-4, 0, -30), Vec3(0, 0, -35), Vec3(4, 0, -40), Vec3(8, 0, -45)});
+    CrowdRendererOptions gl, cpu = cpuMorphing(), before;
+    gl.impostors.source = MorphSource::Gpu;
+    before.morphing = ImpostorMorphing::FrameCache;
+    CrowdRenderStatistics stats;
+    const Image a = scene.render(1.0, nullptr, gl, 0.25, 1, &stats);
+    EXPECT_GT(stats.cellsMorphed, 0u);
+    EXPECT_EQ(stats.quads.poolOverflows, 0u);
+    const Image b = scene.render(1.0, nullptr, cpu);
+    const Image c = scene.render(1.0, nullptr, before);
+    EXPECT_LT(compareImages(a, c, 2).fractionOverThreshold, 0.001) << "GL pool against the frame cache";
+    EXPECT_LT(compareImages(b, c, 2).fractionOverThreshold, 0.001) << "CPU pool against the frame cache";
+}
+
+// A cell morphed once stays in the pool: the next frames of the same state make none.
+TEST(Impostor, PoolKeepsCellsAcrossFrames) {
+    HybridScene scene({Vec3(-4, 0, -30), Vec3(0, 0, -35), Vec3(4, 0, -40)});
+    CrowdRenderStatistics stats;
+    scene.render(1.0, nullptr, cpuMorphing(), 0.25, 3, &stats);
+    EXPECT_EQ(stats.cellsMorphed, 0u);
+    EXPECT_GT(stats.quads.cellsResident, 0u);
+    EXPECT_EQ(stats.quads.cellsResident, stats.quads.cellsWanted);
+}
+
+// With no budget for morphing, a dropped key-frame shows its nearest stored key-frame: the image
+// is the one drawn at that stored key-frame's time, and differs from the morphed one.
+TEST(Impostor, ZeroBudgetShowsTheNearestStoredKeyframe) {
+    HybridScene scene({Vec3(-4, 0, -30), Vec3(0, 0, -35), Vec3(4, 0, -40)});
+    CrowdRendererOptions none = cpuMorphing();
+    none.impostors.morphBudget = 0;
+    CrowdRenderStatistics stats;
+    const Image unmorphed = scene.render(1.0, nullptr, none, 0.25, 1, &stats);  // key-frame 1 of 8 over 2 s: dropped
+    EXPECT_EQ(stats.cellsMorphed, 0u);
+    EXPECT_GT(stats.quads.poolOverflows, 0u);
+    EXPECT_EQ(unmorphed.rgba, scene.render(1.0, nullptr, none, 0.0).rgba);  // key-frame 0: stored
+    EXPECT_NE(unmorphed.rgba, scene.render(1.0, nullptr, cpuMorphing(), 0.25).rgba);
 }
 
 }  // namespace

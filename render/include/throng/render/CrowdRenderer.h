@@ -8,6 +8,7 @@
 // the first impostor item: a scene without impostors never pays for it.
 
 #include <memory>
+#include <span>
 #include <string>
 
 #include "throng/render/ImpostorBatcher.h"
@@ -28,15 +29,24 @@ class GpuMorpher;
 class ImageOverlay;
 class TextOverlay;
 
+/// How a CrowdRenderer morphs the impostors' dropped key-frames.
+enum class ImpostorMorphing {
+    Pool,        ///< the renderer's pool: cells kept on the GPU across frames, a budget of new ones a frame
+    FrameCache,  ///< the batcher's MorphCache: every cell of the frame made (or kept on the CPU) and uploaded each frame
+};
+
 /// How a CrowdRenderer draws.
 struct CrowdRendererOptions {
     RendererOptions meshes;          ///< the mesh renderer's options
-    MorphCacheOptions morph = [] {   ///< the morph cache (cells kept across frames)
+    /// The impostor quads and their pool of morphed cells (pool size, morph budget, GL or CPU).
+    ImpostorRendererOptions impostors;
+    ImpostorMorphing morphing = ImpostorMorphing::Pool;  ///< how dropped key-frames are made
+    MorphCacheOptions morph = [] {   ///< FrameCache only: the morph cache (cells kept across frames)
         MorphCacheOptions o;
         o.capacity = 4096;
         return o;
     }();
-    bool gpuMorph = true;            ///< morph dropped key-frames with the GL (else on the CPU)
+    bool gpuMorph = true;            ///< FrameCache only: morph with the GL and read back (else on the CPU)
     bool smoothstepViews = false;    ///< bias view blending towards the dominant view (seed 003)
     /// Waits for the GL after each pass, so each pass's time includes its rasterisation (for
     /// benchmarks: a software GL otherwise rasterises when the frame ends). Slightly slower.
@@ -47,7 +57,9 @@ struct CrowdRendererOptions {
 struct CrowdRenderStatistics {
     RenderStatistics meshes;             ///< the mesh passes (scene and actors together)
     ImpostorBatchStatistics impostors;   ///< impostor selection and batching (morphing included)
-    MorphCacheStatistics morphs;         ///< the morph cache's work
+    MorphCacheStatistics morphs;         ///< FrameCache: the morph cache's work
+    std::uint64_t cellsMorphed = 0;      ///< morphed cells made this frame (either way)
+    double morphMs = 0;                  ///< time making them (part of impostorBatchMs)
     ImpostorRenderStatistics quads;      ///< the quad pass
     std::uint64_t sceneItems = 0;        ///< items of the generic scene (no actor)
     std::uint64_t skinnedItems = 0;      ///< mesh items drawn with a skin palette
@@ -75,6 +87,8 @@ public:
     void draw(const DrawList& list) override;
     void endFrame() override;
 
+    /// Uploads these impostors' stored cells now rather than at their first frame (a steady start).
+    void preloadImpostors(std::span<const std::shared_ptr<const ImpostorDrawable>> drawables);
     /// Text drawn over the next frames (lines separated by '\n'; empty: none).
     void setOverlayText(std::string text) { overlayText_ = std::move(text); }
     /// An image drawn over the next frames in the bottom-right corner (empty: none).
@@ -83,10 +97,14 @@ public:
     const CrowdRenderStatistics& statistics() const { return stats_; }
     /// The mesh renderer (viewport, resources, options).
     GlRenderer& meshes() { return *meshes_; }
+    /// Bytes of GPU texture the impostors hold (stored cells and pools; 0 before any impostor).
+    std::size_t impostorTextureBytes() const;
     /// Reads the framebuffer into an RGBA8 image, top row first (see GlRenderer::readFrame).
     Image readFrame();
 
 private:
+    void makeQuads();
+
     std::shared_ptr<GlContext> context_;
     CrowdRendererOptions options_;
     std::unique_ptr<GlRenderer> meshes_;

@@ -29,7 +29,8 @@ struct ImpostorInstance {
     std::array<std::uint32_t, 3> views{};  ///< views blended
     std::array<float, 3> weights{};        ///< their weights (sum 1)
     int keyframe = 0;                      ///< key-frame shown
-    /// Morphed cells of a dropped key-frame (null for a stored key-frame or a zero weight).
+    /// Morphed cells of a dropped key-frame, when the batcher has a MorphCache (null for a stored
+    /// key-frame, a zero weight, or cells left to the renderer's pool).
     std::array<const Image*, 3> morphed{};
 };
 
@@ -43,9 +44,13 @@ struct ImpostorBatchStatistics {
 /// Turns impostor draw items into quad instances, morphing through a MorphCache.
 class ImpostorBatcher {
 public:
-    /// A batcher requesting dropped cells from `cache` (which must outlive it). `smoothstep`
+    /// A batcher requesting dropped cells from `cache` (which must outlive it) on the CPU side:
+    /// every instance showing a dropped key-frame carries its morphed images. `smoothstep`
     /// biases view weights towards the dominant view (seed 003).
     explicit ImpostorBatcher(MorphCache& cache, bool smoothstep = false);
+    /// A batcher that morphs nothing: instances of dropped key-frames carry no image, and the
+    /// renderer's pool of morphed cells provides them (ImpostorRenderer).
+    explicit ImpostorBatcher(bool smoothstep = false);
     /// Starts the cache's frame and builds the instances of `list`'s impostor items (an
     /// ImpostorDrawable, Representation::Impostor) seen by `camera`; each shows the key-frame of
     /// the clip time its item records. Other items are ignored.
@@ -56,7 +61,7 @@ public:
     const ImpostorBatchStatistics& statistics() const { return stats_; }
 
 private:
-    MorphCache& cache_;
+    MorphCache* cache_;
     bool smoothstep_;
     std::vector<ImpostorInstance> instances_;
     ImpostorBatchStatistics stats_;

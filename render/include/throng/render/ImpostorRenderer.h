@@ -1,8 +1,11 @@
 #pragma once
 // Draws ImpostorBatcher's instances with OpenGL: camera-facing quads, one instanced call per atlas,
 // each blending its three view cells by their weights in the fragment shader. An atlas's stored
-// cells live in one 2-D array texture (a layer per cell, uploaded once); the morphed cells of the
-// frame are uploaded into extra layers, once per cell whatever the number of actors showing it.
+// cells live in one 2-D array texture (a layer per cell, uploaded once); its morphed cells live in
+// a second, small one, the pool (MorphPool): a cell is morphed once into a pool layer and stays
+// there across frames while it is used, at most `morphBudget` new cells a frame, the most wanted
+// first; an impostor whose cell is not ready shows its nearest stored key-frame. Cells are morphed
+// by the GL straight into the pool (no read-back) or on the CPU and uploaded.
 // Draw after GlRenderer::draw() and before endFrame(): quads are depth-tested against the meshes.
 
 #include <cstdint>
@@ -10,30 +13,52 @@
 #include <span>
 
 #include "throng/render/ImpostorBatcher.h"
+#include "throng/render/MorphCache.h"
 
 namespace throng {
 
 class Camera;
 class GlContext;
 
+/// Where the pool's new cells are morphed.
+enum class MorphSource {
+    Gpu,  ///< by the GL, into the pool layer (GpuMorpher::morphInto): no read-back, no upload
+    Cpu,  ///< on the CPU (morphImages), then uploaded into the pool layer
+};
+
+/// How an ImpostorRenderer keeps and makes morphed cells.
+struct ImpostorRendererOptions {
+    /// Pool layers per atlas (texture memory: stored cells + these). Instances that carry their
+    /// own morphed images (a batcher with a MorphCache) use them as per-frame layers instead.
+    int poolSlots = 48;
+    int morphBudget = 16;                   ///< new cells morphed per atlas and frame (negative: no limit)
+    MorphSource source = MorphSource::Gpu;  ///< where new cells are morphed
+    /// Cpu: the warp evaluated every gridStep pixels and interpolated between (morphImagesOnGrid;
+    /// 1: at every pixel, as the GL does).
+    int gridStep = 1;
+    MorphCacheOptions morph;                ///< features, line targets, Beier-Neely parameters, CPU threads
+};
+
 /// What ImpostorRenderer did in the last draw().
 struct ImpostorRenderStatistics {
     std::uint64_t drawCalls = 0;         ///< instanced calls
     std::uint64_t instances = 0;         ///< quads
-    std::uint64_t morphedUploads = 0;    ///< morphed cells uploaded this frame
+    std::uint64_t morphedUploads = 0;    ///< morphed images uploaded this frame (CPU-made cells)
     std::uint64_t atlasUploads = 0;      ///< atlases uploaded this frame (first use)
-    std::uint64_t poolOverflows = 0;     ///< cell uses shown as their previous key-frame: morph pool full
+    std::uint64_t poolOverflows = 0;     ///< cell uses shown as their nearest stored key-frame: not ready
+    std::uint64_t cellsWanted = 0;       ///< distinct morphed cells the frame wants (pool path)
+    std::uint64_t cellsResident = 0;     ///< of those, made in an earlier frame
+    std::uint64_t cellsMorphed = 0;      ///< made this frame
+    std::uint64_t cellsDeferred = 0;     ///< left to later frames by the budget or the pool size
+    double morphMs = 0;                  ///< time issuing (GL) or doing (CPU) this frame's morphs
 };
 
 /// Camera-facing impostor quads drawn into a context's current framebuffer.
 class ImpostorRenderer {
 public:
-    /// Compiles the quad program in `context`; each atlas gets `morphLayers` layers for the morphed
-    /// cells of a frame beside its stored cells (texture memory: stored + morphLayers cells; a
-    /// frame needing more shows the previous key-frame for the rest). Throws
-    /// std::invalid_argument if `context` is null and std::runtime_error with the log if a shader
-    /// fails.
-    explicit ImpostorRenderer(std::shared_ptr<GlContext> context, int morphLayers = 256);
+    /// Compiles the quad program in `context`. Throws std::invalid_argument if `context` is null
+    /// or an option is out of range, and std::runtime_error with the log if a shader fails.
+    explicit ImpostorRenderer(std::shared_ptr<GlContext> context, const ImpostorRendererOptions& options = {});
     ~ImpostorRenderer();
     ImpostorRenderer(const ImpostorRenderer&) = delete;
     ImpostorRenderer& operator=(const ImpostorRenderer&) = delete;
@@ -42,9 +67,13 @@ public:
     /// test and alpha test. Throws std::runtime_error if an atlas needs more layers than the GL
     /// allows.
     void draw(const Camera& camera, std::span<const ImpostorInstance> instances);
+    /// Uploads `drawable`'s stored cells now rather than at its first draw (a steady first frame).
+    void preload(const ImpostorDrawable& drawable);
+    /// Options.
+    const ImpostorRendererOptions& options() const;
     /// Statistics of the last draw().
     const ImpostorRenderStatistics& statistics() const;
-    /// Bytes of GPU texture held for impostors (all atlases uploaded so far).
+    /// Bytes of GPU texture held for impostors (all atlases uploaded so far: stored cells and pools).
     std::size_t textureBytes() const;
 
 private:

@@ -38,6 +38,18 @@ struct MorphCacheStatistics {
     double morphMs = 0;             ///< time spent morphing the synthesized cells
 };
 
+/// What morphing one dropped cell takes: its stored neighbours, the fraction between them, and
+/// the three line sets (the strongest `options.features` bones).
+struct DroppedCellLines {
+    int before = 0, after = 0;                  ///< stored neighbouring key-frames
+    float t = 0.5f;                             ///< fraction from `before` to `after`
+    std::vector<FeatureLine> from, to, target;  ///< lines in `before`, in `after`, of the in-between
+};
+
+/// The neighbours and lines of dropped key-frame `keyframe` of `atlas` seen from `view`. Throws
+/// std::invalid_argument if the cell is out of range or the key-frame is stored.
+DroppedCellLines droppedCellLines(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options);
+
 /// The in-between cell of dropped key-frame `keyframe` of `atlas` seen from `view`: its stored
 /// neighbours morphed with the strongest `options.features` bones. With `gpu`, morphed there.
 Image morphDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options,

@@ -1,0 +1,345 @@
+// bench_impostor_frame: what far actors cost as impostors, against drawing them as meshes, on the
+// identical state (seed 000's claim that impostors are the cheap tier, measured on this GL).
+//
+// Each tick the simulation steps once, outside every processor; the camera follows the scene's
+// path (every method on that camera). Methods, each with its own processor and
+// renderer (the GL finished after each pass, so each pass's time holds its rasterisation):
+// Measured in runs of consecutive frames from a few points of the camera path (the overview, the
+// street, above the roofs), as throng-town would see them.
+//   - all skinned: no impostors, no key-pose caches (the reference image);
+//   - no impostors: the scene's key-pose caches drawn out to any distance (throng-town
+//     --impostor-distance 0);
+//   - impostors as before: the frame's morphed cells made through a MorphCache and read back, then
+//     uploaded every frame (ImpostorMorphing::FrameCache);
+//   - impostors, pool: morphed cells kept on the GPU across frames, at most `--budget` new ones per
+//     atlas and frame, made by the GL into the pool or on the CPU and uploaded; and the same with
+//     no budget (the budget's image error is measured against it).
+// Reports per method: APP+CULL, DRAW, the impostor pass (selection, batching, morphing, quads),
+// cells morphed and deferred per frame, impostor texture bytes, and the image error of the frame
+// against all skinned (PSNR, SSIM, share of pixels off by more than 8/255) and, for budgets,
+// against the unlimited pool. The state digest must agree for every method of a tick.
+//
+// `--sections crowd`: seed 000's crowd, 16,384 actors in the town all drawn as impostors (impostor
+// distance 1 m) from the overview camera; the impostor pass alone, per morph path.
+//
+// usage: bench_impostor_frame --help
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "FrameWorld.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/ImageCompare.h"
+#include "throng/render/ImageSimilarity.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
+
+using namespace throng;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& why) { bench::fail("bench_impostor_frame", why); }
+
+struct Options {
+    std::int64_t actors = 0;     // 0: the scene's own count
+    std::vector<double> starts{0.0, 9.0, 15.0};  // camera path times where measured runs start
+    int frames = 16;             // measured ticks from each start, the camera following the path
+    int warmup = 30;             // ticks simulated first
+    int errorEvery = 4;          // ticks between image comparisons
+    int budget = 16;             // new morphed cells per atlas and frame
+    int poolSlots = 48;          // pool layers per atlas
+    int gridStep = 4;            // the CPU grid methods' warp grid (pixels)
+    std::vector<int> gridBudgets{0, 2, 4, 16};  // budgets of the CPU grid methods (the budget knob)
+    std::int64_t crowdActors = 16384;
+    int crowdFrames = 12;
+    int width = 1280, height = 720;
+    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::vector<std::string> sections{"methods"};
+    std::string markdown, accuracyCsv;
+    bool has(const char* s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
+};
+
+enum class Kind { AllSkinned, NoImpostors, Impostors };
+
+struct Method {
+    std::string name;
+    Kind kind = Kind::Impostors;
+    CrowdRendererOptions renderer;
+    std::unique_ptr<ActorProcessor> processor;
+    std::unique_ptr<CrowdRenderer> draw;
+};
+
+// Means over the measured ticks of one method.
+struct Row {
+    std::string method;
+    double appCull = 0, draw = 0, town = 0, meshes = 0, impostor = 0, morph = 0, quads = 0;
+    double impostors = 0, morphed = 0, deferred = 0, textureBytes = 0, ticks = 0;
+    double psnr = 0, ssim = 0, off8 = 0, images = 0;          // against all skinned
+    double psnrPool = 0, ssimPool = 0, off8Pool = 0, imagesPool = 0;  // against the unlimited pool
+    void add(const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double drawMs) {
+        appCull += s.appCullMs();
+        draw += drawMs;
+        town += r.sceneMs;
+        meshes += r.meshMs;
+        impostor += r.impostorBatchMs + r.impostorDrawMs;
+        morph += r.morphMs;
+        quads += r.impostorDrawMs;
+        impostors += double(r.quads.instances);
+        morphed += double(r.cellsMorphed);
+        deferred += double(r.quads.cellsDeferred);
+        ticks += 1;
+    }
+    void divide() {
+        for (double* v : {&appCull, &draw, &town, &meshes, &impostor, &morph, &quads, &impostors, &morphed, &deferred}) *v /= std::max(ticks, 1.0);
+        if (images > 0) psnr /= images, ssim /= images, off8 /= images;
+        if (imagesPool > 0) psnrPool /= imagesPool, ssimPool /= imagesPool, off8Pool /= imagesPool;
+    }
+};
+
+void compare(const Image& a, const Image& b, double& psnr, double& ssim, double& off8, double& n) {
+    const ImageDifference d = compareImages(a, b, 8);
+    psnr += std::min(d.psnr, 99.0);
+    ssim += structuralSimilarity(a, b);
+    off8 += d.fractionOverThreshold;
+    n += 1;
+}
+
+CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1) {
+    CrowdRendererOptions r;
+    r.impostors.gridStep = gridStep;
+    r.finishPasses = true;
+    r.impostors.poolSlots = o.poolSlots;
+    r.impostors.morphBudget = budget;
+    r.impostors.source = source;
+    return r;
+}
+
+std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& context) {
+    auto world = bench::buildWorld(o.scene, o.actors);
+    auto impostors = bench::bakeImpostors(context, *world);
+    context->resize(o.width, o.height);
+    const auto [distance, hysteresis] = bench::impostorDistance(*world);
+    std::vector<Method> methods;
+    CrowdRendererOptions finished;
+    finished.finishPasses = true;
+    CrowdRendererOptions before = finished;
+    before.morphing = ImpostorMorphing::FrameCache;
+    methods.push_back({"all skinned", Kind::AllSkinned, finished, nullptr, nullptr});
+    methods.push_back({"no impostors (key-pose caches to any distance)", Kind::NoImpostors, finished, nullptr, nullptr});
+    methods.push_back({"impostors as before (frame cache, read back)", Kind::Impostors, before, nullptr, nullptr});
+    methods.push_back({"impostors, pool, GL, budget " + std::to_string(o.budget), Kind::Impostors,
+                       poolOptions(o, MorphSource::Gpu, o.budget), nullptr, nullptr});
+    methods.push_back({"impostors, pool, CPU, budget " + std::to_string(o.budget), Kind::Impostors,
+                       poolOptions(o, MorphSource::Cpu, o.budget), nullptr, nullptr});
+    for (int budget : o.gridBudgets)
+        methods.push_back({budget == 0 ? std::string("impostors, pool, no morphing (budget 0: nearest stored key-frame)")
+                                       : "impostors, pool, CPU on a " + std::to_string(o.gridStep) + " px grid, budget " + std::to_string(budget),
+                           Kind::Impostors, poolOptions(o, MorphSource::Cpu, budget, o.gridStep), nullptr, nullptr});
+    methods.push_back({"impostors, pool, GL, no budget", Kind::Impostors, poolOptions(o, MorphSource::Gpu, -1), nullptr, nullptr});
+    const std::size_t unlimited = methods.size() - 1;
+    const auto& declared = world->description().representation;
+    std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
+    for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
+    for (Method& m : methods) {
+        m.processor = std::make_unique<ActorProcessor>(world->crowd());
+        if (declared.occlusion) m.processor->setOcclusion(declared.occlusion);
+        if (m.kind != Kind::AllSkinned && declared.keyPoseCache) {
+            for (auto& cache : world->makeKeyPoseCaches()) m.processor->setKeyPoseCache(std::move(cache));
+            m.processor->setKeyPoseDistance(declared.keyPoseCache->distance, declared.hysteresis * declared.keyPoseCache->distance);
+        }
+        if (m.kind == Kind::Impostors) impostors->attach(*m.processor, distance, hysteresis);
+        m.draw = std::make_unique<CrowdRenderer>(context, m.renderer);
+        if (m.kind == Kind::Impostors) m.draw->preloadImpostors(drawables);
+    }
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    std::vector<Row> rows(methods.size());
+    for (std::size_t m = 0; m < methods.size(); ++m) rows[m].method = methods[m].name;
+    const double aspect = double(o.width) / double(o.height);
+    std::vector<Image> frames(methods.size());
+    const double step = world->description().step;
+    for (double start : o.starts)
+    for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks warm the GL and the pools
+        const FrameContext& now = world->step();
+        const Camera camera = world->camera().at(start + step * (f + 2), aspect);
+        const bool measureError = f >= 0 && f % o.errorEvery == 0;
+        std::uint64_t digest = 0;
+        for (std::size_t i = 0; i < methods.size(); ++i) {
+            const std::size_t m = (i + std::size_t(f + 2)) % methods.size();  // methods take turns going first
+            const ActorFrameStatistics s = methods[m].processor->processFrame(world->root(), camera, now.time);
+            const std::uint64_t d = bench::stateDigest(world->crowd());
+            if (i == 0) digest = d;
+            else if (d != digest) fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
+            Stopwatch watch;
+            methods[m].draw->drawFrame(camera, methods[m].processor->drawList());
+            const double drawMs = watch.elapsedMs();
+            if (f < 0) continue;
+            rows[m].add(s, methods[m].draw->statistics(), drawMs);
+            if (measureError) frames[m] = methods[m].draw->readFrame();
+        }
+        if (!measureError) continue;
+        for (std::size_t m = 1; m < methods.size(); ++m) {
+            compare(frames[m], frames[0], rows[m].psnr, rows[m].ssim, rows[m].off8, rows[m].images);
+            if (methods[m].kind == Kind::Impostors && m != unlimited)
+                compare(frames[m], frames[unlimited], rows[m].psnrPool, rows[m].ssimPool, rows[m].off8Pool, rows[m].imagesPool);
+        }
+    }
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        rows[m].textureBytes = double(methods[m].draw->impostorTextureBytes());
+        rows[m].divide();
+    }
+    std::fprintf(stderr, "bench_impostor_frame: %zu actors, %zu runs of %d frames along the path done\n", world->crowd().size(),
+                 o.starts.size(), o.frames);
+    return rows;
+}
+
+std::string methodsTable(const std::vector<Row>& rows) {
+    std::ostringstream t;
+    char line[1024];
+    t << "| method | APP+CULL | DRAW | town | meshes | impostor pass | of which morphing | quads | impostors | cells morphed | "
+         "cells deferred | impostor texture MiB | PSNR dB | SSIM | pixels off > 8 | vs unlimited pool: PSNR / SSIM / off > 8 |\n"
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    for (const Row& r : rows) {
+        const bool img = r.images > 0, pool = r.imagesPool > 0;
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s |\n",
+                      r.method.c_str(), r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.impostors, r.morphed, r.deferred,
+                      r.textureBytes / 1048576.0, img ? std::to_string(r.psnr).substr(0, 5).c_str() : "-",
+                      img ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
+                      img ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-",
+                      pool ? (std::to_string(r.psnrPool).substr(0, 5) + " / " + std::to_string(r.ssimPool).substr(0, 6) + " / " +
+                              std::to_string(100.0 * r.off8Pool).substr(0, 5) + " %").c_str()
+                           : "-");
+        t << line;
+    }
+    return t.str();
+}
+
+// Seed 000's crowd: every actor an impostor, the overview camera; the impostor pass per path.
+std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context) {
+    auto world = bench::buildWorld(o.scene, o.crowdActors);
+    auto impostors = bench::bakeImpostors(context, *world);
+    context->resize(o.width, o.height);
+    std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
+    for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
+    struct CrowdMethod {
+        std::string name;
+        CrowdRendererOptions options;
+        std::unique_ptr<CrowdRenderer> draw;
+        double pass = 0, morph = 0, quads = 0, impostors = 0, morphed = 0, draws = 0;
+    };
+    CrowdRendererOptions before;
+    before.finishPasses = true;
+    before.morphing = ImpostorMorphing::FrameCache;
+    std::vector<CrowdMethod> methods;
+    methods.push_back({"as before (frame cache, read back)", before, nullptr});
+    methods.push_back({"pool, GL, budget " + std::to_string(o.budget), poolOptions(o, MorphSource::Gpu, o.budget), nullptr});
+    methods.push_back({"pool, CPU, budget " + std::to_string(o.budget), poolOptions(o, MorphSource::Cpu, o.budget), nullptr});
+    for (CrowdMethod& m : methods) {
+        m.draw = std::make_unique<CrowdRenderer>(context, m.options);
+        m.draw->preloadImpostors(drawables);
+    }
+    ActorProcessor processor(world->crowd());
+    impostors->attach(processor, 1.0, 0.0);
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    const Camera camera = world->camera().at(bench::cameraTime("overview"), double(o.width) / double(o.height));
+    for (int f = -2; f < o.crowdFrames; ++f) {
+        const FrameContext& now = world->step();
+        processor.processFrame(world->root(), camera, now.time);
+        for (std::size_t i = 0; i < methods.size(); ++i) {
+            CrowdMethod& m = methods[(i + std::size_t(f + 2)) % methods.size()];
+            m.draw->drawFrame(camera, processor.drawList());
+            if (f < 0) continue;
+            const CrowdRenderStatistics& r = m.draw->statistics();
+            m.pass += r.impostorBatchMs + r.impostorDrawMs;
+            m.morph += r.morphMs;
+            m.quads += r.impostorDrawMs;
+            m.impostors += double(r.quads.instances);
+            m.morphed += double(r.cellsMorphed);
+            m.draws += 1;
+        }
+    }
+    std::ostringstream t;
+    char line[512];
+    t << "| " << world->crowd().size() << " actors, overview | impostor pass ms | of which morphing | quads | fps of the pass | impostors | cells morphed |\n"
+      << "|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const CrowdMethod& m : methods) {
+        const double n = std::max(m.draws, 1.0);
+        std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.1f | %.0f | %.0f | %.1f |\n", m.name.c_str(), m.pass / n, m.morph / n,
+                      m.quads / n, 1000.0 * n / std::max(m.pass, 1e-9), m.impostors / n, m.morphed / n);
+        t << line;
+    }
+    std::fprintf(stderr, "bench_impostor_frame: crowd of %zu done\n", world->crowd().size());
+    return t.str();
+}
+
+void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, const Options& o, std::size_t actors) {
+    std::ofstream csv(path);
+    if (!csv) fail("cannot write " + path);
+    csv << "knob,value,psnr_db,ssim,pixels_off_8_share,ms,ms_phase,memory_bytes,scene,camera,actors\n";
+    for (const Row& r : rows) {
+        if (r.images == 0) continue;
+        csv << "impostor representation," << '"' << r.method << '"' << ',' << r.psnr << ',' << r.ssim << ',' << r.off8 << ',' << r.draw
+            << ",DRAW," << std::size_t(r.textureBytes) << ',' << o.scene.substr(o.scene.find_last_of('/') + 1) << ",path," << actors << '\n';
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using support::wholeNumber;
+    Options o;
+    support::CommandLine cl("bench_impostor_frame",
+                            "Far actors as impostors against drawing them as meshes, on the identical state: APP+CULL, DRAW, the "
+                            "impostor pass and its morphing, and the image error against all skinned.");
+    CLI::App& app = cl.app();
+    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
+    app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000));
+    app.add_option("--starts", o.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--frames", o.frames, "measured ticks from each start, the camera following its path")->type_name("N")->check(wholeNumber(1, 100000));
+    app.add_option("--grid", o.gridStep, "warp grid (pixels) of the CPU grid methods")->type_name("N")->check(wholeNumber(2, 64));
+    app.add_option("--grid-budgets", o.gridBudgets, "budgets of the CPU grid methods")->delimiter(',')->type_name("N,N,...")
+        ->check(wholeNumber(0, 100000));
+    app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000));
+    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(wholeNumber(1, 100000));
+    app.add_option("--budget", o.budget, "new morphed cells per atlas and frame for the budgeted pools")->type_name("N")->check(wholeNumber(0, 100000));
+    app.add_option("--pool", o.poolSlots, "pool layers per atlas")->type_name("N")->check(wholeNumber(1, 2048));
+    app.add_option("--crowd-actors", o.crowdActors, "actors of the crowd section")->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--crowd-frames", o.crowdFrames, "measured frames of the crowd section")->type_name("N")->check(wholeNumber(1, 100000));
+    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
+    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
+    app.add_option("--sections", o.sections, "what to run: methods (the scene along its camera path), crowd (seed 000's 16,384 impostors)")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "crowd"}));
+    app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
+    app.add_option("--accuracy-csv", o.accuracyCsv, "write the methods' image error and DRAW time in the common accuracy CSV")->type_name("FILE");
+    if (const auto code = cl.parse(argc, argv)) return *code;
+    std::ostringstream report;
+    try {
+        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        if (o.has("methods")) {
+            const std::vector<Row> rows = runMethods(o, context);
+            report << "### " << (o.actors ? std::to_string(o.actors) : std::string("the scene's")) << " actors, " << o.frames
+                   << " frames from each of " << o.starts.size() << " points of the camera path, " << o.width << "x" << o.height << " (ms per frame)\n\n"
+                   << methodsTable(rows) << "\n";
+            if (!o.accuracyCsv.empty()) writeAccuracyCsv(o.accuracyCsv, rows, o, std::size_t(o.actors));
+        }
+        if (o.has("crowd")) report << "### Seed 000's crowd: every actor an impostor\n\n" << runCrowd(o, context) << "\n";
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
+    std::fputs(report.str().c_str(), stdout);
+    if (!o.markdown.empty()) {
+        std::ofstream md(o.markdown);
+        if (!md) fail("cannot write " + o.markdown);
+        md << report.str();
+    }
+    return 0;
+}
