@@ -62,9 +62,11 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("N")
         ->check(wholeNumber(0, 100000))
         ->capture_default_str();
-    app.add_option("--morph", o.morph, "where impostor key-frames are morphed: grid (CPU, warp on a 4 px grid), cpu (every pixel), gl")
-        ->type_name("grid|cpu|gl")
-        ->check(oneOf({"grid", "cpu", "gl"}))
+    app.add_option("--morph", o.morph,
+                   "where impostor key-frames are morphed: background (CPU, 4 px warp grid, another thread, shown a frame later), "
+                   "grid (the same on the drawing thread), cpu (every pixel), gl")
+        ->type_name("background|grid|cpu|gl")
+        ->check(oneOf({"background", "grid", "cpu", "gl"}))
         ->capture_default_str();
     app.footer(
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"

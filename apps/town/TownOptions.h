@@ -26,7 +26,7 @@ struct TownOptions {
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
     int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)
-    std::string morph = "grid";             ///< where impostor cells are morphed: grid (CPU, 4 px warp grid), cpu, gl
+    std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

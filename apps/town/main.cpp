@@ -78,7 +78,7 @@ const char* kCsvHeader =
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
-    "key_pose_select_ms,key_pose_fills\n";
+    "key_pose_select_ms,key_pose_fills,background_morph_ms\n";
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
     const ActorFrameStatistics& s = f.stats;
@@ -94,7 +94,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
-      << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << '\n';
+      << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << '\n';
     return o.str();
 }
 
@@ -245,7 +245,8 @@ int main(int argc, char** argv) {
     CrowdRendererOptions rendererOptions;
     rendererOptions.impostors.morphBudget = o.morphBudget;
     rendererOptions.impostors.source = o.morph == "gl" ? MorphSource::Gpu : MorphSource::Cpu;
-    rendererOptions.impostors.gridStep = o.morph == "grid" ? 4 : 1;
+    rendererOptions.impostors.gridStep = o.morph == "grid" || o.morph == "background" ? 4 : 1;
+    rendererOptions.impostors.backgroundMorph = o.morph == "background";
     CrowdRenderer renderer(context, rendererOptions);
     if (impostors) {  // the atlases on the GPU before the first frame, not during it
         std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;

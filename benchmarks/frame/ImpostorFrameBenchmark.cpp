@@ -82,7 +82,7 @@ struct Method {
 struct Row {
     std::string method;
     double appCull = 0, draw = 0, town = 0, meshes = 0, impostor = 0, morph = 0, quads = 0;
-    double impostors = 0, morphed = 0, deferred = 0, textureBytes = 0, ticks = 0;
+    double impostors = 0, morphed = 0, deferred = 0, textureBytes = 0, ticks = 0, background = 0;
     double psnr = 0, ssim = 0, off8 = 0, images = 0;          // against all skinned
     double psnrPool = 0, ssimPool = 0, off8Pool = 0, imagesPool = 0;  // against the unlimited pool
     void add(const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double drawMs) {
@@ -96,10 +96,12 @@ struct Row {
         impostors += double(r.quads.instances);
         morphed += double(r.cellsMorphed);
         deferred += double(r.quads.cellsDeferred);
+        background += r.quads.backgroundMorphMs;
         ticks += 1;
     }
     void divide() {
-        for (double* v : {&appCull, &draw, &town, &meshes, &impostor, &morph, &quads, &impostors, &morphed, &deferred}) *v /= std::max(ticks, 1.0);
+        for (double* v : {&appCull, &draw, &town, &meshes, &impostor, &morph, &quads, &impostors, &morphed, &deferred, &background})
+            *v /= std::max(ticks, 1.0);
         if (images > 0) psnr /= images, ssim /= images, off8 /= images;
         if (imagesPool > 0) psnrPool /= imagesPool, ssimPool /= imagesPool, off8Pool /= imagesPool;
     }
@@ -113,8 +115,9 @@ void compare(const Image& a, const Image& b, double& psnr, double& ssim, double&
     n += 1;
 }
 
-CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1) {
+CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1, bool background = false) {
     CrowdRendererOptions r;
+    r.impostors.backgroundMorph = background;
     r.impostors.gridStep = gridStep;
     r.finishPasses = true;
     r.impostors.poolSlots = o.poolSlots;
@@ -144,6 +147,11 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         methods.push_back({budget == 0 ? std::string("impostors, pool, no morphing (budget 0: nearest stored key-frame)")
                                        : "impostors, pool, CPU on a " + std::to_string(o.gridStep) + " px grid, budget " + std::to_string(budget),
                            Kind::Impostors, poolOptions(o, MorphSource::Cpu, budget, o.gridStep), nullptr, nullptr});
+    for (int budget : o.gridBudgets)
+        if (budget > 0)
+            methods.push_back({"impostors, pool, CPU on a " + std::to_string(o.gridStep) + " px grid on another thread, budget " +
+                                   std::to_string(budget),
+                               Kind::Impostors, poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true), nullptr, nullptr});
     methods.push_back({"impostors, pool, GL, no budget", Kind::Impostors, poolOptions(o, MorphSource::Gpu, -1), nullptr, nullptr});
     const std::size_t unlimited = methods.size() - 1;
     const auto& declared = world->description().representation;
@@ -204,13 +212,13 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
 std::string methodsTable(const std::vector<Row>& rows) {
     std::ostringstream t;
     char line[1024];
-    t << "| method | APP+CULL | DRAW | town | meshes | impostor pass | of which morphing | quads | impostors | cells morphed | "
+    t << "| method | APP+CULL | DRAW | town | meshes | impostor pass | of which morphing | quads | morphing on another thread | impostors | cells morphed | "
          "cells deferred | impostor texture MiB | PSNR dB | SSIM | pixels off > 8 | vs unlimited pool: PSNR / SSIM / off > 8 |\n"
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const Row& r : rows) {
         const bool img = r.images > 0, pool = r.imagesPool > 0;
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s |\n",
-                      r.method.c_str(), r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.impostors, r.morphed, r.deferred,
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s |\n",
+                      r.method.c_str(), r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.background, r.impostors, r.morphed, r.deferred,
                       r.textureBytes / 1048576.0, img ? std::to_string(r.psnr).substr(0, 5).c_str() : "-",
                       img ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
                       img ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-",
@@ -242,6 +250,7 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
     methods.push_back({"as before (frame cache, read back)", before, nullptr});
     methods.push_back({"pool, GL, budget " + std::to_string(o.budget), poolOptions(o, MorphSource::Gpu, o.budget), nullptr});
     methods.push_back({"pool, CPU, budget " + std::to_string(o.budget), poolOptions(o, MorphSource::Cpu, o.budget), nullptr});
+    methods.push_back({"pool, CPU on a grid on another thread, budget 2", poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true), nullptr});
     for (CrowdMethod& m : methods) {
         m.draw = std::make_unique<CrowdRenderer>(context, m.options);
         m.draw->preloadImpostors(drawables);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <future>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -28,6 +29,7 @@ layout(location = 0) in vec4 iCentreSize;
 layout(location = 1) in vec4 iTint;
 layout(location = 2) in vec3 iLayers;
 layout(location = 3) in vec3 iWeights;
+layout(location = 4) in vec4 iRect;  // the part of the cell drawn: u0, v0, u1, v1 (v from the top)
 uniform mat4 uViewRotationProjection;  // projection * view rotation (the eye at the origin)
 uniform vec3 uRight;
 uniform vec3 uUp;
@@ -36,10 +38,11 @@ flat out vec3 vLayers;
 flat out vec3 vWeights;
 flat out vec4 vTint;
 void main() {
-    vec2 corner = vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1)) * 2.0 - 1.0;
+    vec2 uv = mix(iRect.xy, iRect.zw, vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1)));
+    vec2 corner = vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);  // cells are stored top row first
     vec3 p = iCentreSize.xyz + (uRight * corner.x + uUp * corner.y) * iCentreSize.w;
     gl_Position = uViewRotationProjection * vec4(p, 1.0);
-    vUv = vec2(0.5 + 0.5 * corner.x, 0.5 - 0.5 * corner.y);  // cells are stored top row first
+    vUv = uv;
     vLayers = iLayers;
     vWeights = iWeights;
     vTint = iTint;
@@ -71,6 +74,7 @@ struct Instance {
     float tint[4];
     float layers[3];
     float weights[3];
+    float rect[4];
 };
 
 // One atlas on the GPU: stored cells in `texture`, morphed ones in `pool`.
@@ -78,6 +82,7 @@ struct GpuAtlas {
     unsigned texture = 0, pool = 0;
     int stored = 0, poolLayers = 0, cellSize = 0;
     std::vector<int> storedLayer;  // per (keyframe, view): layer, or -1 when dropped
+    std::vector<glm::vec4> viewRect;  // per view: the cell area any stored key-frame covers (u0, v0, u1, v1)
     std::unique_ptr<MorphPool> cells;  // which morphed cells the pool holds
     std::unordered_map<const Image*, int> morphedLayer;  // this frame's images carried by instances
     std::vector<Instance> instances;
@@ -85,6 +90,45 @@ struct GpuAtlas {
     const ImpostorAtlas* atlas = nullptr;
     bool used = false;  // wanted by this frame
 };
+
+// Per view, the part of the cell any stored key-frame covers (alpha > 0) or any key-frame's bone
+// lines reach, widened by three texels for bilinear filtering and morphed in-betweens, as texture
+// coordinates; the whole
+// cell when `tight` is false or the view is empty. Quads drawn over only this part shade the same
+// pixels: outside it every sample is transparent and discarded.
+std::vector<glm::vec4> coveredRects(const ImpostorAtlas& atlas, bool tight) {
+    const std::uint32_t views = atlas.views().viewCount();
+    std::vector<glm::vec4> rects(views, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+    if (!tight) return rects;
+    const int size = atlas.cellSize();
+    for (std::uint32_t v = 0; v < views; ++v) {
+        int x0 = size, y0 = size, x1 = -1, y1 = -1;
+        for (int k = 0; k < atlas.keyframeCount(); ++k) {
+            if (!atlas.stored(k)) continue;
+            const Image& page = atlas.page(k);
+            const int cols = page.width / size;
+            const int ox = static_cast<int>(v % static_cast<std::uint32_t>(cols)) * size, oy = static_cast<int>(v / static_cast<std::uint32_t>(cols)) * size;
+            for (int y = 0; y < size; ++y)
+                for (int x = 0; x < size; ++x)
+                    if (page.rgba[(static_cast<std::size_t>(oy + y) * static_cast<std::size_t>(page.width) + static_cast<std::size_t>(ox + x)) * 4 + 3] > 0)
+                        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+        }
+        if (x1 < 0) continue;
+        // Dropped key-frames keep only their bones' lines: their ends count too, so an in-between
+        // reaching beyond every stored pose is still covered.
+        for (int k = 0; k < atlas.keyframeCount(); ++k)
+            for (const FeatureLine& l : atlas.lines(v, k))
+                for (const glm::vec2& e : {l.p, l.q}) {
+                    x0 = std::min(x0, static_cast<int>(std::floor(e.x))), y0 = std::min(y0, static_cast<int>(std::floor(e.y)));
+                    x1 = std::max(x1, static_cast<int>(std::floor(e.x))), y1 = std::max(y1, static_cast<int>(std::floor(e.y)));
+                }
+        const int margin = 3;
+        const float s = static_cast<float>(size);
+        rects[v] = glm::vec4(static_cast<float>(std::max(x0 - margin, 0)) / s, static_cast<float>(std::max(y0 - margin, 0)) / s,
+                             static_cast<float>(std::min(x1 + 1 + margin, size)) / s, static_cast<float>(std::min(y1 + 1 + margin, size)) / s);
+    }
+    return rects;
+}
 
 void setArrayParameters(const GladGLContext& gl) {
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -96,9 +140,20 @@ void setArrayParameters(const GladGLContext& gl) {
 
 }  // namespace
 
+// A cell morphed on the background thread: what it needs (copies: the atlas may go) and where it goes.
+struct BackgroundCell {
+    const ImpostorAtlas* atlas = nullptr;
+    unsigned pool = 0;  // the pool texture it was meant for (an atlas uploaded again gets another)
+    int slot = 0;
+    Image from, to, result;
+    DroppedCellLines lines;
+};
+
 struct ImpostorRenderer::Impl {
     std::shared_ptr<GlContext> context;  // first member: destroyed last
     ImpostorRendererOptions options;
+    std::vector<BackgroundCell> background;  // cells of the last frame, being made by `worker`
+    std::future<double> worker;              // returns its time (ms)
     std::unique_ptr<ShaderProgram> program;
     std::unique_ptr<GpuMorpher> morpher;  // made on the first GL morph
     unsigned vao = 0, buffer = 0;
@@ -132,6 +187,7 @@ struct ImpostorRenderer::Impl {
         gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, std::max(g.stored, 1), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
         setArrayParameters(gl);
         gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        g.viewRect = coveredRects(atlas, options.tightQuads);
         for (int k = 0; k < atlas.keyframeCount(); ++k)
             if (atlas.stored(k))
                 for (std::uint32_t v = 0; v < views; ++v) {
@@ -169,8 +225,11 @@ struct ImpostorRenderer::Impl {
         const GladGLContext& gl = context->gl();
         const std::uint32_t views = atlas.views().viewCount();
         for (const MorphFill& f : fills) {
-            const DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
-            if (options.source == MorphSource::Gpu) {
+            DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
+            if (options.source == MorphSource::Cpu && options.backgroundMorph) {
+                g.cells->setPending(f.slot);
+                background.push_back({&atlas, g.pool, f.slot, atlas.cell(f.view, c.before), atlas.cell(f.view, c.after), {}, std::move(c)});
+            } else if (options.source == MorphSource::Gpu) {
                 if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
                 morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
                                    g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.pool, f.slot, g.cellSize,
@@ -190,6 +249,15 @@ struct ImpostorRenderer::Impl {
         }
     }
 };
+
+// Morphs every background cell (on the worker thread); returns the time taken.
+double morphBackground(std::vector<BackgroundCell>& cells, const ImpostorRendererOptions& options) {
+    Stopwatch watch;
+    for (BackgroundCell& c : cells)
+        c.result = morphImagesOnGrid(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
+                                     options.gridStep);
+    return watch.elapsedMs();
+}
 
 ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const ImpostorRendererOptions& options) {
     if (!context) throw std::invalid_argument("ImpostorRenderer: argument 'context' is null");
@@ -216,7 +284,9 @@ ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const Imp
     gl.VertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, layers)));
     gl.EnableVertexAttribArray(3);
     gl.VertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, weights)));
-    for (GLuint a = 0; a < 4; ++a) gl.VertexAttribDivisor(a, 1);
+    gl.EnableVertexAttribArray(4);
+    gl.VertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, rect)));
+    for (GLuint a = 0; a < 5; ++a) gl.VertexAttribDivisor(a, 1);
     gl.BindVertexArray(0);
     gl.UseProgram(r.program->id());
     gl.Uniform1i(r.program->uniformLocation("uCells"), 0);
@@ -231,6 +301,7 @@ ImpostorRenderer::~ImpostorRenderer() {
     } catch (...) {
         return;
     }
+    if (r.worker.valid()) r.worker.wait();
     const GladGLContext& gl = r.context->gl();
     for (auto& [atlas, g] : r.atlases) {
         gl.DeleteTextures(1, &g.texture);
@@ -266,6 +337,23 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     r.stats = {};
     r.context->makeCurrent();
     const GladGLContext& gl = r.context->gl();
+    // The cells the background thread made since the last frame: uploaded, then shown.
+    if (r.worker.valid()) {
+        Stopwatch wait;
+        r.stats.backgroundMorphMs = r.worker.get();
+        r.stats.backgroundWaitMs = wait.elapsedMs();
+        for (BackgroundCell& c : r.background) {
+            auto it = r.atlases.find(c.atlas);
+            if (it == r.atlases.end() || it->second.pool != c.pool) continue;  // its atlas went
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, c.pool);
+            gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+            gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, c.slot, c.result.width, c.result.height, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                             c.result.rgba.data());
+            it->second.cells->setReady(c.slot);
+            ++r.stats.morphedUploads;
+        }
+        r.background.clear();
+    }
     for (auto& [atlas, g] : r.atlases) {
         g.instances.clear();
         g.morphedLayer.clear();
@@ -293,6 +381,8 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         r.stats.cellsMorphed += p.made;
         r.stats.cellsDeferred += p.deferred;
     }
+    if (!r.background.empty())
+        r.worker = std::async(std::launch::async, [&r] { return morphBackground(r.background, r.options); });
     r.stats.morphMs = watch.elapsedMs();
     // Pass 2: the quads, each cell's layer resolved.
     for (const ImpostorInstance& inst : instances) {
@@ -307,7 +397,12 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         out.centreSize[2] = static_cast<float>(rel.z);
         out.centreSize[3] = inst.halfSize;
         for (int c = 0; c < 4; ++c) out.tint[c] = inst.tint[c];
+        glm::vec4 rect(1.0f, 1.0f, 0.0f, 0.0f);  // the union of the blended views' rectangles
         for (std::size_t i = 0; i < 3; ++i) {
+            if (inst.weights[i] > 0.0f && inst.views[i] < views) {
+                const glm::vec4& v = g.viewRect[inst.views[i]];
+                rect = glm::vec4(std::min(rect.x, v.x), std::min(rect.y, v.y), std::max(rect.z, v.z), std::max(rect.w, v.w));
+            }
             out.weights[i] = inst.weights[i];
             int layer = 0;
             if (inst.weights[i] <= 0.0f) {
@@ -340,6 +435,8 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             }
             out.layers[i] = static_cast<float>(layer);
         }
+        if (rect.x >= rect.z) rect = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+        for (int c = 0; c < 4; ++c) out.rect[c] = rect[c];
         g.instances.push_back(out);
     }
     // The eye at the origin: only the view's rotation goes to the GPU (float precision far away).

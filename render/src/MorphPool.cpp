@@ -17,6 +17,7 @@ MorphPool::MorphPool(int slots, int keyframes, std::uint32_t views) : views_(vie
     score_.assign(cells, 0.0f);
     cellOfSlot_.assign(static_cast<std::size_t>(slots), -1);
     slotUsed_.assign(static_cast<std::size_t>(slots), 0);
+    slotReady_.assign(static_cast<std::size_t>(slots), 1);
     wantedCells_.reserve(cells);
     candidates_.reserve(cells);
     freeSlots_.reserve(static_cast<std::size_t>(slots));
@@ -62,7 +63,8 @@ std::span<const MorphFill> MorphPool::resolve(int budget) {
     // Victims, best first: empty slots, then resident cells by rising score (least recently used
     // on a tie).
     freeSlots_.clear();
-    for (int s = 0; s < slots(); ++s) freeSlots_.push_back(s);
+    for (int s = 0; s < slots(); ++s)
+        if (slotReady_[static_cast<std::size_t>(s)]) freeSlots_.push_back(s);  // a pending slot is taken
     const auto slotScore = [&](int s) {
         const int c = cellOfSlot_[static_cast<std::size_t>(s)];
         return c < 0 ? -1.0f : score_[static_cast<std::size_t>(c)];
@@ -99,12 +101,26 @@ std::span<const MorphFill> MorphPool::resolve(int budget) {
     return fills_;
 }
 
-int MorphPool::slotOf(int keyframe, std::uint32_t view) const { return slotOfCell_[cellIndex(keyframe, view)]; }
+int MorphPool::slotOf(int keyframe, std::uint32_t view) const {
+    const int slot = slotOfCell_[cellIndex(keyframe, view)];
+    return slot >= 0 && slotReady_[static_cast<std::size_t>(slot)] ? slot : -1;
+}
+
+void MorphPool::setPending(int slot) {
+    if (slot < 0 || slot >= slots()) throw std::out_of_range("MorphPool::setPending: no slot " + std::to_string(slot));
+    slotReady_[static_cast<std::size_t>(slot)] = 0;
+}
+
+void MorphPool::setReady(int slot) {
+    if (slot < 0 || slot >= slots()) throw std::out_of_range("MorphPool::setReady: no slot " + std::to_string(slot));
+    slotReady_[static_cast<std::size_t>(slot)] = 1;
+}
 
 void MorphPool::clear() {
     std::fill(slotOfCell_.begin(), slotOfCell_.end(), -1);
     std::fill(cellOfSlot_.begin(), cellOfSlot_.end(), -1);
     std::fill(slotUsed_.begin(), slotUsed_.end(), 0);
+    std::fill(slotReady_.begin(), slotReady_.end(), 1);
     std::fill(score_.begin(), score_.end(), 0.0f);
 }
 

@@ -36,7 +36,14 @@ struct ImpostorRendererOptions {
     /// Cpu: the warp evaluated every gridStep pixels and interpolated between (morphImagesOnGrid;
     /// 1: at every pixel, as the GL does).
     int gridStep = 1;
+    /// Cpu: new cells are morphed on another thread while the frame goes on, and shown from the
+    /// next frame (until then, the nearest stored key-frame). Deterministic: the next draw() waits
+    /// for them.
+    bool backgroundMorph = false;
     MorphCacheOptions morph;                ///< features, line targets, Beier-Neely parameters, CPU threads
+    /// Quads cover only the part of the cell the blended views ever cover (the same pixels drawn:
+    /// the rest is transparent and discarded), not the whole cell.
+    bool tightQuads = true;
 };
 
 /// What ImpostorRenderer did in the last draw().
@@ -50,7 +57,9 @@ struct ImpostorRenderStatistics {
     std::uint64_t cellsResident = 0;     ///< of those, made in an earlier frame
     std::uint64_t cellsMorphed = 0;      ///< made this frame
     std::uint64_t cellsDeferred = 0;     ///< left to later frames by the budget or the pool size
-    double morphMs = 0;                  ///< time issuing (GL) or doing (CPU) this frame's morphs
+    double morphMs = 0;                  ///< time issuing (GL) or doing (CPU) this frame's morphs on the drawing thread
+    double backgroundMorphMs = 0;        ///< backgroundMorph: the other thread's time for the cells made ready this frame
+    double backgroundWaitMs = 0;         ///< backgroundMorph: time this draw() waited for that thread
 };
 
 /// Camera-facing impostor quads drawn into a context's current framebuffer.

@@ -7,6 +7,7 @@
 // its nearest stored key-frame instead. No GL here and no allocation once warm: flat arrays over
 // the atlas's (key-frame, view) cells.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -47,9 +48,14 @@ public:
     /// lowest score when the new one's score is over kReplaceMargin times it. Call once per frame,
     /// after every want(); the fills stay valid until the next beginFrame().
     std::span<const MorphFill> resolve(int budget);
-    /// The slot holding cell (keyframe, view), or -1 when it is not resident (after resolve():
-    /// including this frame's fills).
+    /// The slot holding cell (keyframe, view), or -1 when it is not resident or still being made
+    /// (after resolve(): including this frame's fills that are not pending).
     int slotOf(int keyframe, std::uint32_t view) const;
+    /// Marks `slot` (a fill of this frame) as being made elsewhere: slotOf() ignores it and no fill
+    /// takes it until setReady(). Throws std::out_of_range for a bad slot.
+    void setPending(int slot);
+    /// Marks a pending `slot` as made. Throws std::out_of_range for a bad slot.
+    void setReady(int slot);
     /// Forgets every resident cell (the slots' contents are lost, e.g. with the texture).
     void clear();
 
@@ -72,6 +78,7 @@ private:
     std::vector<int> slotOfCell_;            // per cell: slot or -1
     std::vector<int> cellOfSlot_;            // per slot: cell or -1
     std::vector<std::uint64_t> slotUsed_;    // per slot: last frame it was wanted
+    std::vector<std::uint8_t> slotReady_;    // per slot: 0 while its cell is being made
     std::vector<std::uint32_t> demand_;      // per cell: uses this frame
     std::vector<float> score_;               // per cell: uses smoothed over frames
     std::vector<std::uint32_t> wantedCells_; // cells with demand this frame
