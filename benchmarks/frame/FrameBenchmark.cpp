@@ -27,6 +27,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -172,6 +173,83 @@ std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std
             rows.push_back(row);
         }
         std::fprintf(stderr, "bench_frame: %lld actors, %s camera done\n", (long long)actors, cameraName.c_str());
+    }
+    return rows;
+}
+
+// What a perfect occlusion culler could reach: an ID render with full depth (every actor posed at
+// full detail, each actor and the town in flat colours) gives the actors with a visible pixel;
+// a conservative culler must keep every one of them, so "actors drawn as meshes without occlusion"
+// over "those of them with a visible pixel" bounds the reduction any occlusion culling can give.
+struct VisibilityRow {
+    std::string camera, method;
+    std::size_t meshActors = 0;     // actors drawn as meshes without occlusion
+    std::size_t visible = 0;        // of those, with a visible pixel
+    std::size_t withOcclusion = 0;  // actors drawn as meshes with occlusion
+};
+
+std::vector<VisibilityRow> visibilityBound(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actors) {
+    auto world = bench::buildWorld(o.scene, o.occlusionActors);
+    auto impostors = bakeImpostors(context, *world);
+    context->resize(o.width, o.height);
+    *actors = std::int64_t(world->crowd().size());
+    const auto [distance, hysteresis] = impostorDistance(*world);
+    const OcclusionSettings occlusion = world->description().representation.occlusion.value_or(OcclusionSettings{});
+    ActorProcessor full(world->crowd()), plain(world->crowd()), plainOccluding(world->crowd()), hybrid(world->crowd()),
+        hybridOccluding(world->crowd());
+    full.setProcessing(Processing::Traditional);
+    full.setLodScale(1e-6);
+    plainOccluding.setOcclusion(occlusion);
+    hybridOccluding.setOcclusion(occlusion);
+    impostors->attach(hybrid, distance, hysteresis);
+    impostors->attach(hybridOccluding, distance, hysteresis);
+    RendererOptions ids;
+    ids.flatTint = true;
+    ids.clearColor = glm::vec4(0.0f);
+    GlRenderer renderer(context, ids);
+    for (int f = 0; f < o.warmup; ++f) world->step();
+    const double time = world->now().time;
+    // Six bits of the ID per channel, mid-step: the GL's rounding cannot change the ID read back.
+    const auto colour = [](std::uint32_t id) {
+        const auto level = [&](int shift) { return float(4 * ((id >> shift) & 0x3F) + 2) / 255.0f; };
+        return glm::vec4(level(0), level(6), level(12), 1.0f);
+    };
+    const std::uint32_t town = 1u << 17;
+    const auto meshActors = [](const DrawList& list) {
+        std::set<std::uint32_t> a;
+        for (const DrawItem& item : list.items())
+            if (item.actor != kNoActor && item.representation != Representation::Impostor) a.insert(item.actor);
+        return a;
+    };
+    std::vector<VisibilityRow> rows;
+    for (const std::string& cameraName : o.cameras) {
+        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+        full.processFrame(world->root(), camera, time);
+        DrawList list;
+        for (const DrawItem& item : full.drawList().items()) {
+            DrawItem tinted = item;
+            tinted.tint = colour(item.actor != kNoActor ? item.actor + 1 : town);
+            list.add(tinted, 0);
+        }
+        renderer.beginFrame(camera);
+        renderer.draw(list);
+        const Image image = renderer.readFrame();
+        renderer.endFrame();
+        std::set<std::uint32_t> visible;
+        for (std::size_t p = 0; p < image.rgba.size(); p += 4) {
+            const std::uint32_t id = (image.rgba[p] / 4u) | ((image.rgba[p + 1] / 4u) << 6) | ((image.rgba[p + 2] / 4u) << 12);
+            if (id != 0 && id != town && id - 1 < world->crowd().size()) visible.insert(id - 1);
+        }
+        const std::pair<ActorProcessor*, ActorProcessor*> pairs[] = {{&plain, &plainOccluding}, {&hybrid, &hybridOccluding}};
+        const char* names[] = {"actor", "actor + impostors"};
+        for (int k = 0; k < 2; ++k) {
+            pairs[k].first->processFrame(world->root(), camera, time);
+            const std::set<std::uint32_t> drawn = meshActors(pairs[k].first->drawList());
+            pairs[k].second->processFrame(world->root(), camera, time);
+            VisibilityRow r{cameraName, names[k], drawn.size(), 0, meshActors(pairs[k].second->drawList()).size()};
+            for (std::uint32_t a : drawn) r.visible += visible.count(a);
+            rows.push_back(r);
+        }
     }
     return rows;
 }
@@ -537,8 +615,9 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(0, 1'000'000));
     app.add_option("--sections", o.sections,
                    "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline; not run unless "
-                   "named: town (the town's DRAW alone, old and new drawing), occlusion (buffer resolution against rejection and time)")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion"}));
+                   "named: town (the town's DRAW alone, old and new drawing), occlusion (buffer resolution against rejection and time), "
+                   "visibility (what a perfect occlusion culler could reach, from an ID render with full depth)")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion", "visibility"}));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
     app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section as CSV (one row per knob value)")->type_name("FILE");
@@ -636,6 +715,22 @@ int main(int argc, char** argv) {
                 if (csv) csv << "occlusion_resolution," << size << ',' << r.camera << ',' << actors << ",town," << share << ',' << r.hidden
                              << ',' << r.posed << ',' << r.tiles << ',' << r.bufferMs << ',' << r.appCullMs << ','
                              << (std::int64_t(r.width) * r.height * 16 / 3) << '\n';
+            }
+        }
+        if (o.has("visibility")) {
+            std::fprintf(stderr, "bench_frame: the visibility bound, %lld actors...\n", (long long)o.occlusionActors);
+            std::int64_t actors = 0;
+            const auto bound = visibilityBound(o, context, &actors);
+            report << "\nWhat occlusion culling could reach, " << actors << " actors, " << o.width << "x" << o.height
+                   << " (an ID render with full depth: actors with a visible pixel; a conservative culler keeps them all):\n\n"
+                   << "| camera | processing | drawn as meshes without occlusion | of those with a visible pixel | best possible reduction | "
+                   << "drawn as meshes with occlusion | reduction reached |\n|---|---|---:|---:|---:|---:|---:|\n";
+            char line[512];
+            for (const VisibilityRow& r : bound) {
+                std::snprintf(line, sizeof line, "| %s | %s | %zu | %zu | %.2fx | %zu | %.2fx |\n", r.camera.c_str(), r.method.c_str(), r.meshActors,
+                              r.visible, double(r.meshActors) / double(std::max<std::size_t>(r.visible, 1)), r.withOcclusion,
+                              double(r.meshActors) / double(std::max<std::size_t>(r.withOcclusion, 1)));
+                report << line;
             }
         }
         if (o.has("town")) {
