@@ -174,9 +174,13 @@ namespace {
 
 // A hybrid scene: one actor near (geometry), four far (impostors) drawn by GlRenderer then
 // ImpostorRenderer; and one far actor drawn both ways covers about the same pixels.
+// Every wanted cell morphed on the CPU, per pixel, in the frame that needs it.
 CrowdRendererOptions cpuMorphing() {
     CrowdRendererOptions ro;
     ro.impostors.source = MorphSource::Cpu;
+    ro.impostors.gridStep = 1;
+    ro.impostors.backgroundMorph = false;
+    ro.impostors.morphBudget = -1;
     return ro;
 }
 
@@ -287,7 +291,7 @@ TEST(Impostor, EachImpostorIsDrawnInsideItsActorsSklsrootSphere) {
 // before) through the batcher's MorphCache and read back, show the same impostors.
 TEST(Impostor, PoolMorphsAgreeWithTheFrameCache) {
     HybridScene scene({Vec3(-4, 0, -30), Vec3(0, 0, -35), Vec3(4, 0, -40), Vec3(8, 0, -45)});
-    CrowdRendererOptions gl, cpu = cpuMorphing(), before;
+    CrowdRendererOptions gl = cpuMorphing(), cpu = cpuMorphing(), before;
     gl.impostors.source = MorphSource::Gpu;
     before.morphing = ImpostorMorphing::FrameCache;
     CrowdRenderStatistics stats;
@@ -320,6 +324,24 @@ TEST(Impostor, TightQuadsDrawTheSamePixels) {
         EXPECT_GT(differentFromClear(a), 50u);
         EXPECT_EQ(a.rgba, b.rgba) << "clip time " << t;
     }
+}
+
+// Morphing on another thread: the first frame shows the nearest stored key-frame, the next the
+// morphed cells, the same as morphing them on the drawing thread on the same grid.
+TEST(Impostor, BackgroundMorphShowsCellsFromTheNextFrame) {
+    HybridScene scene({Vec3(-4, 0, -30), Vec3(0, 0, -35), Vec3(4, 0, -40)});
+    CrowdRendererOptions background = cpuMorphing(), inline_ = cpuMorphing(), none = cpuMorphing();
+    background.impostors.backgroundMorph = true;
+    background.impostors.gridStep = inline_.impostors.gridStep = 4;
+    none.impostors.morphBudget = 0;
+    CrowdRenderStatistics stats;
+    const Image first = scene.render(1.0, nullptr, background, 0.25, 1, &stats);
+    EXPECT_GT(stats.cellsMorphed, 0u);
+    EXPECT_EQ(first.rgba, scene.render(1.0, nullptr, none, 0.25).rgba);  // nothing ready yet
+    const Image second = scene.render(1.0, nullptr, background, 0.25, 2, &stats);
+    EXPECT_EQ(stats.quads.poolOverflows, 0u);
+    EXPECT_GT(stats.quads.backgroundMorphMs, 0.0);
+    EXPECT_EQ(second.rgba, scene.render(1.0, nullptr, inline_, 0.25).rgba);
 }
 
 // With no budget for morphing, a dropped key-frame shows its nearest stored key-frame: the image

@@ -31,15 +31,18 @@ struct ImpostorRendererOptions {
     /// Pool layers per atlas (texture memory: stored cells + these). Instances that carry their
     /// own morphed images (a batcher with a MorphCache) use them as per-frame layers instead.
     int poolSlots = 48;
-    int morphBudget = 16;                   ///< new cells morphed per atlas and frame (negative: no limit)
-    MorphSource source = MorphSource::Gpu;  ///< where new cells are morphed
+    // The defaults are the cheapest path measured on a software GL (llvmpipe, bench_impostor_frame):
+    // the CPU on a warp grid, on another thread, two new cells per atlas and frame. On a hardware
+    // GL, MorphSource::Gpu morphs without taking CPU time.
+    int morphBudget = 2;                    ///< new cells morphed per atlas and frame (negative: no limit)
+    MorphSource source = MorphSource::Cpu;  ///< where new cells are morphed
     /// Cpu: the warp evaluated every gridStep pixels and interpolated between (morphImagesOnGrid;
     /// 1: at every pixel, as the GL does).
-    int gridStep = 1;
+    int gridStep = 4;
     /// Cpu: new cells are morphed on another thread while the frame goes on, and shown from the
     /// next frame (until then, the nearest stored key-frame). Deterministic: the next draw() waits
     /// for them.
-    bool backgroundMorph = false;
+    bool backgroundMorph = true;
     MorphCacheOptions morph;                ///< features, line targets, Beier-Neely parameters, CPU threads
     /// Quads cover only the part of the cell the blended views ever cover (the same pixels drawn:
     /// the rest is transparent and discarded), not the whole cell.
