@@ -140,8 +140,8 @@ struct GpuMorpher::Impl {
     std::shared_ptr<GlContext> context;  // first member: destroyed last
     std::unique_ptr<ShaderProgram> program;       // 2-D sources, read back
     std::unique_ptr<ShaderProgram> arrayProgram;  // layers of a texture array, written into a layer
-    GLuint vao = 0, fbo = 0, layerFbo = 0, target = 0, sources[2] = {0, 0};
-    int width = 0, height = 0;
+    GLuint vao = 0, fbo = 0, layerFbo = 0, target = 0, scratch = 0, sources[2] = {0, 0};
+    int width = 0, height = 0, scratchSize = 0;
 
     // Sets the line and blend uniforms of `p` and draws the full-cell triangle into the bound
     // framebuffer.
@@ -184,6 +184,7 @@ GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
     gl.GenFramebuffers(1, &s.fbo);
     gl.GenFramebuffers(1, &s.layerFbo);
     gl.GenTextures(1, &s.target);
+    gl.GenTextures(1, &s.scratch);
     gl.GenTextures(2, s.sources);
     for (GLuint tex : s.sources) {
         gl.BindTexture(GL_TEXTURE_2D, tex);
@@ -208,6 +209,7 @@ GpuMorpher::~GpuMorpher() {
     const GladGLContext& gl = s.context->gl();
     gl.DeleteTextures(2, s.sources);
     gl.DeleteTextures(1, &s.target);
+    gl.DeleteTextures(1, &s.scratch);
     gl.DeleteFramebuffers(1, &s.fbo);
     gl.DeleteFramebuffers(1, &s.layerFbo);
     gl.DeleteVertexArrays(1, &s.vao);
@@ -267,23 +269,41 @@ void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned 
                            std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
                            std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters) {
     if (cells == 0 || target == 0) throw std::invalid_argument("GpuMorpher::morphInto: a texture name is 0");
-    if (cells == target) throw std::invalid_argument("GpuMorpher::morphInto: the sources and the target are one texture");
     if (fromLayer < 0 || toLayer < 0 || targetLayer < 0 || size <= 0)
         throw std::invalid_argument("GpuMorpher::morphInto: negative layer or size");
     checkLines("GpuMorpher::morphInto", fromLines, toLines, targetLines, t);
     Impl& s = *impl_;
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
+    GLint width = 0, height = 0, layers = 0;
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_HEIGHT, &height);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
+    if (targetLayer >= layers || size > width || size > height)
+        throw std::invalid_argument("GpuMorpher::morphInto: layer " + std::to_string(targetLayer) + " of " + std::to_string(size) +
+                                    " pixels does not fit the target (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                                    std::to_string(layers) + " layers)");
+    // Drawn into a scratch texture, then copied into the layer by the GL: the target may be the
+    // very array the neighbours are read from (no rendering into a texture being sampled).
     gl.BindFramebuffer(GL_FRAMEBUFFER, s.layerFbo);
-    gl.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, target, 0, targetLayer);
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("GpuMorpher::morphInto: layer " + std::to_string(targetLayer) + " of the target is not renderable");
+    if (size != s.scratchSize) {
+        gl.BindTexture(GL_TEXTURE_2D, s.scratch);
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, size, size, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s.scratch, 0);
+        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw std::runtime_error("GpuMorpher::morphInto: the scratch framebuffer is incomplete");
+        s.scratchSize = size;
+    }
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, cells);
     gl.UseProgram(s.arrayProgram->id());
     gl.Uniform2i(s.arrayProgram->uniformLocation("uLayers"), fromLayer, toLayer);
     s.drawCell(*s.arrayProgram, fromLines, toLines, targetLines, t, parameters, size, size);
     gl.UseProgram(0);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.CopyTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, targetLayer, 0, 0, size, size);
     gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
 }
 

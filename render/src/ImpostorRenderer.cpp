@@ -50,15 +50,14 @@ void main() {
 )";
 
 const char* const kFragmentShader = R"(#version 330 core
-uniform sampler2DArray uCells;  // stored cells
-uniform sampler2DArray uPool;   // morphed cells: layer -1 - l
+uniform sampler2DArray uCells;  // stored cells, then the pool's morphed ones
 in vec2 vUv;
 flat in vec3 vLayers;
 flat in vec3 vWeights;
 flat in vec4 vTint;
 out vec4 fragColor;
 vec4 cell(float layer) {
-    return layer >= 0.0 ? texture(uCells, vec3(vUv, layer)) : texture(uPool, vec3(vUv, -1.0 - layer));
+    return texture(uCells, vec3(vUv, layer));  // one texture: a software GL samples both sides of a branch
 }
 void main() {
     vec4 c = vWeights.x * cell(vLayers.x);
@@ -77,9 +76,10 @@ struct Instance {
     float rect[4];
 };
 
-// One atlas on the GPU: stored cells in `texture`, morphed ones in `pool`.
+// One atlas on the GPU: one array texture, stored cells in layers [0, stored), the pool's morphed
+// cells after them (slot s in layer stored + s).
 struct GpuAtlas {
-    unsigned texture = 0, pool = 0;
+    unsigned texture = 0;
     int stored = 0, poolLayers = 0, cellSize = 0;
     std::vector<int> storedLayer;  // per (keyframe, view): layer, or -1 when dropped
     std::vector<glm::vec4> viewRect;  // per view: the cell area any stored key-frame covers (u0, v0, u1, v1)
@@ -143,7 +143,8 @@ void setArrayParameters(const GladGLContext& gl) {
 // A cell morphed on the background thread: what it needs (copies: the atlas may go) and where it goes.
 struct BackgroundCell {
     const ImpostorAtlas* atlas = nullptr;
-    unsigned pool = 0;  // the pool texture it was meant for (an atlas uploaded again gets another)
+    unsigned texture = 0;  // the texture it was meant for (an atlas uploaded again gets another)
+    int layer = 0;
     int slot = 0;
     Image from, to, result;
     DroppedCellLines lines;
@@ -175,16 +176,15 @@ struct ImpostorRenderer::Impl {
         for (int k = 0; k < atlas.keyframeCount(); ++k)
             if (atlas.stored(k))
                 for (std::uint32_t v = 0; v < views; ++v) g.storedLayer[static_cast<std::size_t>(k) * views + v] = g.stored++;
-        g.poolLayers = std::max(options.poolSlots, 1);
-        if (g.stored > maxLayers || g.poolLayers > maxLayers)
+        g.poolLayers = options.poolSlots;
+        if (g.stored + g.poolLayers > maxLayers)
             throw std::runtime_error("ImpostorRenderer: atlas '" + atlas.templateName() + "' needs " +
-                                     std::to_string(std::max(g.stored, g.poolLayers)) + " layers, the GL allows " +
-                                     std::to_string(maxLayers));
+                                     std::to_string(g.stored + g.poolLayers) + " layers, the GL allows " + std::to_string(maxLayers));
         g.cells = std::make_unique<MorphPool>(options.poolSlots, atlas.keyframeCount(), views);
         const int s = atlas.cellSize();
         gl.GenTextures(1, &g.texture);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
-        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, std::max(g.stored, 1), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, std::max(g.stored + g.poolLayers, 1), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
         setArrayParameters(gl);
         gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
         g.viewRect = coveredRects(atlas, options.tightQuads);
@@ -195,14 +195,9 @@ struct ImpostorRenderer::Impl {
                     gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.storedLayer[static_cast<std::size_t>(k) * views + v], s, s,
                                      1, GL_RGBA, GL_UNSIGNED_BYTE, cell.rgba.data());
                 }
-        gl.GenTextures(1, &g.pool);
-        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
-        gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, g.poolLayers, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-        setArrayParameters(gl);
         ++stats.atlasUploads;
         if (it != atlases.end()) {
             gl.DeleteTextures(1, &it->second.texture);
-            gl.DeleteTextures(1, &it->second.pool);
             atlases.erase(it);
         }
         return atlases.emplace(&atlas, std::move(g)).first->second;
@@ -228,11 +223,12 @@ struct ImpostorRenderer::Impl {
             DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
             if (options.source == MorphSource::Cpu && options.backgroundMorph) {
                 g.cells->setPending(f.slot);
-                background.push_back({&atlas, g.pool, f.slot, atlas.cell(f.view, c.before), atlas.cell(f.view, c.after), {}, std::move(c)});
+                background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, atlas.cell(f.view, c.before),
+                                      atlas.cell(f.view, c.after), {}, std::move(c)});
             } else if (options.source == MorphSource::Gpu) {
                 if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
                 morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
-                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.pool, f.slot, g.cellSize,
+                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.texture, g.stored + f.slot, g.cellSize,
                                    c.from, c.to, c.target, c.t, options.morph.parameters);
             } else {
                 const Image cell = options.gridStep > 1
@@ -240,9 +236,9 @@ struct ImpostorRenderer::Impl {
                                                            c.target, c.t, options.morph.parameters, options.gridStep)
                                        : morphImages(atlas.cell(f.view, c.before), c.from, atlas.cell(f.view, c.after), c.to, c.target,
                                                      c.t, options.morph.parameters, options.morph.threads);
-                gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+                gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
                 gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-                gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                                  cell.rgba.data());
                 ++stats.morphedUploads;
             }
@@ -290,7 +286,6 @@ ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const Imp
     gl.BindVertexArray(0);
     gl.UseProgram(r.program->id());
     gl.Uniform1i(r.program->uniformLocation("uCells"), 0);
-    gl.Uniform1i(r.program->uniformLocation("uPool"), 1);
     gl.UseProgram(0);
 }
 
@@ -305,7 +300,6 @@ ImpostorRenderer::~ImpostorRenderer() {
     const GladGLContext& gl = r.context->gl();
     for (auto& [atlas, g] : r.atlases) {
         gl.DeleteTextures(1, &g.texture);
-        gl.DeleteTextures(1, &g.pool);
     }
     gl.DeleteBuffers(1, &r.buffer);
     gl.DeleteVertexArrays(1, &r.vao);
@@ -344,10 +338,10 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         r.stats.backgroundWaitMs = wait.elapsedMs();
         for (BackgroundCell& c : r.background) {
             auto it = r.atlases.find(c.atlas);
-            if (it == r.atlases.end() || it->second.pool != c.pool) continue;  // its atlas went
-            gl.BindTexture(GL_TEXTURE_2D_ARRAY, c.pool);
+            if (it == r.atlases.end() || it->second.texture != c.texture) continue;  // its atlas went
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, c.texture);
             gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-            gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, c.slot, c.result.width, c.result.height, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+            gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, c.layer, c.result.width, c.result.height, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                              c.result.rgba.data());
             it->second.cells->setReady(c.slot);
             ++r.stats.morphedUploads;
@@ -419,16 +413,16 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
                     if (found == g.morphedLayer.end()) {
                         if (g.morphedLayer.empty()) g.cells->clear();  // the pool's layers hold this frame's images
                         found = g.morphedLayer.emplace(inst.morphed[i], static_cast<int>(g.morphedLayer.size())).first;
-                        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
+                        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
                         gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-                        gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, found->second, atlas.cellSize(), atlas.cellSize(), 1, GL_RGBA,
+                        gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + found->second, atlas.cellSize(), atlas.cellSize(), 1, GL_RGBA,
                                          GL_UNSIGNED_BYTE, inst.morphed[i]->rgba.data());
                         ++r.stats.morphedUploads;
                     }
-                    layer = -1 - found->second;
+                    layer = g.stored + found->second;
                 }
             } else if (const int slot = g.cells->slotOf(inst.keyframe, inst.views[i]); slot >= 0) {
-                layer = -1 - slot;
+                layer = g.stored + slot;
             } else {
                 ++r.stats.poolOverflows;
                 layer = r.fallbackLayer(g, atlas, inst.keyframe, inst.views[i]);
@@ -458,8 +452,6 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     gl.BindVertexArray(r.vao);
     for (auto& [atlas, g] : r.atlases) {
         if (g.instances.empty()) continue;
-        gl.ActiveTexture(GL_TEXTURE1);
-        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.pool);
         gl.ActiveTexture(GL_TEXTURE0);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
         gl.BindBuffer(GL_ARRAY_BUFFER, r.buffer);

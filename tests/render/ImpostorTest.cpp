@@ -72,6 +72,16 @@ TEST(Impostor, HalfTheKeyframesHalveTheTexture) {
     EXPECT_FLOAT_EQ(t, 0.5f);
 }
 
+TEST(Impostor, MorphIntoRefusesBadArguments) {
+    GpuMorpher gpu(BakedHumanoid::get().context);
+    const std::vector<FeatureLine> one{{{1, 1}, {5, 5}}}, none;
+    EXPECT_THROW(gpu.morphInto(0, 0, 1, 0, 2, 64, one, one, one, 0.5f), std::invalid_argument);
+    EXPECT_THROW(gpu.morphInto(1, -1, 1, 1, 2, 64, one, one, one, 0.5f), std::invalid_argument);
+    EXPECT_THROW(gpu.morphInto(1, 0, 1, 1, 2, 0, one, one, one, 0.5f), std::invalid_argument);
+    EXPECT_THROW(gpu.morphInto(1, 0, 1, 1, 2, 64, one, none, one, 0.5f), std::invalid_argument);
+    EXPECT_THROW(gpu.morphInto(1, 0, 1, 1, 2, 64, one, one, one, NAN), std::invalid_argument);
+}
+
 TEST(Impostor, CpuAndGpuMorphsAgree) {
     const ImpostorAtlas atlas = halved();
     GpuMorpher gpu(BakedHumanoid::get().context);

@@ -33,11 +33,11 @@ public:
                 const MorphParameters& parameters = {});
 
     /// The same morph without leaving the GL: the neighbours are layers `fromLayer` and `toLayer`
-    /// of the 2-D array texture `cells`, the result (`size` x `size`, rows top first) is written
-    /// into layer `targetLayer` of the RGBA8 2-D array texture `target`; no upload, no read-back,
-    /// so nothing waits for the GL. Texture names belong to this morpher's context. Throws
-    /// std::invalid_argument for a zero name, one texture as both, a bad layer or line count, or a
-    /// non-finite t, std::runtime_error if the layer cannot be rendered into.
+    /// of the 2-D array texture `cells`, the result (`size` x `size`, rows top first) is drawn and
+    /// copied by the GL into layer `targetLayer` of the RGBA8 2-D array texture `target` (which may
+    /// be `cells`); no upload, no read-back, so nothing waits for the GL. Texture names belong to
+    /// this morpher's context. Throws std::invalid_argument for a zero name, a layer or size that
+    /// does not fit, a bad line count or a non-finite t, std::runtime_error if the GL cannot draw.
     void morphInto(unsigned cells, int fromLayer, int toLayer, unsigned target, int targetLayer, int size,
                    std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
                    std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters = {});

@@ -1,11 +1,11 @@
 #pragma once
 // Draws ImpostorBatcher's instances with OpenGL: camera-facing quads, one instanced call per atlas,
-// each blending its three view cells by their weights in the fragment shader. An atlas's stored
-// cells live in one 2-D array texture (a layer per cell, uploaded once); its morphed cells live in
-// a second, small one, the pool (MorphPool): a cell is morphed once into a pool layer and stays
-// there across frames while it is used, at most `morphBudget` new cells a frame, the most wanted
-// first; an impostor whose cell is not ready shows its nearest stored key-frame. Cells are morphed
-// by the GL straight into the pool (no read-back) or on the CPU and uploaded.
+// each blending its three view cells by their weights in the fragment shader. An atlas lives in one
+// 2-D array texture: its stored cells (a layer each, uploaded once), then a few layers for morphed
+// cells, the pool (MorphPool): a cell is morphed once into a pool layer and stays there across
+// frames while it is wanted, at most `morphBudget` new cells a frame, the most wanted first; an
+// impostor whose cell is not ready shows its nearest stored key-frame. Cells are morphed by the GL
+// into the layer (no read-back) or on the CPU and uploaded.
 // Draw after GlRenderer::draw() and before endFrame(): quads are depth-tested against the meshes.
 
 #include <cstdint>
