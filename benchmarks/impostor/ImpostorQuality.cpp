@@ -16,10 +16,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <random>
@@ -35,7 +38,10 @@
 #include "throng/render/ImageIO.h"
 #include "throng/render/ImageSimilarity.h"
 #include "throng/render/ImpostorBaker.h"
+#include "throng/render/LimbMorph.h"
 #include "throng/render/MorphCache.h"
+#include "throng/render/MorphFeatures.h"
+#include "throng/render/ProxyWarp.h"
 #include "throng/support/CharacterSource.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
@@ -154,6 +160,190 @@ void measureViews(const Asset& asset, ImpostorBaker& baker, const ImpostorAtlas&
     }
 }
 
+// One way of regenerating a dropped cell from automatic features.
+struct FeatureVariant {
+    std::string name;
+    FeatureOptions features;
+    MorphParameters parameters;
+    bool limbs = false;  // occlusion-aware blend (morphLimbs) instead of the cross-dissolve
+    VisibilityOptions visibility{};
+    int oracle = 0;      // diagnostics: 1 per-pixel best of the two warps (needs the truth), 2 previous only, 3 next only
+    long proxy = -1;     // warp through the figure's surface with at most this many vertices (0: all); -1: lines
+    ProxyWarpOptions proxyOptions{};
+};
+
+// Proxy meshes of one asset by vertex budget, built on first use.
+struct Proxies {
+    ImpostorBaker* baker = nullptr;
+    std::map<long, ProxyMesh> meshes;
+    const ProxyMesh& get(long budget) {
+        auto it = meshes.find(budget);
+        if (it == meshes.end()) it = meshes.emplace(budget, baker->proxyMesh(static_cast<std::size_t>(budget))).first;
+        return it->second;
+    }
+};
+
+// Regenerates dropped key-frame `k` of `half` in view `v` as `variant` says: the occlusion-aware
+// morph on the CPU, else the GPU morph when the features fit its uniforms, else the CPU morph.
+Image morphVariant(const ImpostorAtlas& half, const FeatureTrack& track, std::uint32_t v, int k, const FeatureVariant& variant,
+                   GpuMorpher* gpu, unsigned threads, const Image* truth = nullptr, Proxies* proxies = nullptr) {
+    int before = 0, after = 0;
+    float t = 0.5f;
+    half.neighbours(k, before, after, t);
+    if (variant.proxy >= 0) {
+        const Image a = half.cell(v, before), b = half.cell(v, after);
+        const glm::vec3 eye = half.views().direction(v);
+        const ProxySource sources[2] = {{&a, eye, before, 1.0f - t}, {&b, eye, after, t}};
+        if (variant.oracle) {
+            const ProxySource s0[1] = {sources[0]}, s1[1] = {sources[1]};
+            const Image w0 = warpProxy(proxies->get(variant.proxy), s0, eye, k, variant.proxyOptions);
+            const Image w1 = warpProxy(proxies->get(variant.proxy), s1, eye, k, variant.proxyOptions);
+            if (variant.oracle == 2) return w0;
+            if (variant.oracle == 3) return w1;
+            Image best = w0;
+            for (std::size_t i = 0; i < best.rgba.size(); i += 4) {
+                int e0 = 0, e1 = 0;
+                for (int c = 0; c < 4; ++c) e0 += std::abs(w0.rgba[i + c] - truth->rgba[i + c]), e1 += std::abs(w1.rgba[i + c] - truth->rgba[i + c]);
+                if (e1 < e0) std::copy_n(&w1.rgba[i], 4, &best.rgba[i]);
+            }
+            return best;
+        }
+        return warpProxy(proxies->get(variant.proxy), sources, eye, k, variant.proxyOptions);
+    }
+    const CellFeatures f = droppedCellFeatures(half, track, v, k, variant.features);
+    const Image a = half.cell(v, before), b = half.cell(v, after);
+    if (variant.oracle) {
+        const Image w0 = morphImages(a, f.from, b, f.to, f.target, 0.0f, variant.parameters, threads, f.targetAttributes);
+        const Image w1 = morphImages(a, f.from, b, f.to, f.target, 1.0f, variant.parameters, threads, f.targetAttributes);
+        if (variant.oracle == 2) return w0;
+        if (variant.oracle == 3) return w1;
+        Image best = w0;
+        for (std::size_t i = 0; i < best.rgba.size(); i += 4) {
+            int e0 = 0, e1 = 0;
+            for (int c = 0; c < 4; ++c) e0 += std::abs(w0.rgba[i + c] - truth->rgba[i + c]), e1 += std::abs(w1.rgba[i + c] - truth->rgba[i + c]);
+            if (e1 < e0) std::copy_n(&w1.rgba[i], 4, &best.rgba[i]);
+        }
+        return best;
+    }
+    if (variant.limbs) return morphLimbs(a, b, f, track, t, variant.parameters, variant.visibility, threads);
+    if (gpu && f.target.size() <= GpuMorpher::kMaxLines) return gpu->morph(a, f.from, b, f.to, f.target, t, variant.parameters, f.targetAttributes);
+    return morphImages(a, f.from, b, f.to, f.target, t, variant.parameters, threads, f.targetAttributes);
+}
+
+// Side by side, 4x, over grey: for looking at a few cells while experimenting.
+Image contactSheet(const std::vector<Image>& cells) {
+    const int z = 4, w = cells.front().width, h = cells.front().height;
+    Image out;
+    out.width = w * z * static_cast<int>(cells.size());
+    out.height = h * z;
+    out.rgba.assign(static_cast<std::size_t>(out.width) * out.height * 4, 255);
+    for (std::size_t c = 0; c < cells.size(); ++c)
+        for (int y = 0; y < out.height; ++y)
+            for (int x = 0; x < w * z; ++x) {
+                const std::uint8_t* p = &cells[c].rgba[(static_cast<std::size_t>(y / z) * w + x / z) * 4];
+                std::uint8_t* o = &out.rgba[(static_cast<std::size_t>(y) * out.width + c * w * z + x) * 4];
+                for (int k = 0; k < 3; ++k) o[k] = static_cast<std::uint8_t>(p[k] + (255 - p[3]) * 96 / 255);
+            }
+    return out;
+}
+
+// Every dropped cell regenerated by each variant, against the truly rendered cell.
+void measureVariants(const Asset& asset, const ImpostorAtlas& full, const ImpostorAtlas& half, const FeatureTrack& track,
+                     const std::vector<FeatureVariant>& variants, GpuMorpher* gpu, Proxies& proxies, std::vector<Row>& rows) {
+    for (const FeatureVariant& variant : variants) {
+        Scores s;
+        const auto t0 = std::chrono::steady_clock::now();
+        std::size_t lines = 0;
+        for (int k = 1; k < half.keyframeCount(); k += 2)
+            for (std::uint32_t v = 0; v < half.views().viewCount(); ++v) {
+                const Image truth = full.cell(v, k);
+                const Image m = morphVariant(half, track, v, k, variant, gpu, 2, &truth, &proxies);
+                s.add(m, truth);
+                if (std::getenv("IMPQ_SHEET") && k == std::atoi(std::getenv("IMPQ_SHEET")) && v % 4 == 0 && v < 32) {
+                    std::string name = variant.name;
+                    for (char& c : name) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                    Image diff = truth;
+                    for (std::size_t i = 0; i < diff.rgba.size(); i += 4) {
+                        int e = 0;
+                        for (int c = 0; c < 4; ++c) e = std::max(e, std::abs(m.rgba[i + c] - truth.rgba[i + c]));
+                        diff.rgba[i] = diff.rgba[i + 1] = diff.rgba[i + 2] = static_cast<std::uint8_t>(std::min(255, e * 4));
+                        diff.rgba[i + 3] = 255;
+                    }
+                    writePng(contactSheet({half.cell(v, k - 1), m, truth, half.cell(v, k + 1 < half.keyframeCount() ? k + 1 : 0), diff}),
+                             "/tmp/impq/sheet-" + name + "-v" + std::to_string(v) + ".png");
+                }
+                if (lines == 0)
+                    lines = variant.proxy >= 0 ? proxies.get(variant.proxy).vertexCount()
+                                               : droppedCellFeatures(half, track, v, k, variant.features).target.size();
+            }
+        Row row{asset.name, full.clipName(), variant.name, static_cast<int>(lines)};
+        s.into(row);
+        if (std::getenv("IMPQ_RINGS")) {
+            const std::uint32_t az = static_cast<std::uint32_t>(half.views().azimuths());
+            std::vector<double> ring(static_cast<std::size_t>(half.views().elevations()), 0.0), kf(static_cast<std::size_t>(half.keyframeCount()), 0.0);
+            std::size_t i = 0;
+            for (int k = 1; k < half.keyframeCount(); k += 2)
+                for (std::uint32_t v = 0; v < half.views().viewCount(); ++v, ++i) ring[v / az] += s.ncc[i], kf[static_cast<std::size_t>(k)] += s.ncc[i];
+            std::fprintf(stderr, "   rings:");
+            for (double r : ring) std::fprintf(stderr, " %.4f", r / (static_cast<double>(s.ncc.size()) / static_cast<double>(ring.size())));
+            std::fprintf(stderr, "  key-frames:");
+            for (int k = 1; k < half.keyframeCount(); k += 2) std::fprintf(stderr, " %.4f", kf[static_cast<std::size_t>(k)] / half.views().viewCount());
+            std::fprintf(stderr, "\n");
+        }
+        row.gpuMs = ms(std::chrono::steady_clock::now() - t0) / row.cells;
+        rows.push_back(row);
+        std::fprintf(stderr, "%s: %s (%zu features): NCC %.4f PSNR %.2f SSIM %.4f, %.1f ms/cell\n", asset.name.c_str(), variant.name.c_str(),
+                     lines, row.nccMean, row.psnr, row.ssim, row.gpuMs);
+    }
+}
+
+std::vector<FeatureVariant> featureVariants(const MorphParameters& base) {
+    std::vector<FeatureVariant> v;
+    const auto add = [&](std::string name, auto edit) {
+        FeatureVariant f{std::move(name), {}, base};
+        edit(f);
+        v.push_back(f);
+    };
+    add("bones (track)", [](FeatureVariant&) {});
+    const char* only = std::getenv("IMPQ_ONLY");
+    if (!only || std::string(only) == "diag") {
+        add("diag: previous warped only", [](FeatureVariant& f) { f.oracle = 2; });
+        add("diag: next warped only", [](FeatureVariant& f) { f.oracle = 3; });
+        add("diag: per-pixel best of the two warps", [](FeatureVariant& f) { f.oracle = 1; });
+        add("diag: capsules, per-pixel best", [](FeatureVariant& f) { f.features.capsules = true, f.oracle = 1; });
+    }
+    if (only && std::string(only) == "proxydiag") {
+        add("proxy: previous only", [](FeatureVariant& f) { f.proxy = 0, f.oracle = 2; });
+        add("proxy: next only", [](FeatureVariant& f) { f.proxy = 0, f.oracle = 3; });
+        add("proxy: per-pixel best", [](FeatureVariant& f) { f.proxy = 0, f.oracle = 1; });
+        add("proxy", [](FeatureVariant& f) { f.proxy = 0; });
+        add("proxy opaque", [](FeatureVariant& f) { f.proxy = 0, f.proxyOptions.opaqueInside = true; });
+        add("proxy opaque, no visibility", [](FeatureVariant& f) { f.proxy = 0, f.proxyOptions.opaqueInside = true, f.proxyOptions.distrust = 1; });
+        add("proxy opaque tol 4", [](FeatureVariant& f) { f.proxy = 0, f.proxyOptions.opaqueInside = true, f.proxyOptions.depthTolerance = 4; });
+        add("proxy opaque bicubic", [](FeatureVariant& f) { f.proxy = 0, f.proxyOptions.opaqueInside = true, f.proxyOptions.bicubic = true; });
+        add("proxy opaque normals 16", [](FeatureVariant& f) { f.proxy = 0, f.proxyOptions.opaqueInside = true, f.proxyOptions.normalSharpness = 16; });
+        for (long budget : {2000L, 1000L, 500L})
+            add("proxy " + std::to_string(budget) + " opaque", [budget](FeatureVariant& f) { f.proxy = budget, f.proxyOptions.opaqueInside = true; });
+        add("proxy 1000 opaque rim 1", [](FeatureVariant& f) { f.proxy = 1000, f.proxyOptions.opaqueInside = true, f.proxyOptions.rim = 1; });
+    }
+    if (!only || std::string(only) == "proxy") {
+        for (long budget : {0L, 2000L, 800L, 300L}) {
+            add("proxy " + std::to_string(budget), [budget](FeatureVariant& f) { f.proxy = budget; });
+            add("proxy " + std::to_string(budget) + ", no visibility", [budget](FeatureVariant& f) { f.proxy = budget, f.proxyOptions.distrust = 1.0f; });
+        }
+    }
+    if (!only || std::string(only) == "caps") {
+        for (float r : {0.5f, 0.75f, 1.0f, 1.25f, 1.5f})
+            add("capsules x" + std::to_string(r).substr(0, 4), [r](FeatureVariant& f) { f.features.capsules = true, f.features.radiusScale = r; });
+    }
+    if (!only || std::string(only) == "depth") {
+        for (float d : {0.1f, 0.3f, 1.0f, 3.0f})
+            add("capsules + depth " + std::to_string(d).substr(0, 4), [d](FeatureVariant& f) { f.features.capsules = true, f.parameters.depth = d; });
+        add("capsules + depth 0.3 + visibility", [](FeatureVariant& f) { f.features.capsules = true, f.parameters.depth = 0.3f, f.limbs = true; });
+    }
+    return v;
+}
+
 void measure(const Asset& asset, const ImpostorBakeOptions& options, const MorphParameters& parameters, const std::filesystem::path& out,
              std::vector<Row>& rows, std::vector<Memory>& memory, std::vector<ViewRow>& viewRows) {
     const auto tmpl = support::loadTemplate(asset.source);
@@ -166,8 +356,19 @@ void measure(const Asset& asset, const ImpostorBakeOptions& options, const Morph
     half.dropOddKeyframes();
     memory.push_back({asset.name, full.textureBytes(), half.textureBytes()});
     const std::string clipName = full.clipName();
-    measureViews(asset, baker, full, viewRows);
     GpuMorpher gpu(context);
+    const FeatureTrack track = baker.featureTrack();
+    {
+        std::fprintf(stderr, "%s: radii (px):", asset.name.c_str());
+        for (std::size_t i = 0; i < track.boneCount(); ++i) std::fprintf(stderr, " %s=%.1f/%u", full.boneNames()[i].c_str(), track.radii()[i] * track.pixelsPerMetre(), track.limbs()[i]);
+        std::fprintf(stderr, "\n");
+    }
+    if (std::getenv("IMPQ_FEATURES")) {
+        Proxies proxies{&baker, {}};
+        measureVariants(asset, full, half, track, featureVariants(parameters), &gpu, proxies, rows);
+        return;
+    }
+    measureViews(asset, baker, full, viewRows);
 
     // Baselines.
     Scores previous, dissolve;

@@ -29,14 +29,17 @@ uniform sampler2D uTo;
 uniform vec4 uTarget[64];
 uniform vec4 uFromLines[64];
 uniform vec4 uToLines[64];
+uniform vec4 uAttributes[64];  // per target line: weight, capsule radius, depth at p, depth at q
 uniform int uCount;
 uniform vec3 uParams;      // a, b, p
+uniform float uDepth;      // depth order: weight *= exp(uDepth * z)
 uniform float uT;
 uniform ivec2 uSize;
 out vec4 colour;
 
 const float kDegenerate = 1e-3;
 const float kMinLength = 1.0;
+const float kMaxDepthExponent = 40.0;
 
 vec2 perpendicular(vec2 d) { return vec2(-d.y, d.x); }
 
@@ -46,6 +49,7 @@ vec2 sourcePosition(vec2 x, bool second) {
     for (int i = 0; i < uCount; ++i) {
         vec4 dl = uTarget[i];
         vec4 sl = second ? uToLines[i] : uFromLines[i];
+        vec4 at = uAttributes[i];
         vec2 d = dl.zw - dl.xy;
         float len2 = dot(d, d);
         float len = sqrt(len2);
@@ -54,6 +58,7 @@ vec2 sourcePosition(vec2 x, bool second) {
         float slen = sqrt(dot(s, s));
         vec2 proposed;
         float dist;
+        float along = 0.0;
         if (len < kDegenerate || slen < kDegenerate) {
             proposed = sl.xy + xp;
             dist = sqrt(dot(xp, xp));
@@ -62,12 +67,18 @@ vec2 sourcePosition(vec2 x, bool second) {
             float v = dot(xp, perpendicular(d)) / len;
             proposed = sl.xy + u * s + v * (perpendicular(s) / slen);
             if (u < 0.0) dist = sqrt(dot(xp, xp));
-            else if (u > 1.0) { vec2 xq = x - dl.zw; dist = sqrt(dot(xq, xq)); }
-            else dist = abs(v);
+            else if (u > 1.0) { vec2 xq = x - dl.zw; dist = sqrt(dot(xq, xq)); along = 1.0; }
+            else { dist = abs(v); along = u; }
         }
         float a = max(uParams.x, 1e-3);
         float lenP = pow(max(len, kMinLength), uParams.z);
-        float w = pow(lenP / (a + dist), uParams.y);
+        float capsule = max(dist - at.y, 0.0);
+        float order = 1.0;
+        if (uDepth != 0.0 && capsule <= 0.0) {
+            float z = at.z + (at.w - at.z) * along;
+            order = exp(clamp(uDepth * z, -kMaxDepthExponent, kMaxDepthExponent));
+        }
+        float w = pow(lenP / (a + capsule), uParams.y) * (at.x * order);
         sum += (proposed - x) * w;
         weightSum += w;
     }
@@ -105,6 +116,17 @@ std::vector<float> packLines(std::span<const FeatureLine> lines) {
     std::vector<float> out;
     out.reserve(lines.size() * 4);
     for (const FeatureLine& l : lines) out.insert(out.end(), {l.p.x, l.p.y, l.q.x, l.q.y});
+    return out;
+}
+
+// One vec4 per line (weight, radius, depth at p, depth at q); the classic line when none is given.
+std::vector<float> packAttributes(std::span<const LineAttributes> attributes, std::size_t lines) {
+    std::vector<float> out;
+    out.reserve(lines * 4);
+    for (std::size_t i = 0; i < lines; ++i) {
+        const LineAttributes a = i < attributes.size() ? attributes[i] : LineAttributes{};
+        out.insert(out.end(), {a.weight, a.radius, a.depthP, a.depthQ});
+    }
     return out;
 }
 
@@ -157,7 +179,7 @@ GpuMorpher::~GpuMorpher() {
 
 Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
                         std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
-                        const MorphParameters& parameters) {
+                        const MorphParameters& parameters, std::span<const LineAttributes> attributes) {
     if (!from.valid() || !to.valid()) throw std::invalid_argument("GpuMorpher::morph: an image is invalid");
     if (from.width != to.width || from.height != to.height)
         throw std::invalid_argument("GpuMorpher::morph: images of different sizes");
@@ -167,6 +189,8 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
         throw std::invalid_argument("GpuMorpher::morph: " + std::to_string(targetLines.size()) +
                                     " lines, at most " + std::to_string(kMaxLines));
     if (!std::isfinite(t)) throw std::invalid_argument("GpuMorpher::morph: t is not finite");
+    checkLineAttributes(attributes, targetLines.size(), "GpuMorpher::morph");
+    if (!std::isfinite(parameters.depth)) throw std::invalid_argument("GpuMorpher::morph: the depth parameter is not finite");
 
     Impl& s = *impl_;
     s.context->makeCurrent();
@@ -198,7 +222,9 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
         gl.Uniform4fv(s.program->uniformLocation("uTarget"), n, packLines(targetLines).data());
         gl.Uniform4fv(s.program->uniformLocation("uFromLines"), n, packLines(fromLines).data());
         gl.Uniform4fv(s.program->uniformLocation("uToLines"), n, packLines(toLines).data());
+        gl.Uniform4fv(s.program->uniformLocation("uAttributes"), n, packAttributes(attributes, targetLines.size()).data());
     }
+    gl.Uniform1f(s.program->uniformLocation("uDepth"), parameters.depth);
     gl.Uniform1i(s.program->uniformLocation("uCount"), n);
     gl.Uniform3f(s.program->uniformLocation("uParams"), parameters.a, parameters.b, parameters.p);
     gl.Uniform1f(s.program->uniformLocation("uT"), t);

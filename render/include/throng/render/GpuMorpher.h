@@ -26,11 +26,12 @@ public:
     GpuMorpher(const GpuMorpher&) = delete;
     GpuMorpher& operator=(const GpuMorpher&) = delete;
 
-    /// Same contract and result as morphImages(); also throws std::invalid_argument when there are
-    /// more than kMaxLines lines. Uploads both images, draws one full-cell pass and reads it back.
+    /// Same contract and result as morphImages() (with its per-line `attributes`); also throws
+    /// std::invalid_argument when there are more than kMaxLines lines. Uploads both images, draws
+    /// one full-cell pass and reads it back.
     Image morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
                 std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
-                const MorphParameters& parameters = {});
+                const MorphParameters& parameters = {}, std::span<const LineAttributes> attributes = {});
 
 private:
     struct Impl;
