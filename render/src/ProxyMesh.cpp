@@ -1,5 +1,6 @@
 #include "throng/render/ProxyMesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -48,9 +49,25 @@ void ProxyMesh::setPositions(int keyframe, std::span<const glm::vec3> positions)
     }
 }
 
-std::vector<glm::vec3> ProxyMesh::project(int keyframe, const glm::vec3& toEye) const {
+std::vector<glm::vec3> ProxyMesh::positionsAt(double keyframe) const {
+    if (!std::isfinite(keyframe)) throw std::invalid_argument("ProxyMesh: the key-frame is not finite");
+    const double count = static_cast<double>(keyframes_);
+    double k = std::fmod(keyframe, count);
+    if (k < 0.0) k += count;
+    const int k0 = std::min(static_cast<int>(k), keyframes_ - 1);
+    const int k1 = (k0 + 1) % keyframes_;
+    const auto f = static_cast<float>(k - k0);
+    const std::span<const glm::vec3> a = positions(k0);
+    if (f == 0.0f) return {a.begin(), a.end()};
+    const std::span<const glm::vec3> b = positions(k1);
+    std::vector<glm::vec3> out(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) out[i] = a[i] + (b[i] - a[i]) * f;
+    return out;
+}
+
+std::vector<glm::vec3> ProxyMesh::project(double keyframe, const glm::vec3& toEye) const {
     const ViewBasis b = viewBasis(toEye);
-    const std::span<const glm::vec3> p = positions(keyframe);
+    const std::vector<glm::vec3> p = positionsAt(keyframe);
     const float s = static_cast<float>(cellSize_), ppm = s / (2.0f * radius_);
     std::vector<glm::vec3> out(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -61,8 +78,8 @@ std::vector<glm::vec3> ProxyMesh::project(int keyframe, const glm::vec3& toEye) 
     return out;
 }
 
-std::vector<glm::vec3> ProxyMesh::normals(int keyframe) const {
-    const std::span<const glm::vec3> p = positions(keyframe);
+std::vector<glm::vec3> ProxyMesh::normals(double keyframe) const {
+    const std::vector<glm::vec3> p = positionsAt(keyframe);
     std::vector<glm::vec3> n(p.size(), glm::vec3(0.0f));
     for (const auto& t : triangles_) {
         const glm::vec3 face = glm::cross(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);  // length: twice the area

@@ -89,7 +89,7 @@ std::vector<float> depthBuffer(const ProxyMesh& mesh, const std::vector<glm::vec
 
 }  // namespace
 
-Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, int keyframe,
+Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
                 const ProxyWarpOptions& options) {
     const int s = mesh.cellSize();
     if (sources.empty()) throw std::invalid_argument("warpProxy: no source");
@@ -105,7 +105,7 @@ Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, con
         weightSum += src.weight;
     }
     if (!(weightSum > 0.0f)) throw std::invalid_argument("warpProxy: the source weights sum to zero");
-    if (keyframe < 0 || keyframe >= mesh.keyframeCount()) throw std::invalid_argument("warpProxy: key-frame out of range");
+    if (!std::isfinite(keyframe)) throw std::invalid_argument("warpProxy: the target key-frame is not finite");
     if (!(options.depthTolerance >= 0.0f) || !(options.distrust >= 0.0f && options.distrust <= 1.0f) || options.rim < 0)
         throw std::invalid_argument("warpProxy: depth tolerance and rim must be >= 0, distrust in [0, 1]");
 

@@ -391,5 +391,29 @@ TEST(ImpostorWarp, ProxyDepthTestKeepsHiddenPixelsOut) {
     EXPECT_GT(at(blind, -0.5f, 0.0f)[0], 100);
 }
 
+TEST(ImpostorWarp, ProxyPlaysBetweenKeyframesAndLoops) {
+    const Occluders scene;
+    const auto k0 = scene.mesh.positions(0), k1 = scene.mesh.positions(1), k2 = scene.mesh.positions(2);
+    const std::vector<glm::vec3> half = scene.mesh.positionsAt(0.5), wrap = scene.mesh.positionsAt(2.25), back = scene.mesh.positionsAt(-0.75);
+    for (std::size_t i = 0; i < half.size(); ++i) {
+        EXPECT_NEAR(half[i].x, 0.5f * (k0[i].x + k1[i].x), 1e-6f);
+        EXPECT_NEAR(wrap[i].x, 0.75f * k2[i].x + 0.25f * k0[i].x, 1e-6f) << "the clip loops from the last key-frame to the first";
+        EXPECT_NEAR(back[i].x, wrap[i].x, 1e-6f);
+        EXPECT_EQ(scene.mesh.positionsAt(1.0)[i], k1[i]);
+    }
+    // Warped to the time between two key-frames, the front square sits between its two places.
+    const Image a = scene.render(0), b = scene.render(1);
+    const ProxySource sources[2] = {{&a, {0, 0, 1}, 0, 0.5f}, {&b, {0, 0, 1}, 1, 0.5f}};
+    ProxyWarpOptions o;
+    o.opaqueInside = true;
+    const Image mid = warpProxy(scene.mesh, sources, {0, 0, 1}, 0.5, o);
+    // Key-frame 0 has the front square over x in [-0.6, -0.2], key-frame 1 over [0.2, 0.6]: at 0.5
+    // over [-0.2, 0.2], so the centre is red and x = -0.5 blue.
+    EXPECT_EQ(mid.rgba[(16 * 32 + 16) * 4 + 0], 255);
+    EXPECT_EQ(mid.rgba[(16 * 32 + 8) * 4 + 2], 255);
+    EXPECT_THROW(scene.mesh.positionsAt(std::nan("")), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace throng
+

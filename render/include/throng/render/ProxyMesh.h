@@ -40,13 +40,19 @@ public:
     /// std::invalid_argument for a bad key-frame, size or value.
     void setPositions(int keyframe, std::span<const glm::vec3> positions);
 
-    /// The vertices of key-frame `k` seen from `toEye` (needs a horizontal component): x, y in
-    /// cell pixels (rows down, as FeatureTrack::lines), z the depth toward the eye in pixels.
-    std::vector<glm::vec3> project(int keyframe, const glm::vec3& toEye) const;
+    /// Positions at fractional key-frame `keyframe` (the clip loops: wrapped into [0, count)),
+    /// linearly between the two key-frames around it; exactly positions(k) at a whole k. Throws
+    /// std::invalid_argument if it is not finite.
+    std::vector<glm::vec3> positionsAt(double keyframe) const;
+    /// The vertices at (fractional) key-frame `keyframe` seen from `toEye` (needs a horizontal
+    /// component): x, y in cell pixels (rows down, as FeatureTrack::lines), z the depth toward the
+    /// eye in pixels.
+    std::vector<glm::vec3> project(double keyframe, const glm::vec3& toEye) const;
 
-    /// Unit vertex normals (actor frame) of key-frame `k`: area-weighted sums of the normals of the
-    /// triangles around each vertex (counter-clockwise front faces); zero for a vertex of no triangle.
-    std::vector<glm::vec3> normals(int keyframe) const;
+    /// Unit vertex normals (actor frame) at (fractional) key-frame `keyframe`: area-weighted sums
+    /// of the normals of the triangles around each vertex (counter-clockwise front faces); zero for
+    /// a vertex of no triangle.
+    std::vector<glm::vec3> normals(double keyframe) const;
 
     /// Bytes of this proxy (what storing it beside an atlas costs).
     std::size_t bytes() const;

@@ -48,12 +48,13 @@ struct ProxyWarpOptions {
     bool opaqueInside = false;
 };
 
-/// The cell of key-frame `keyframe` seen from `toEye`, warped from `sources` through `mesh` and
-/// blended by their weights (renormalised where visibility removes some). Pixels neither covered
-/// by the proxy nor within the rim are transparent. Throws std::invalid_argument if there is no
-/// source, a source image is missing or not cellSize() square, a key-frame is out of range, a
-/// weight is negative or not finite, or the weights sum to zero.
-Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, int keyframe,
+/// The cell at key-frame `keyframe` (fractional: any time of the looping clip, the proxy between
+/// its key-frames) seen from `toEye`, warped from `sources` through `mesh` and blended by their
+/// weights (renormalised where visibility removes some). Pixels neither covered by the proxy nor
+/// within the rim are transparent. Throws std::invalid_argument if there is no source, a source
+/// image is missing or not cellSize() square, a source key-frame is out of range, `keyframe` is
+/// not finite, a weight is negative or not finite, or the weights sum to zero.
+Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
                 const ProxyWarpOptions& options = {});
 
 }  // namespace throng
