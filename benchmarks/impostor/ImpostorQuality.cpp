@@ -164,11 +164,12 @@ struct Bake {
     std::unique_ptr<ImpostorAtlas> full, half;
     std::unique_ptr<FeatureTrack> track;
     std::unique_ptr<GpuMorpher> gpu;
-    std::map<long, ProxyMesh> proxies;  // by vertex budget (0: every vertex, copies welded)
+    std::map<std::pair<long, int>, ProxyMesh> proxies;  // by vertex budget (0: every vertex, copies welded) and poses per key-frame
 
-    const ProxyMesh& proxy(long budget) {
-        auto it = proxies.find(budget);
-        if (it == proxies.end()) it = proxies.emplace(budget, baker->proxyMesh(static_cast<std::size_t>(budget))).first;
+    const ProxyMesh& proxy(long budget, int samples = 1) {
+        auto it = proxies.find({budget, samples});
+        if (it == proxies.end())
+            it = proxies.emplace(std::pair{budget, samples}, baker->proxyMesh(static_cast<std::size_t>(budget), samples)).first;
         return it->second;
     }
     // Bytes of the bone lines every cell keeps (what the line morph reads beside the pages).
@@ -202,6 +203,7 @@ struct Method {
     ProxyWarpOptions proxyOptions{};
     long proxyBudget = 0;
     bool direct = false;  // sweep only: warp straight to each sample's eye and time (no cells shared)
+    int proxySamples = 1;  // direct only: proxy poses per key-frame interval
 };
 
 // The surface-proxy options this report recommends (from the features section).
@@ -717,6 +719,9 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
     const std::size_t all = base.half->boneCount();
     Method direct = proxyMethod("surface proxy, straight to the eye and time");
     direct.direct = true;
+    Method direct4 = proxyMethod("surface proxy (4 poses per key-frame), straight to the eye and time");
+    direct4.direct = true;
+    direct4.proxySamples = 4;
     std::vector<std::pair<std::string, Method>> featureMethods = {
         {"0", linesMethod("cross-dissolve", 0, p)},
         {"4", linesMethod("morph, strongest bones", std::min<std::size_t>(4, all), p)},
@@ -726,6 +731,7 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
         {"all_capsules_depth", oursLines("morph, all bones as capsules + depth order", all, p)},
         {"surface_proxy", proxyMethod("surface-proxy warp")},
         {"surface_proxy_direct", direct},
+        {"surface_proxy_direct_4_poses", direct4},
     };
     // Samples shared by every row.
     std::mt19937 rng(11);
@@ -744,8 +750,8 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
         samples.push_back({dir, ph, base.baker->renderCell(ph * base.full->duration(), dir)});
     }
     const auto measure = [&](const std::string& knob, const std::string& value, Bake& bake, const Method& m) {
-        const std::size_t bytes =
-            bake.half->textureBytes() + (m.kind == Method::Kind::Proxy ? bake.proxy(m.proxyBudget).bytes() : bake.lineBytes());
+        const std::size_t bytes = bake.half->textureBytes() +
+                                  (m.kind == Method::Kind::Proxy ? bake.proxy(m.proxyBudget, m.proxySamples).bytes() : bake.lineBytes());
         AccuracyRow d{knob, value, m.name, scene, "dropped_cells"};
         if (!m.direct) {
             // Dropped cells at this configuration.
@@ -781,10 +787,10 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
                     const float w = b.weights[static_cast<std::size_t>(j % 3)] * (j < 3 ? 1.0f - w1 : w1);
                     if (w > 0.0f)
                         sources.push_back({&cells[static_cast<std::size_t>(j)], half.views().direction(b.views[static_cast<std::size_t>(j % 3)]),
-                                           j < 3 ? s0 : s1, w});
+                                           (j < 3 ? s0 : s1) * m.proxySamples, w});
                 }
                 const auto t0 = std::chrono::steady_clock::now();
-                const Image warped = warpProxy(bake.proxy(m.proxyBudget), sources, sample.dir, at, m.proxyOptions);
+                const Image warped = warpProxy(bake.proxy(m.proxyBudget, m.proxySamples), sources, sample.dir, at * m.proxySamples, m.proxyOptions);
                 s.morphMs += ms(std::chrono::steady_clock::now() - t0);
                 ++s.morphs;
                 s.add(resample(warped, reference.cellSize), sample.truth);
@@ -821,6 +827,7 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
         measure(c.knob, c.value, bake, classic);
         measure(c.knob, c.value, bake, proxy);
         measure(c.knob, c.value, bake, direct);
+        measure(c.knob, c.value, bake, direct4);
     }
     for (const auto& [value, m] : featureMethods) measure("features", value, base, m);
 }

@@ -296,7 +296,9 @@ FeatureTrack ImpostorBaker::featureTrack() {
     return track;
 }
 
-ProxyMesh ImpostorBaker::proxyMesh(std::size_t maxVertices) {
+ProxyMesh ImpostorBaker::proxyMesh(std::size_t maxVertices, int samplesPerKeyframe) {
+    if (samplesPerKeyframe < 1)
+        throw std::invalid_argument("ImpostorBaker::proxyMesh: samplesPerKeyframe must be >= 1, got " + std::to_string(samplesPerKeyframe));
     Impl& s = *impl_;
     std::vector<glm::vec3> positions;
     std::vector<std::uint32_t> joints;
@@ -346,11 +348,12 @@ ProxyMesh ImpostorBaker::proxyMesh(std::size_t maxVertices) {
         const std::array<std::uint32_t, 3> c{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
         if (c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) kept.push_back(c);
     }
-    ProxyMesh proxy(count, s.options.keyframes, s.centre, s.radius, s.options.cellSize);
+    const int poses = s.options.keyframes * samplesPerKeyframe;
+    ProxyMesh proxy(count, poses, s.centre, s.radius, s.options.cellSize);
     proxy.setTriangles(std::move(kept));
     std::vector<glm::vec3> keyed(count);
-    for (int k = 0; k < s.options.keyframes; ++k) {
-        s.pose(s.clip->duration() * k / s.options.keyframes);
+    for (int k = 0; k < poses; ++k) {
+        s.pose(s.clip->duration() * k / poses);
         s.surface(positions, nullptr, nullptr);
         for (std::size_t c = 0; c < count; ++c) keyed[c] = positions[representative[c]];
         proxy.setPositions(k, keyed);

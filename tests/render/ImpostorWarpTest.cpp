@@ -391,6 +391,23 @@ TEST(ImpostorWarp, ProxyDepthTestKeepsHiddenPixelsOut) {
     EXPECT_GT(at(blind, -0.5f, 0.0f)[0], 100);
 }
 
+TEST(ImpostorWarp, ProxySampledFinerThanTheCellsKeepsTheirPoses) {
+    BakedHumanoid& b = BakedHumanoid::get();
+    const ProxyMesh& coarse = Extras::get().proxy;
+    const ProxyMesh fine = b.baker->proxyMesh(0, 4);
+    ASSERT_EQ(fine.keyframeCount(), 4 * coarse.keyframeCount());
+    ASSERT_EQ(fine.vertexCount(), coarse.vertexCount());
+    for (int k = 0; k < coarse.keyframeCount(); k += 3)
+        for (std::size_t v = 0; v < coarse.vertexCount(); v += 17) EXPECT_EQ(fine.positions(4 * k)[v], coarse.positions(k)[v]);
+    // In between, the finer proxy is the skinned pose itself, not the straight line between two
+    // key-frames: somewhere it differs from the coarse interpolation.
+    const std::vector<glm::vec3> lerp = coarse.positionsAt(0.5);
+    float most = 0;
+    for (std::size_t v = 0; v < lerp.size(); ++v) most = std::max(most, glm::length(lerp[v] - fine.positions(2)[v]));
+    EXPECT_GT(most, 1e-3f);
+    EXPECT_THROW(b.baker->proxyMesh(0, 0), std::invalid_argument);
+}
+
 TEST(ImpostorWarp, ProxyPlaysBetweenKeyframesAndLoops) {
     const Occluders scene;
     const auto k0 = scene.mesh.positions(0), k1 = scene.mesh.positions(1), k2 = scene.mesh.positions(2);

@@ -60,10 +60,12 @@ public:
     /// lines), each bone's flesh radius (median distance of the vertices it carries from it, in the
     /// clip's first pose) and limbs (chains between branchings): the limb-aware features of any view.
     FeatureTrack featureTrack();
-    /// The figure's surface at every key-frame as a warping proxy (ProxyWarp): every drawn mesh,
-    /// skinned, with at most `maxVertices` vertices (0: all; fewer by merging nearby vertices of
-    /// one joint).
-    ProxyMesh proxyMesh(std::size_t maxVertices = 0);
+    /// The figure's surface as a warping proxy (ProxyWarp): every drawn mesh, skinned, with at
+    /// most `maxVertices` vertices (0: all, copies welded; fewer by merging nearby vertices of one
+    /// joint), at `samplesPerKeyframe` (>= 1) poses per key-frame interval: proxy key-frame j is
+    /// clip time j / samplesPerKeyframe key-frames (finer than the cells, for warping to any time).
+    /// Throws std::invalid_argument if samplesPerKeyframe < 1.
+    ProxyMesh proxyMesh(std::size_t maxVertices = 0, int samplesPerKeyframe = 1);
 
 private:
     struct Impl;
