@@ -14,9 +14,11 @@ namespace {
 glm::vec2 perpendicular(glm::vec2 d) { return {-d.y, d.x}; }
 
 // One line's contribution at `x`: the source position it proposes and its weight. Written in the
-// order of the GLSL in GpuMorpher (kMorphFragmentShader) so that both round alike.
+// order of the GLSL in GpuMorpher (kMorphFragmentShader) so that both round alike. `attr` is the
+// classic line (weight 1, radius 0, depth 0) when the caller gives no attributes: the extra factors
+// are then exactly 1 and the capsule distance exactly the classic distance.
 void lineContribution(glm::vec2 x, const FeatureLine& dst, const FeatureLine& src, const MorphParameters& m,
-                      glm::vec2& proposed, float& weight) {
+                      const LineAttributes& attr, glm::vec2& proposed, float& weight) {
     const glm::vec2 d = dst.q - dst.p;
     const float len2 = glm::dot(d, d);
     const float len = std::sqrt(len2);
@@ -24,6 +26,7 @@ void lineContribution(glm::vec2 x, const FeatureLine& dst, const FeatureLine& sr
     const glm::vec2 s = src.q - src.p;
     const float slen = std::sqrt(glm::dot(s, s));
     float dist;
+    float along = 0.0f;  // where along the line the nearest point is (0 at p, 1 at q)
     if (len < kDegenerateFeatureLength || slen < kDegenerateFeatureLength) {
         // A point feature (or a line collapsing to one): its neighbourhood translates with it.
         proposed = src.p + xp;
@@ -36,11 +39,22 @@ void lineContribution(glm::vec2 x, const FeatureLine& dst, const FeatureLine& sr
         else if (u > 1.0f) {
             const glm::vec2 xq = x - dst.q;
             dist = std::sqrt(glm::dot(xq, xq));
-        } else dist = std::fabs(v);
+            along = 1.0f;
+        } else {
+            dist = std::fabs(v);
+            along = u;
+        }
     }
     const float a = std::max(m.a, 1e-3f);
     const float lenP = std::pow(std::max(len, kMinFeatureLength), m.p);
-    weight = std::pow(lenP / (a + dist), m.b);
+    const float capsule = std::max(dist - attr.radius, 0.0f);
+    // Depth decides only among the limbs whose flesh holds the pixel: elsewhere distance decides.
+    float order = 1.0f;
+    if (m.depth != 0.0f && capsule <= 0.0f) {
+        const float z = attr.depthP + (attr.depthQ - attr.depthP) * along;
+        order = std::exp(std::clamp(m.depth * z, -kMaxDepthExponent, kMaxDepthExponent));
+    }
+    weight = std::pow(lenP / (a + capsule), m.b) * (attr.weight * order);
 }
 
 float texel(const Image& image, int x, int y, int c) {
@@ -55,14 +69,16 @@ void checkImage(const Image& image, const char* what) {
 }  // namespace
 
 glm::vec2 beierNeelySourcePosition(glm::vec2 x, std::span<const FeatureLine> destination,
-                                   std::span<const FeatureLine> source, const MorphParameters& parameters) {
+                                   std::span<const FeatureLine> source, const MorphParameters& parameters,
+                                   std::span<const LineAttributes> attributes) {
     glm::vec2 sum(0.0f);
     float weightSum = 0.0f;
     const std::size_t n = std::min(destination.size(), source.size());
+    const LineAttributes classic;
     for (std::size_t i = 0; i < n; ++i) {
         glm::vec2 proposed;
         float w;
-        lineContribution(x, destination[i], source[i], parameters, proposed, w);
+        lineContribution(x, destination[i], source[i], parameters, i < attributes.size() ? attributes[i] : classic, proposed, w);
         sum += (proposed - x) * w;
         weightSum += w;
     }
@@ -100,9 +116,23 @@ void samplePremultiplied(const Image& image, glm::vec2 position, float rgba[4]) 
     }
 }
 
+void checkLineAttributes(std::span<const LineAttributes> attributes, std::size_t lines, const char* who) {
+    if (!attributes.empty() && attributes.size() != lines)
+        throw std::invalid_argument(std::string(who) + ": " + std::to_string(attributes.size()) + " line attributes for " +
+                                    std::to_string(lines) + " lines");
+    for (std::size_t i = 0; i < attributes.size(); ++i) {
+        const LineAttributes& a = attributes[i];
+        if (!std::isfinite(a.weight) || !std::isfinite(a.radius) || !std::isfinite(a.depthP) || !std::isfinite(a.depthQ))
+            throw std::invalid_argument(std::string(who) + ": line attribute " + std::to_string(i) + " is not finite");
+        if (a.weight < 0.0f || a.radius < 0.0f)
+            throw std::invalid_argument(std::string(who) + ": line attribute " + std::to_string(i) +
+                                        " has a negative weight or radius");
+    }
+}
+
 Image morphImages(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
                   std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
-                  const MorphParameters& parameters, unsigned threads) {
+                  const MorphParameters& parameters, unsigned threads, std::span<const LineAttributes> attributes) {
     checkImage(from, "first");
     checkImage(to, "second");
     if (from.width != to.width || from.height != to.height)
@@ -110,6 +140,8 @@ Image morphImages(const Image& from, std::span<const FeatureLine> fromLines, con
     if (fromLines.size() != targetLines.size() || toLines.size() != targetLines.size())
         throw std::invalid_argument("morphImages: the three line sets differ in size");
     if (!std::isfinite(t)) throw std::invalid_argument("morphImages: t is not finite");
+    checkLineAttributes(attributes, targetLines.size(), "morphImages");
+    if (!std::isfinite(parameters.depth)) throw std::invalid_argument("morphImages: the depth parameter is not finite");
 
     Image out;
     out.name = from.name + "~" + to.name;
@@ -121,8 +153,8 @@ Image morphImages(const Image& from, std::span<const FeatureLine> fromLines, con
             for (int x = 0; x < out.width; ++x) {
                 const glm::vec2 p(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
                 float c0[4], c1[4];
-                samplePremultiplied(from, beierNeelySourcePosition(p, targetLines, fromLines, parameters), c0);
-                samplePremultiplied(to, beierNeelySourcePosition(p, targetLines, toLines, parameters), c1);
+                samplePremultiplied(from, beierNeelySourcePosition(p, targetLines, fromLines, parameters, attributes), c0);
+                samplePremultiplied(to, beierNeelySourcePosition(p, targetLines, toLines, parameters, attributes), c1);
                 std::uint8_t* o = &out.rgba[(static_cast<std::size_t>(y) * out.width + x) * 4];
                 for (int c = 0; c < 4; ++c) {
                     const float v = c0[c] * (1.0f - t) + c1[c] * t;

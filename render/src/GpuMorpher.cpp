@@ -37,14 +37,17 @@ uniform sampler2D uTo;
 uniform vec4 uTarget[64];
 uniform vec4 uFromLines[64];
 uniform vec4 uToLines[64];
+uniform vec4 uAttributes[64];  // per target line: weight, capsule radius, depth at p, depth at q
 uniform int uCount;
 uniform vec3 uParams;      // a, b, p
+uniform float uDepth;      // depth order: weight *= exp(uDepth * z)
 uniform float uT;
 uniform ivec2 uSize;
 out vec4 colour;
 
 const float kDegenerate = 1e-3;
 const float kMinLength = 1.0;
+const float kMaxDepthExponent = 40.0;
 
 vec2 perpendicular(vec2 d) { return vec2(-d.y, d.x); }
 
@@ -54,6 +57,7 @@ vec2 sourcePosition(vec2 x, bool second) {
     for (int i = 0; i < uCount; ++i) {
         vec4 dl = uTarget[i];
         vec4 sl = second ? uToLines[i] : uFromLines[i];
+        vec4 at = uAttributes[i];
         vec2 d = dl.zw - dl.xy;
         float len2 = dot(d, d);
         float len = sqrt(len2);
@@ -62,6 +66,7 @@ vec2 sourcePosition(vec2 x, bool second) {
         float slen = sqrt(dot(s, s));
         vec2 proposed;
         float dist;
+        float along = 0.0;
         if (len < kDegenerate || slen < kDegenerate) {
             proposed = sl.xy + xp;
             dist = sqrt(dot(xp, xp));
@@ -70,12 +75,18 @@ vec2 sourcePosition(vec2 x, bool second) {
             float v = dot(xp, perpendicular(d)) / len;
             proposed = sl.xy + u * s + v * (perpendicular(s) / slen);
             if (u < 0.0) dist = sqrt(dot(xp, xp));
-            else if (u > 1.0) { vec2 xq = x - dl.zw; dist = sqrt(dot(xq, xq)); }
-            else dist = abs(v);
+            else if (u > 1.0) { vec2 xq = x - dl.zw; dist = sqrt(dot(xq, xq)); along = 1.0; }
+            else { dist = abs(v); along = u; }
         }
         float a = max(uParams.x, 1e-3);
         float lenP = pow(max(len, kMinLength), uParams.z);
-        float w = pow(lenP / (a + dist), uParams.y);
+        float capsule = max(dist - at.y, 0.0);
+        float order = 1.0;
+        if (uDepth != 0.0 && capsule <= 0.0) {
+            float z = at.z + (at.w - at.z) * along;
+            order = exp(clamp(uDepth * z, -kMaxDepthExponent, kMaxDepthExponent));
+        }
+        float w = pow(lenP / (a + capsule), uParams.y) * (at.x * order);
         sum += (proposed - x) * w;
         weightSum += w;
     }
@@ -134,6 +145,17 @@ void checkLines(const char* where, std::span<const FeatureLine> fromLines, std::
     if (!std::isfinite(t)) throw std::invalid_argument(std::string(where) + ": t is not finite");
 }
 
+// One vec4 per line (weight, radius, depth at p, depth at q); the classic line when none is given.
+std::vector<float> packAttributes(std::span<const LineAttributes> attributes, std::size_t lines) {
+    std::vector<float> out;
+    out.reserve(lines * 4);
+    for (std::size_t i = 0; i < lines; ++i) {
+        const LineAttributes a = i < attributes.size() ? attributes[i] : LineAttributes{};
+        out.insert(out.end(), {a.weight, a.radius, a.depthP, a.depthQ});
+    }
+    return out;
+}
+
 }  // namespace
 
 struct GpuMorpher::Impl {
@@ -146,7 +168,8 @@ struct GpuMorpher::Impl {
     // Sets the line and blend uniforms of `p` and draws the full-cell triangle into the bound
     // framebuffer.
     void drawCell(const ShaderProgram& p, std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
-                  std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters, int w, int h) {
+                  std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters,
+                  std::span<const LineAttributes> attributes, int w, int h) {
         const GladGLContext& gl = context->gl();
         gl.UseProgram(p.id());
         const auto n = static_cast<GLsizei>(targetLines.size());
@@ -154,7 +177,9 @@ struct GpuMorpher::Impl {
             gl.Uniform4fv(p.uniformLocation("uTarget"), n, packLines(targetLines).data());
             gl.Uniform4fv(p.uniformLocation("uFromLines"), n, packLines(fromLines).data());
             gl.Uniform4fv(p.uniformLocation("uToLines"), n, packLines(toLines).data());
+            gl.Uniform4fv(p.uniformLocation("uAttributes"), n, packAttributes(attributes, targetLines.size()).data());
         }
+        gl.Uniform1f(p.uniformLocation("uDepth"), parameters.depth);
         gl.Uniform1i(p.uniformLocation("uCount"), n);
         gl.Uniform3f(p.uniformLocation("uParams"), parameters.a, parameters.b, parameters.p);
         gl.Uniform1f(p.uniformLocation("uT"), t);
@@ -219,11 +244,13 @@ GpuMorpher::~GpuMorpher() {
 
 Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
                         std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
-                        const MorphParameters& parameters) {
+                        const MorphParameters& parameters, std::span<const LineAttributes> attributes) {
     if (!from.valid() || !to.valid()) throw std::invalid_argument("GpuMorpher::morph: an image is invalid");
     if (from.width != to.width || from.height != to.height)
         throw std::invalid_argument("GpuMorpher::morph: images of different sizes");
     checkLines("GpuMorpher::morph", fromLines, toLines, targetLines, t);
+    checkLineAttributes(attributes, targetLines.size(), "GpuMorpher::morph");
+    if (!std::isfinite(parameters.depth)) throw std::invalid_argument("GpuMorpher::morph: the depth parameter is not finite");
 
     Impl& s = *impl_;
     s.context->makeCurrent();
@@ -247,7 +274,7 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
         gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, images[i]->rgba.data());
     }
     gl.ActiveTexture(GL_TEXTURE0);
-    s.drawCell(*s.program, fromLines, toLines, targetLines, t, parameters, w, h);
+    s.drawCell(*s.program, fromLines, toLines, targetLines, t, parameters, attributes, w, h);
 
     Image out;
     out.name = from.name + "~" + to.name;
@@ -267,11 +294,14 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
 
 void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned target, int targetLayer, int size,
                            std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
-                           std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters) {
+                           std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters,
+                           std::span<const LineAttributes> attributes) {
     if (cells == 0 || target == 0) throw std::invalid_argument("GpuMorpher::morphInto: a texture name is 0");
     if (fromLayer < 0 || toLayer < 0 || targetLayer < 0 || size <= 0)
         throw std::invalid_argument("GpuMorpher::morphInto: negative layer or size");
     checkLines("GpuMorpher::morphInto", fromLines, toLines, targetLines, t);
+    checkLineAttributes(attributes, targetLines.size(), "GpuMorpher::morphInto");
+    if (!std::isfinite(parameters.depth)) throw std::invalid_argument("GpuMorpher::morphInto: the depth parameter is not finite");
     Impl& s = *impl_;
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
@@ -299,7 +329,7 @@ void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned 
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, cells);
     gl.UseProgram(s.arrayProgram->id());
     gl.Uniform2i(s.arrayProgram->uniformLocation("uLayers"), fromLayer, toLayer);
-    s.drawCell(*s.arrayProgram, fromLines, toLines, targetLines, t, parameters, size, size);
+    s.drawCell(*s.arrayProgram, fromLines, toLines, targetLines, t, parameters, attributes, size, size);
     gl.UseProgram(0);
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);

@@ -26,11 +26,12 @@ public:
     GpuMorpher(const GpuMorpher&) = delete;
     GpuMorpher& operator=(const GpuMorpher&) = delete;
 
-    /// Same contract and result as morphImages(); also throws std::invalid_argument when there are
-    /// more than kMaxLines lines. Uploads both images, draws one full-cell pass and reads it back.
+    /// Same contract and result as morphImages() (with its per-line `attributes`); also throws
+    /// std::invalid_argument when there are more than kMaxLines lines. Uploads both images, draws
+    /// one full-cell pass and reads it back.
     Image morph(const Image& from, std::span<const FeatureLine> fromLines, const Image& to,
                 std::span<const FeatureLine> toLines, std::span<const FeatureLine> targetLines, float t,
-                const MorphParameters& parameters = {});
+                const MorphParameters& parameters = {}, std::span<const LineAttributes> attributes = {});
 
     /// The same morph without leaving the GL: the neighbours are layers `fromLayer` and `toLayer`
     /// of the 2-D array texture `cells`, the result (`size` x `size`, rows top first) is drawn and
@@ -40,7 +41,8 @@ public:
     /// does not fit, a bad line count or a non-finite t, std::runtime_error if the GL cannot draw.
     void morphInto(unsigned cells, int fromLayer, int toLayer, unsigned target, int targetLayer, int size,
                    std::span<const FeatureLine> fromLines, std::span<const FeatureLine> toLines,
-                   std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters = {});
+                   std::span<const FeatureLine> targetLines, float t, const MorphParameters& parameters = {},
+                   std::span<const LineAttributes> attributes = {});
 
 private:
     struct Impl;

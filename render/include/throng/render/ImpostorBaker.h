@@ -12,7 +12,9 @@
 #include <glm/vec3.hpp>
 
 #include "throng/render/BeierNeely.h"
+#include "throng/render/FeatureTrack.h"
 #include "throng/render/ImpostorAtlas.h"
+#include "throng/render/ProxyMesh.h"
 #include "throng/render/ViewHemisphere.h"
 #include "throng/scenegraph/Image.h"
 
@@ -54,6 +56,16 @@ public:
     Image renderCell(double time, const glm::vec3& toEye);
     /// The bones of the pose at `time` projected into `view`'s cell (pixels), one per bone.
     std::vector<FeatureLine> projectBones(double time, std::uint32_t view);
+    /// The bones in 3-D at every key-frame (the same bones, in the same order, as the atlas's
+    /// lines), each bone's flesh radius (median distance of the vertices it carries from it, in the
+    /// clip's first pose) and limbs (chains between branchings): the limb-aware features of any view.
+    FeatureTrack featureTrack();
+    /// The figure's surface as a warping proxy (ProxyWarp): every drawn mesh, skinned, with at
+    /// most `maxVertices` vertices (0: all, copies welded; fewer by merging nearby vertices of one
+    /// joint), at `samplesPerKeyframe` (>= 1) poses per key-frame interval: proxy key-frame j is
+    /// clip time j / samplesPerKeyframe key-frames (finer than the cells, for warping to any time).
+    /// Throws std::invalid_argument if samplesPerKeyframe < 1.
+    ProxyMesh proxyMesh(std::size_t maxVertices = 0, int samplesPerKeyframe = 1);
 
 private:
     struct Impl;
