@@ -121,8 +121,10 @@ void compare(const Image& a, const Image& b, double& psnr, double& ssim, double&
     n += 1;
 }
 
-CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1, bool background = false) {
+CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1, bool background = false,
+                                 CellWarp warp = CellWarp::FeatureLines) {
     CrowdRendererOptions r;
+    r.impostors.warp = warp;
     r.impostors.backgroundMorph = background;
     r.impostors.gridStep = gridStep;
     r.finishPasses = true;
@@ -161,9 +163,14 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         if (budget > 0)
             add("impostors, pool, CPU on a " + grid + " on another thread, budget " + std::to_string(budget), Kind::Impostors,
                 poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true), "morph budget", std::to_string(budget) + " on another thread");
+    for (int budget : o.gridBudgets)
+        if (budget > 0)
+            add("impostors, pool, surface proxy on another thread, budget " + std::to_string(budget), Kind::Impostors,
+                poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true, CellWarp::SurfaceProxy), "morph budget",
+                std::to_string(budget) + " on another thread, surface proxy");
     for (double d : o.distances)
-        add("impostors from " + std::to_string(int(d)) + " m, pool, " + grid + " on another thread, budget 2", Kind::Impostors,
-            poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true), "impostor distance", std::to_string(int(d)), d);
+        add("impostors from " + std::to_string(int(d)) + " m, pool, surface proxy on another thread, budget 2", Kind::Impostors,
+            poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy), "impostor distance", std::to_string(int(d)), d);
     add("impostors, pool, GL, no budget", Kind::Impostors, poolOptions(o, MorphSource::Gpu, -1), "morph budget", "unlimited");
     const std::size_t unlimited = methods.size() - 1;
     const auto& declared = world->description().representation;
@@ -275,7 +282,7 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
             everyFrame.morphing = ImpostorMorphing::FrameCache;
             everyFrame.morph.capacity = 0;
             everyFrame.morph.features = std::size_t(features);
-            CrowdRendererOptions ours = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true);
+            CrowdRendererOptions ours = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true);  // lines: the features are the knob
             ours.impostors.morph.features = std::size_t(features);
             methods.push_back({"every cell each frame (GL, read back)", std::size_t(features), everyFrame, nullptr});
             methods.push_back({"pool, grid on another thread, budget 2", std::size_t(features), ours, nullptr});
