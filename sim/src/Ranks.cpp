@@ -3,6 +3,7 @@
 #include <climits>
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -85,15 +86,18 @@ int messageCount(std::size_t bytes, int peer, std::string_view what) {
     return static_cast<int>(bytes);
 }
 
-// Size headers of sends in flight: heap storage, given up (never freed) if a rank fails to take
-// part, since MPI may still read it then.
+// Size headers of sends in flight: heap storage, kept until the process exits if a rank fails to
+// take part, since MPI may still read it then.
 struct Headers {
+    std::unique_ptr<std::uint64_t[]> storage;
     std::uint64_t* values;
-    explicit Headers(std::size_t n) : values(new std::uint64_t[n]()) {}
-    ~Headers() { delete[] values; }
-    Headers(const Headers&) = delete;
-    Headers& operator=(const Headers&) = delete;
-    void abandon() { values = nullptr; }  // deliberately leaked: the run is ending
+    explicit Headers(std::size_t n) : storage(new std::uint64_t[n]()), values(storage.get()) {}
+    void abandon() {  // the run is ending: MPI keeps what it has not sent
+        static std::mutex guard;
+        static std::vector<std::unique_ptr<std::uint64_t[]>> kept;
+        const std::lock_guard lock(guard);
+        kept.push_back(std::move(storage));
+    }
 };
 
 void finaliseAtExit() {
