@@ -156,13 +156,24 @@ std::optional<glm::vec3> NavMesh::nearestPoint(const glm::vec3& p, const glm::ve
     return out;
 }
 
-glm::vec3 NavMesh::randomPoint(const CounterRng& rng, std::uint64_t counter) const {
+glm::vec3 NavMesh::randomPoint(const CounterRng& rng, std::uint64_t counter) const { return randomPoint(rng, counter, *query_); }
+
+dtNavMeshQuery* NavMesh::newQuery() const {
+    dtNavMeshQuery* q = dtAllocNavMeshQuery();
+    if (!q || dtStatusFailed(q->init(mesh_, 4096))) {
+        dtFreeNavMeshQuery(q);
+        throw std::runtime_error("NavMesh::newQuery: Detour could not initialise a navigation query");
+    }
+    return q;
+}
+
+glm::vec3 NavMesh::randomPoint(const CounterRng& rng, std::uint64_t counter, dtNavMeshQuery& query) const {
     dtQueryFilter filter;
     dtPolyRef ref = 0;
     glm::vec3 out(0.0f);
     tRng = &rng;
     tCounter = counter * 4;  // Detour draws a few numbers per point
-    const dtStatus status = query_->findRandomPoint(&filter, nextRandom, &ref, &out.x);
+    const dtStatus status = query.findRandomPoint(&filter, nextRandom, &ref, &out.x);
     tRng = nullptr;
     if (dtStatusFailed(status)) throw std::runtime_error("NavMesh::randomPoint: Detour found no polygon");
     return out;

@@ -26,6 +26,7 @@
 #include "throng/sim/IdleGroups.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/SceneError.h"
+#include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
 namespace {
@@ -286,6 +287,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
                 Locomotion::Settings s;
                 s.avoidance = d.effects.avoidance;
                 s.seed = d.seed;
+                s.regions = townRegions(*d.town, file);
                 walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
                 if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects_);
             }

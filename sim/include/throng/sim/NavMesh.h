@@ -47,6 +47,10 @@ public:
     std::optional<glm::vec3> nearestPoint(const glm::vec3& p, const glm::vec3& halfExtents = glm::vec3(2, 4, 2)) const;
     /// A random point on the mesh, area-weighted, a pure function of `rng` and `counter`.
     glm::vec3 randomPoint(const CounterRng& rng, std::uint64_t counter) const;
+    /// The same point, found with the caller's own `query` (so that threads can draw in parallel).
+    glm::vec3 randomPoint(const CounterRng& rng, std::uint64_t counter, dtNavMeshQuery& query) const;
+    /// A new query object on this mesh for one thread's use (free it with dtFreeNavMeshQuery).
+    dtNavMeshQuery* newQuery() const;
     /// Number of polygons.
     int polygonCount() const;
     /// The settings it was built with.
