@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
         scene = sim::parseSceneFile(o.scene);
+        if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
     } catch (const sim::SceneError& e) {
         std::fprintf(stderr, "throng-town: %s\n", e.what());
         return 2;
@@ -193,7 +194,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
-    if (o.actors) sim::scaleActors(scene, *o.actors);
     if (o.seed) scene.seed = *o.seed;
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 
