@@ -352,6 +352,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
         groups_.push_back(std::move(info));
         progress("placing actors", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
     }
+    walkers_ = walkers;
     for (const auto& b : {std::shared_ptr<Behaviour>(walkers), std::shared_ptr<Behaviour>(idlers), std::shared_ptr<Behaviour>(walkGaze),
                           std::shared_ptr<Behaviour>(idleGaze)})
         if (b) behaviours_.push_back(b);
