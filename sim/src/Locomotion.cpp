@@ -81,30 +81,41 @@ std::uint32_t Locomotion::addActor(const Actor& a) {
     State s;
     s.position = *onMesh;
     s.heading = static_cast<float>(CounterRng(settings_.seed, a.stream).uniform(~0ull, -kPi, kPi));
-    // Extent of the Skeleton Root: both clips' root channels.
-    BoundingSphere extent(Vec3(0.0), 0.0);
-    for (int clip : {a.walkClip, a.runClip}) {
-        if (clip < 0) continue;
-        const AnimationClip& c = *clips[std::size_t(clip)];
-        for (int k = 0; k <= 240; ++k) extent.expandBy(Vec3(c.sampleRoot(c.duration() * k / 240.0, false).translation));
-    }
-    extent.inflate(0.01);
-    s.extent = extent;
-    // Blends of walk and run can reach beyond either clip: measure how far, over a few phases.
-    if (a.runClip >= 0) {
-        const AnimationClip &walk = *clips[std::size_t(a.walkClip)], &run = *clips[std::size_t(a.runClip)];
-        std::vector<float> pw(a.tmpl->restDofs().begin(), a.tmpl->restDofs().end()), pr = pw, blend = pw;
-        double worst = 0.0;
-        for (int k = 0; k < 16; ++k) {
-            walk.sample(*a.tmpl, walk.duration() * k / 16.0, true, {}, pw);
-            run.sample(*a.tmpl, run.duration() * k / 16.0, true, {}, pr);
-            for (float w : {0.25f, 0.5f, 0.75f}) {
-                blendPoses(*a.tmpl, pw, pr, w, {}, blend);
-                worst = std::max(worst, farthestPart(*a.tmpl, blend));
-            }
+    // The Skeleton Root's extent and the blends' margin depend on the template and clips only:
+    // measured once for each (a crowd of a million shares a handful).
+    auto known = std::find_if(clipBounds_.begin(), clipBounds_.end(), [&](const ClipBounds& c) {
+        return c.tmpl == a.tmpl.get() && c.walkClip == a.walkClip && c.runClip == a.runClip;
+    });
+    if (known == clipBounds_.end()) {
+        ClipBounds bounds{a.tmpl.get(), a.walkClip, a.runClip, {}, 0.0};
+        BoundingSphere extent(Vec3(0.0), 0.0);
+        for (int clip : {a.walkClip, a.runClip}) {
+            if (clip < 0) continue;
+            const AnimationClip& c = *clips[std::size_t(clip)];
+            for (int k = 0; k <= 240; ++k) extent.expandBy(Vec3(c.sampleRoot(c.duration() * k / 240.0, false).translation));
         }
-        s.blendMargin = std::max(0.0, worst - a.tmpl->skeletonRootRadius()) + 0.02;
+        extent.inflate(0.01);
+        bounds.extent = extent;
+        // Blends of walk and run can reach beyond either clip: measure how far, over a few phases.
+        if (a.runClip >= 0) {
+            const AnimationClip &walk = *clips[std::size_t(a.walkClip)], &run = *clips[std::size_t(a.runClip)];
+            std::vector<float> pw(a.tmpl->restDofs().begin(), a.tmpl->restDofs().end()), pr = pw, blend = pw;
+            double worst = 0.0;
+            for (int k = 0; k < 16; ++k) {
+                walk.sample(*a.tmpl, walk.duration() * k / 16.0, true, {}, pw);
+                run.sample(*a.tmpl, run.duration() * k / 16.0, true, {}, pr);
+                for (float w : {0.25f, 0.5f, 0.75f}) {
+                    blendPoses(*a.tmpl, pw, pr, w, {}, blend);
+                    worst = std::max(worst, farthestPart(*a.tmpl, blend));
+                }
+            }
+            bounds.blendMargin = std::max(0.0, worst - a.tmpl->skeletonRootRadius()) + 0.02;
+        }
+        clipBounds_.push_back(bounds);
+        known = clipBounds_.end() - 1;
     }
+    s.extent = known->extent;
+    s.blendMargin = known->blendMargin;
     actors_.push_back(a);
     state_.push_back(s);
     return static_cast<std::uint32_t>(actors_.size() - 1);

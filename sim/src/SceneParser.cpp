@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/TownRegions.h"
 
@@ -211,8 +212,8 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
             if (!fs::is_regular_file(fs::path(town.tiles) / needed))
                 t.at("tiles").fail("has no '" + std::string(needed) + "'");
-        if (town.blocksX * town.blocksZ * (town.blockTiles + 1) * (town.blockTiles + 1) > 250000)
-            t.fail("is too large (more than 250,000 tiles)");
+        const std::int64_t tiles = (std::int64_t(town.blocksX) * (town.blockTiles + 1) + 1) * (std::int64_t(town.blocksZ) * (town.blockTiles + 1) + 1);
+        if (tiles > kMaxTownTiles) t.fail("is too large (" + std::to_string(tiles) + " tiles, more than " + std::to_string(kMaxTownTiles) + ")");
         townRegions(town, file);  // every block in exactly one region
         s.town = town;
     }

@@ -247,6 +247,10 @@ void Simulation::buildActors(const BuildProgress& progress) {
         progress("building the navigation mesh", 0.55);
         NavMeshSettings settings;
         settings.agentMaxClimb = 0.45f;  // kerbs of the tiles at 8 m are 0.4 m
+        // One Recast tile numbers its vertices with 16 bits: beyond 16 x 16 blocks, Detour tiles of
+        // 2 x 2 blocks, built in parallel.
+        if (d.town && std::int64_t(d.town->blocksX) * d.town->blocksZ > 256)
+            settings.tileSize = float(2 * (d.town->blockTiles + 1) * d.town->tileSize);
         nav_ = NavMesh::build(navGeometry_, settings);
     }
     navGeometry_ = NavGeometry{};

@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <limits>
+#include <set>
 
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SeedHumanoid.h"
@@ -220,4 +221,28 @@ TEST(Determinism, RegionsStepBitwiseIdenticallyWithOneTwoOrFourThreads) {
         EXPECT_EQ(std::memcmp(many.data(), one.data(), one.size() * sizeof(float)), 0) << threads << " threads";
         EXPECT_EQ(other, handovers);
     }
+}
+
+TEST(Navigation, ATiledMeshIsJoinedAcrossItsTiles) {
+    // The corridor in tiles of 8 m (five along it): a walker crosses them all to the far end, and
+    // random points fall on every tile, never off the corridor.
+    NavGeometry g;
+    g.addBox(glm::vec3(-20, -0.5f, -3), glm::vec3(20, 0, 3), true);
+    g.addBox(glm::vec3(-2, 0, -3), glm::vec3(2, 4, 0), false);  // a block across half of it
+    NavMeshSettings tiled;
+    tiled.tileSize = 8.0f;
+    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g, tiled);
+    std::set<int> tilesHit;
+    const CounterRng rng(2, 9);
+    for (std::uint64_t k = 0; k < 400; ++k) {
+        const glm::vec3 p = nav->randomPoint(rng, k);
+        EXPECT_LE(std::abs(p.z), 3.0f);
+        EXPECT_FALSE(std::abs(p.x) < 2.0f && p.z < 0.0f) << "inside the block";
+        tilesHit.insert(int(std::floor((p.x + 20.0f) / 8.0f)));
+    }
+    EXPECT_GE(tilesHit.size(), 5u);
+    auto run = walkers(nav, false, halves(), {{glm::vec3(-18, 0, -2), glm::vec3(18, 0, -2)}});
+    SimulationClock clock;
+    for (int f = 0; f < 40 * 60; ++f, clock.advance()) run->crowd.step(clock.context());
+    EXPECT_NEAR(at(*run->walk, 0).x, 18.0f, 0.6f) << "it walked round the block through every tile";
 }

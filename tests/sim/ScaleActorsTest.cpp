@@ -40,16 +40,23 @@ TEST(ScaleActors, TheTownGrowsWithTheCrowdAtTheScenesDensity) {
 
 TEST(ScaleActors, ACrowdTheTownCannotHoldIsRefusedSayingWhyAndWhatFits) {
     SceneDescription s = sixBySix();
+    std::string what;
     try {
         scaleActors(s, 2'000'000);
         FAIL() << "two million actors were accepted";
     } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("2000000 actors at the scene's density (50 per city block)"), std::string::npos) << what;
-        EXPECT_NE(what.find("need a town of 200 x 200 blocks"), std::string::npos) << what;
-        EXPECT_NE(what.find("holds at most " + std::to_string(50 * kMaxTownBlocks) + " actors"), std::string::npos) << what;
+        what = e.what();
     }
+    EXPECT_NE(what.find("2000000 actors at the scene's density (50 per city block)"), std::string::npos) << what;
+    EXPECT_NE(what.find("need a town of 200 x 200 blocks, 641601 tiles; a town holds at most 300000 tiles"), std::string::npos) << what;
     EXPECT_EQ(s.town->blocksX, 6) << "nothing changed";
+    // The crowd it names fits.
+    const std::string key = "this scene holds at most ";
+    const std::size_t at = what.find(key);
+    ASSERT_NE(at, std::string::npos) << what;
+    const std::int64_t holds = std::stoll(what.substr(at + key.size()));
+    EXPECT_GT(holds, 500'000);
     SceneDescription fits = sixBySix();
-    EXPECT_NO_THROW(scaleActors(fits, 50 * kMaxTownBlocks)) << "the largest crowd it names is accepted";
+    EXPECT_NO_THROW(scaleActors(fits, holds));
+    EXPECT_LE((fits.town->blocksX * 4 + 1) * (fits.town->blocksZ * 4 + 1), kMaxTownTiles);
 }

@@ -133,6 +133,13 @@ private:
         std::vector<int> ghostAgents;
         std::vector<HandoverRecord> leaving, arriving;
     };
+    // The extent and blend margin of one template's clips.
+    struct ClipBounds {
+        const ActorTemplate* tmpl;
+        int walkClip, runClip;
+        BoundingSphere extent;
+        double blendMargin;
+    };
     void start();
     void startRegion(std::uint32_t r);
     int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity);
@@ -151,6 +158,7 @@ private:
     std::vector<Actor> actors_;
     std::vector<State> state_;
     std::vector<Region> regions_;
+    std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
     std::size_t lastGhosts_ = 0, lastHandovers_ = 0;
 };
