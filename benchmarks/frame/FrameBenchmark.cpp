@@ -799,7 +799,7 @@ int main(int argc, char** argv) {
         }
         if (o.has("regions")) {
             const double before = availableSpeedup();
-            const auto rows = regionSweep(o);
+            const auto regionRows = regionSweep(o);
             const double after = availableSpeedup();
             report << "\nThe shared step (walkers, idle groups, gaze, flock) of large crowds, the town grown at the scene's density, "
                    << "milliseconds per step, means over " << o.regionFrames << " steps per thread count after " << o.warmup
@@ -809,7 +809,7 @@ int main(int argc, char** argv) {
                    << "| actors | layout | regions | step 1 thread | step 2 threads | speed-up | ghosts | handovers | build s | peak GB |\n"
                    << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
             char line[1024];
-            for (const RegionRow& r : rows) {
+            for (const RegionRow& r : regionRows) {
                 if (!r.note.empty()) {
                     std::snprintf(line, sizeof line, "| %lld | %s | | %s | | | | | | |\n", (long long)r.actors, r.layout.c_str(), r.note.c_str());
                 } else {
