@@ -40,6 +40,10 @@ public:
         float turnRate = 5.0f;         ///< radians per second the facing may turn
         std::uint64_t seed = 1;        ///< destinations' random seed
         RegionGrid regions;            ///< the regions stepped apart (default: one)
+        /// Random destinations lie within this many metres of where the actor is (each way); 0:
+        /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
+        /// polygons, and a path across kilometres of town is longer.
+        double destinationRange = 0.0;
     };
     /// An agent as a neighbouring region sees it for avoidance during one step.
     struct GhostRecord {
@@ -85,6 +89,8 @@ public:
     std::size_t size() const { return actors_.size(); }
     /// Current speed of an actor, m/s.
     double speed(std::uint32_t slot) const { return state_[slot].speed; }
+    /// Where an actor is walking to.
+    glm::vec3 destination(std::uint32_t slot) const { return state_[slot].target; }
     /// The region that owns an actor (after the first frame).
     std::uint32_t region(std::uint32_t slot) const { return state_[slot].region; }
     /// Number of regions.
