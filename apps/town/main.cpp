@@ -32,6 +32,7 @@
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/scenegraph/OcclusionCulling.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "throng/sim/Locomotion.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
@@ -161,6 +162,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     for (const auto& g : world.groups()) j["groups"].push_back({{"name", g.name}, {"behaviour", g.behaviour}, {"actors", g.actors.size()}});
     if (const auto* t = world.town()) j["town"] = {{"tilesX", t->tilesX}, {"tilesZ", t->tilesZ}, {"tileSize", t->tileSize}, {"triangles", world.townTriangles()}};
     if (const auto* nav = world.navMesh()) j["navMeshPolygons"] = nav->polygonCount();
+    if (const auto* walkers = world.locomotion()) j["regions"] = walkers->regionCount();
     const double n = double(std::max<std::int64_t>(sums.frames, 1));
     j["wallSeconds"] = wallSeconds;
     j["fps"] = sums.frames > 1 ? double(sums.frames - 1) / std::max(1e-9, wallSeconds - firstFrameSeconds) : 0.0;
@@ -186,6 +188,7 @@ int main(int argc, char** argv) {
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
         scene = sim::parseSceneFile(o.scene);
+        if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
     } catch (const sim::SceneError& e) {
         std::fprintf(stderr, "throng-town: %s\n", e.what());
         return 2;
@@ -193,7 +196,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
-    if (o.actors) sim::scaleActors(scene, *o.actors);
     if (o.seed) scene.seed = *o.seed;
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 

@@ -12,6 +12,10 @@
 // worlds of the same seed, their digests compared), and end-to-end frames per second of the scene
 // with DRAW overlapping the next frame (Performer's multiprocess mode) and without.
 //
+// `--sections regions` (not run by default): the shared step alone for large crowds (10k, 100k, 1M
+// actors by default, the town grown at the scene's density), with one region and with the scene's
+// regions, each with 1 and 2 threads, with the build time and the process's peak memory.
+//
 // `--sections town` (not run by default): the town's DRAW alone, the GL finished after the town
 // pass, along the whole camera path (10 actors by default), with the old drawing, each improvement
 // alone (front-to-back order, constant faces shaded per vertex, town LOD) and all together, the
@@ -19,11 +23,14 @@
 //
 // usage: bench_frame --help
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -41,6 +48,8 @@
 #include "throng/render/ImpostorSet.h"
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenegraph/ThreadTeam.h"
+#include "throng/sim/Locomotion.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
@@ -75,6 +84,8 @@ struct Options {
     std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
     std::string occlusionCsv;              // where that section's rows go as CSV (empty: nowhere)
+    std::vector<std::int64_t> regionActors{10000, 100000, 1000000};  // crowds of the regions section
+    int regionFrames = 40;                 // measured steps per thread count in the regions section
     std::vector<std::string> sections{"methods", "scaling", "pipeline"};
     bool has(const char* section) const { return std::find(sections.begin(), sections.end(), section) != sections.end(); }
 };
@@ -304,6 +315,99 @@ std::vector<Scaling> threadScaling(const Options& o) {
         }
         out.push_back(s);
     }
+    return out;
+}
+
+// The shared step of a large crowd with one region or the scene's, with 1 and 2 threads.
+struct RegionRow {
+    std::int64_t actors = 0;
+    std::string layout, note;
+    std::uint32_t regions = 0;
+    double ms[2] = {};
+    double ghosts = 0, handovers = 0, buildSeconds = 0, peakGb = 0;
+};
+
+double peakMemoryGb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / (1024.0 * 1024.0);
+}
+
+// How much faster a loop with nothing shared runs on 2 threads than on 1 right now: what the
+// machine (shared with other work) can give, to read the step's speed-up against.
+double availableSpeedup() {
+    double ms[2] = {};
+    for (int round = 0; round < 2; ++round)
+        for (int k = 0; k < 2; ++k) {
+            ThreadTeam team(unsigned(k + 1));
+            Stopwatch watch;
+            team.run([] {
+                forEachChunk(16, 1, [](std::size_t, std::size_t, std::size_t) {
+                    volatile double x = 0.0;
+                    for (int i = 0; i < 4'000'000; ++i) x = x + 1.0;
+                });
+            });
+            ms[k] += watch.elapsedMs();
+        }
+    return ms[0] / ms[1];
+}
+
+std::vector<RegionRow> regionSweep(const Options& o) {
+    std::vector<RegionRow> out;
+    for (std::int64_t n : o.regionActors)
+        for (bool one : {true, false}) {
+            RegionRow r;
+            r.actors = n;
+            r.layout = one ? "one region" : "the scene's regions";
+            sim::SceneDescription d = sim::parseSceneFile(o.scene);
+            try {
+                sim::scaleActors(d, n);
+            } catch (const std::invalid_argument& e) {
+                r.note = std::string("refused: ") + e.what();
+                out.push_back(r);
+                continue;
+            }
+            std::int64_t walkers = 0;
+            for (const auto& g : d.actors) walkers += g.behaviour == "walk" ? g.count : 0;
+            if (one && d.town) {
+                d.town->regions.clear();
+                d.town->regionBlocks = {d.town->blocksX, d.town->blocksZ};
+                if (walkers > 40000) {  // Locomotion refuses it before stepping: do not build it
+                    r.note = "not run: one DetourCrowd numbers agents with 16 bits";
+                    out.push_back(r);
+                    continue;
+                }
+            }
+            std::fprintf(stderr, "bench_frame: %lld actors, %s: building...\n", (long long)n, r.layout.c_str());
+            const auto t0 = std::chrono::steady_clock::now();
+            std::unique_ptr<sim::Simulation> world;
+            try {
+                world = sim::Simulation::build(std::move(d));
+            } catch (const std::exception& e) {
+                r.note = std::string("build failed: ") + e.what();
+                out.push_back(r);
+                continue;
+            }
+            r.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            r.regions = world->locomotion() ? world->locomotion()->regionCount() : 0;
+            for (int f = 0; f < o.warmup; ++f) world->step();
+            // Two rounds of 1 then 2 threads, so that a drift of the machine's load falls on both.
+            const int half = std::max(1, o.regionFrames / 2);
+            for (int round = 0; round < 2; ++round)
+                for (int k = 0; k < 2; ++k) {
+                    world->setThreads(unsigned(k + 1));
+                    for (int f = 0; f < half; ++f) {
+                        world->step();
+                        r.ms[k] += world->lastStepMs() / (2.0 * half);
+                        if (world->locomotion()) {
+                            r.ghosts += double(world->locomotion()->lastGhostCount()) / (4.0 * half);
+                            r.handovers += double(world->locomotion()->lastHandoverCount()) / (4.0 * half);
+                        }
+                    }
+                }
+            r.peakGb = peakMemoryGb();
+            out.push_back(r);
+        }
     return out;
 }
 
@@ -624,8 +728,13 @@ int main(int argc, char** argv) {
     app.add_option("--sections", o.sections,
                    "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline; not run unless "
                    "named: town (the town's DRAW alone, old and new drawing), occlusion (buffer resolution against rejection and time), "
-                   "visibility (what a perfect occlusion culler could reach, from an ID render with full depth)")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion", "visibility"}));
+                   "visibility (what a perfect occlusion culler could reach, from an ID render with full depth), regions (the shared step "
+                   "of large crowds, one region against the scene's, 1 and 2 threads)")
+        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion", "visibility", "regions"}));
+    app.add_option("--region-actors", o.regionActors, "crowds of the regions section (the shared step, one region against the scene's)")
+        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--region-frames", o.regionFrames, "measured steps per thread count in the regions section")
+        ->type_name("N")->check(wholeNumber(2, 1'000'000));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
     app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section as CSV (one row per knob value)")->type_name("FILE");
@@ -685,6 +794,28 @@ int main(int argc, char** argv) {
                 std::snprintf(line, sizeof line, "| %s | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f |\n", s.camera.c_str(),
                               s.step[0], s.step[1], s.step[0] / s.step[1], s.actor[0], s.actor[1], s.actor[0] / s.actor[1],
                               s.traditional[0], s.traditional[1], s.traditional[0] / s.traditional[1]);
+                report << line;
+            }
+        }
+        if (o.has("regions")) {
+            const double before = availableSpeedup();
+            const auto regionRows = regionSweep(o);
+            const double after = availableSpeedup();
+            report << "\nThe shared step (walkers, idle groups, gaze, flock) of large crowds, the town grown at the scene's density, "
+                   << "milliseconds per step, means over " << o.regionFrames << " steps per thread count after " << o.warmup
+                   << " (ghosts and handovers per step; peak memory of the process so far). A loop with nothing shared ran "
+                   << std::fixed << std::setprecision(2) << before << "x and " << after << "x as fast on 2 threads as on 1 before and "
+                   << "after the section: the most the machine, shared with other work, could give.\n\n" << std::defaultfloat
+                   << "| actors | layout | regions | step 1 thread | step 2 threads | speed-up | ghosts | handovers | build s | peak GB |\n"
+                   << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+            char line[1024];
+            for (const RegionRow& r : regionRows) {
+                if (!r.note.empty()) {
+                    std::snprintf(line, sizeof line, "| %lld | %s | | %s | | | | | | |\n", (long long)r.actors, r.layout.c_str(), r.note.c_str());
+                } else {
+                    std::snprintf(line, sizeof line, "| %lld | %s | %u | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.2f |\n", (long long)r.actors,
+                                  r.layout.c_str(), r.regions, r.ms[0], r.ms[1], r.ms[0] / r.ms[1], r.ghosts, r.handovers, r.buildSeconds, r.peakGb);
+                }
                 report << line;
             }
         }

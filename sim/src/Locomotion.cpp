@@ -52,11 +52,16 @@ Locomotion::Locomotion(std::shared_ptr<const NavMesh> navMesh, Settings settings
     }
 }
 
-Locomotion::~Locomotion() { dtFreeCrowd(crowd_); }
+Locomotion::~Locomotion() {
+    for (Region& r : regions_) {
+        dtFreeCrowd(r.crowd);
+        dtFreeNavMeshQuery(r.query);
+    }
+}
 
 std::uint32_t Locomotion::addActor(const Actor& a) {
     const std::string where = "Locomotion::addActor";
-    if (crowd_) throw std::invalid_argument(where + ": actors must be added before the first frame");
+    if (started_) throw std::invalid_argument(where + ": actors must be added before the first frame");
     if (!a.tmpl) throw std::invalid_argument(where + ": argument 'actor.tmpl' is null");
     const auto clips = a.tmpl->clips();
     if (a.walkClip < 0 || std::size_t(a.walkClip) >= clips.size())
@@ -76,83 +81,259 @@ std::uint32_t Locomotion::addActor(const Actor& a) {
     State s;
     s.position = *onMesh;
     s.heading = static_cast<float>(CounterRng(settings_.seed, a.stream).uniform(~0ull, -kPi, kPi));
-    // Extent of the Skeleton Root: both clips' root channels.
-    BoundingSphere extent(Vec3(0.0), 0.0);
-    for (int clip : {a.walkClip, a.runClip}) {
-        if (clip < 0) continue;
-        const AnimationClip& c = *clips[std::size_t(clip)];
-        for (int k = 0; k <= 240; ++k) extent.expandBy(Vec3(c.sampleRoot(c.duration() * k / 240.0, false).translation));
-    }
-    extent.inflate(0.01);
-    s.extent = extent;
-    // Blends of walk and run can reach beyond either clip: measure how far, over a few phases.
-    if (a.runClip >= 0) {
-        const AnimationClip &walk = *clips[std::size_t(a.walkClip)], &run = *clips[std::size_t(a.runClip)];
-        std::vector<float> pw(a.tmpl->restDofs().begin(), a.tmpl->restDofs().end()), pr = pw, blend = pw;
-        double worst = 0.0;
-        for (int k = 0; k < 16; ++k) {
-            walk.sample(*a.tmpl, walk.duration() * k / 16.0, true, {}, pw);
-            run.sample(*a.tmpl, run.duration() * k / 16.0, true, {}, pr);
-            for (float w : {0.25f, 0.5f, 0.75f}) {
-                blendPoses(*a.tmpl, pw, pr, w, {}, blend);
-                worst = std::max(worst, farthestPart(*a.tmpl, blend));
-            }
+    // The Skeleton Root's extent and the blends' margin depend on the template and clips only:
+    // measured once for each (a crowd of a million shares a handful).
+    auto known = std::find_if(clipBounds_.begin(), clipBounds_.end(), [&](const ClipBounds& c) {
+        return c.tmpl == a.tmpl.get() && c.walkClip == a.walkClip && c.runClip == a.runClip;
+    });
+    if (known == clipBounds_.end()) {
+        ClipBounds bounds{a.tmpl.get(), a.walkClip, a.runClip, {}, 0.0};
+        BoundingSphere extent(Vec3(0.0), 0.0);
+        for (int clip : {a.walkClip, a.runClip}) {
+            if (clip < 0) continue;
+            const AnimationClip& c = *clips[std::size_t(clip)];
+            for (int k = 0; k <= 240; ++k) extent.expandBy(Vec3(c.sampleRoot(c.duration() * k / 240.0, false).translation));
         }
-        s.blendMargin = std::max(0.0, worst - a.tmpl->skeletonRootRadius()) + 0.02;
+        extent.inflate(0.01);
+        bounds.extent = extent;
+        // Blends of walk and run can reach beyond either clip: measure how far, over a few phases.
+        if (a.runClip >= 0) {
+            const AnimationClip &walk = *clips[std::size_t(a.walkClip)], &run = *clips[std::size_t(a.runClip)];
+            std::vector<float> pw(a.tmpl->restDofs().begin(), a.tmpl->restDofs().end()), pr = pw, blend = pw;
+            double worst = 0.0;
+            for (int k = 0; k < 16; ++k) {
+                walk.sample(*a.tmpl, walk.duration() * k / 16.0, true, {}, pw);
+                run.sample(*a.tmpl, run.duration() * k / 16.0, true, {}, pr);
+                for (float w : {0.25f, 0.5f, 0.75f}) {
+                    blendPoses(*a.tmpl, pw, pr, w, {}, blend);
+                    worst = std::max(worst, farthestPart(*a.tmpl, blend));
+                }
+            }
+            bounds.blendMargin = std::max(0.0, worst - a.tmpl->skeletonRootRadius()) + 0.02;
+        }
+        clipBounds_.push_back(bounds);
+        known = clipBounds_.end() - 1;
     }
+    s.extent = known->extent;
+    s.blendMargin = known->blendMargin;
     actors_.push_back(a);
     state_.push_back(s);
     return static_cast<std::uint32_t>(actors_.size() - 1);
 }
 
-void Locomotion::newDestination(std::uint32_t slot) {
+void Locomotion::requestTarget(Region& region, std::uint32_t slot) {
     State& s = state_[slot];
-    const Actor& a = actors_[slot];
-    if (a.goal && s.trips > 0) return;  // there, or on its way: a fixed goal is asked for once
-    const CounterRng rng(settings_.seed, a.stream);
-    s.target = a.goal ? *a.goal : nav_->randomPoint(rng, s.trips);
-    ++s.trips;
     dtQueryFilter filter;
     const glm::vec3 extents(2.0f, 4.0f, 2.0f);
     dtPolyRef ref = 0;
     glm::vec3 snapped;
-    nav_->query()->findNearestPoly(&s.target.x, &extents.x, &filter, &ref, &snapped.x);
-    if (ref) crowd_->requestMoveTarget(s.agent, ref, &snapped.x);
+    region.query->findNearestPoly(&s.target.x, &extents.x, &filter, &ref, &snapped.x);
+    if (ref) region.crowd->requestMoveTarget(s.agent, ref, &snapped.x);
+}
+
+void Locomotion::newDestination(Region& region, std::uint32_t slot) {
+    State& s = state_[slot];
+    const Actor& a = actors_[slot];
+    if (a.goal && s.trips > 0) return;  // there, or on its way: a fixed goal is asked for once
+    const CounterRng rng(settings_.seed, a.stream);
+    bool found = false;
+    if (!a.goal && settings_.destinationRange > 0.0) {
+        // A few tries at a point within range that lies on the mesh; then anywhere.
+        dtQueryFilter filter;
+        const glm::vec3 extents(2.0f, 4.0f, 2.0f);
+        for (std::uint64_t k = 0; k < 8 && !found; ++k) {
+            const std::uint64_t c = (s.trips * 8 + k) * 2 + (std::uint64_t(1) << 40);  // apart from randomPoint's counters
+            const glm::vec3 want = s.position + glm::vec3(float(rng.uniform(c, -1.0, 1.0) * settings_.destinationRange), 0.0f,
+                                                          float(rng.uniform(c + 1, -1.0, 1.0) * settings_.destinationRange));
+            dtPolyRef ref = 0;
+            glm::vec3 snapped;
+            region.query->findNearestPoly(&want.x, &extents.x, &filter, &ref, &snapped.x);
+            if (ref) s.target = snapped, found = true;
+        }
+    }
+    if (!found) s.target = a.goal ? *a.goal : nav_->randomPoint(rng, s.trips, *region.query);
+    ++s.trips;
+    requestTarget(region, slot);
+}
+
+int Locomotion::addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity) {
+    const bool ghost = state_[slot].region != r;
+    dtCrowdAgentParams p{};
+    p.radius = settings_.radius;
+    p.height = settings_.height;
+    p.maxAcceleration = settings_.maxAcceleration;
+    p.maxSpeed = static_cast<float>(actors_[slot].speed);
+    p.collisionQueryRange = settings_.radius * 12.0f;
+    p.pathOptimizationRange = settings_.radius * 30.0f;
+    // A ghost only stands in the way: it neither steers nor avoids, and its own move is discarded.
+    p.updateFlags = ghost ? 0 : DT_CROWD_ANTICIPATE_TURNS | DT_CROWD_OPTIMIZE_VIS | DT_CROWD_OPTIMIZE_TOPO;
+    if (settings_.avoidance && !ghost) p.updateFlags |= DT_CROWD_OBSTACLE_AVOIDANCE | DT_CROWD_SEPARATION;
+    p.obstacleAvoidanceType = 3;
+    p.separationWeight = 2.0f;
+    const int agent = region.crowd->addAgent(position, &p);
+    if (agent < 0)
+        throw std::runtime_error("Locomotion: region " + std::to_string(r) + " is full (" + std::to_string(region.capacity) +
+                                 " agents with its ghosts); declare smaller regions");
+    if (velocity) {
+        dtCrowdAgent* ag = region.crowd->getEditableAgent(agent);
+        for (int k = 0; k < 3; ++k) ag->vel[k] = ag->dvel[k] = ag->nvel[k] = velocity[k];
+        if (ghost) region.crowd->requestMoveVelocity(agent, velocity);  // it keeps going as it went
+    }
+    return agent;
+}
+
+void Locomotion::startRegion(std::uint32_t r) {
+    Region& region = regions_[r];
+    region.query = nav_->newQuery();
+    region.crowd = dtAllocCrowd();
+    if (!region.crowd || !region.crowd->init(region.capacity, settings_.radius, nav_->detourMesh()))
+        throw std::runtime_error("Locomotion: DetourCrowd could not be initialised for " + std::to_string(region.capacity) +
+                                 " agents in region " + std::to_string(r));
+    for (std::uint32_t slot : region.owned) {
+        state_[slot].agent = addAgent(region, r, slot, &state_[slot].position.x, nullptr);
+        newDestination(region, slot);
+    }
 }
 
 void Locomotion::start() {
-    crowd_ = dtAllocCrowd();
-    if (!crowd_ || !crowd_->init(static_cast<int>(std::max<std::size_t>(actors_.size(), 1)), settings_.radius, nav_->detourMesh()))
-        throw std::runtime_error("Locomotion: DetourCrowd could not be initialised for " + std::to_string(actors_.size()) + " agents");
+    started_ = true;
+    const RegionGrid& grid = settings_.regions;
+    if (grid.regionCount() > 1 && settings_.radius * 12.0 >= grid.cellSize())
+        throw std::invalid_argument("Locomotion: region cells of " + std::to_string(grid.cellSize()) +
+                                    " m are narrower than the agents' collision range");
+    regions_.resize(grid.regionCount());
     for (std::uint32_t slot = 0; slot < actors_.size(); ++slot) {
-        const Actor& a = actors_[slot];
-        dtCrowdAgentParams p{};
-        p.radius = settings_.radius;
-        p.height = settings_.height;
-        p.maxAcceleration = settings_.maxAcceleration;
-        p.maxSpeed = static_cast<float>(a.speed);
-        p.collisionQueryRange = settings_.radius * 12.0f;
-        p.pathOptimizationRange = settings_.radius * 30.0f;
-        p.updateFlags = DT_CROWD_ANTICIPATE_TURNS | DT_CROWD_OPTIMIZE_VIS | DT_CROWD_OPTIMIZE_TOPO;
-        if (settings_.avoidance) p.updateFlags |= DT_CROWD_OBSTACLE_AVOIDANCE | DT_CROWD_SEPARATION;
-        p.obstacleAvoidanceType = 3;
-        p.separationWeight = 2.0f;
-        state_[slot].agent = crowd_->addAgent(&state_[slot].position.x, &p);
-        if (state_[slot].agent < 0) throw std::runtime_error("Locomotion: DetourCrowd refused agent " + std::to_string(slot));
-        newDestination(slot);
+        State& s = state_[slot];
+        s.region = grid.regionOf(s.position.x, s.position.z);
+        regions_[s.region].owned.push_back(slot);
+    }
+    // Room for the agents a region starts with, its share of the crowd three times over (people
+    // gather where destinations lie) and its ghosts; DetourCrowd numbers agents with 16 bits.
+    const std::size_t share = actors_.size() / regions_.size();
+    for (std::uint32_t r = 0; r < regions_.size(); ++r) {
+        const std::size_t want = 3 * std::max(regions_[r].owned.size(), share) + 64;
+        if (regions_[r].owned.size() > 40000)
+            throw std::runtime_error("Locomotion: region " + std::to_string(r) + " starts with " + std::to_string(regions_[r].owned.size()) +
+                                     " agents; DetourCrowd numbers a crowd's agents with 16 bits, so declare smaller regions");
+        regions_[r].capacity = int(std::min<std::size_t>(want, 65000));
+    }
+    forEachChunk(regions_.size(), 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) startRegion(std::uint32_t(r));
+    });
+}
+
+void Locomotion::exportGhosts(std::uint32_t r) {
+    Region& region = regions_[r];
+    region.ghostsOut.clear();
+    if (regions_.size() == 1) return;
+    const double margin = settings_.radius * 12.0;  // the collision query range
+    std::uint32_t near[8];
+    for (std::uint32_t slot : region.owned) {
+        const State& s = state_[slot];
+        const int n = settings_.regions.regionsNear(s.position.x, s.position.z, margin, r, near);
+        for (int k = 0; k < n; ++k) {
+            GhostRecord g;
+            g.slot = slot;
+            g.region = near[k];
+            for (int i = 0; i < 3; ++i) g.position[i] = s.position[i], g.velocity[i] = s.velocity[i];
+            region.ghostsOut.push_back(g);
+        }
     }
 }
 
-void Locomotion::advance(const FrameContext& context) {
-    if (!crowd_) start();
-    const float dt = static_cast<float>(context.deltaTime);
-    if (dt <= 0.0f) return;
-    for (std::uint32_t slot = 0; slot < actors_.size(); ++slot) {
+void Locomotion::importGhosts(std::uint32_t r) {
+    Region& region = regions_[r];
+    region.ghostAgents.clear();
+    for (const GhostRecord& g : region.ghostsIn) region.ghostAgents.push_back(addAgent(region, r, g.slot, g.position, g.velocity));
+}
+
+void Locomotion::stepRegion(std::uint32_t r, float dt) {
+    Region& region = regions_[r];
+    for (std::uint32_t slot : region.owned) {
         const State& s = state_[slot];
         const glm::vec3 d = s.target - s.position;
-        if (d.x * d.x + d.z * d.z < 1.0f) newDestination(slot);
+        if (d.x * d.x + d.z * d.z < 1.0f) newDestination(region, slot);
     }
-    crowd_->update(dt, nullptr);
+    importGhosts(r);
+    region.crowd->update(dt, nullptr);
+    for (int agent : region.ghostAgents) region.crowd->removeAgent(agent);
+    for (std::uint32_t slot : region.owned) {
+        State& s = state_[slot];
+        const dtCrowdAgent* agent = region.crowd->getAgent(s.agent);
+        s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
+        s.velocity = glm::vec3(agent->vel[0], agent->vel[1], agent->vel[2]);
+    }
+}
+
+void Locomotion::exportHandovers(std::uint32_t r) {
+    Region& region = regions_[r];
+    region.leaving.clear();
+    if (regions_.size() == 1) return;
+    for (std::uint32_t slot : region.owned) {
+        const State& s = state_[slot];
+        const std::uint32_t to = settings_.regions.regionOf(s.position.x, s.position.z);
+        if (to == r) continue;
+        HandoverRecord h;
+        h.slot = slot;
+        h.from = r;
+        h.to = to;
+        for (int i = 0; i < 3; ++i) h.position[i] = s.position[i], h.velocity[i] = s.velocity[i];
+        region.leaving.push_back(h);
+        region.crowd->removeAgent(s.agent);
+    }
+}
+
+void Locomotion::importHandovers(std::uint32_t r) {
+    Region& region = regions_[r];
+    if (region.leaving.empty() && region.arriving.empty()) return;
+    // Arrivals join in order of slot, whichever region they come from.
+    std::sort(region.arriving.begin(), region.arriving.end(), [](const HandoverRecord& a, const HandoverRecord& b) { return a.slot < b.slot; });
+    for (const HandoverRecord& h : region.arriving) {
+        State& s = state_[h.slot];
+        s.region = r;
+        s.agent = addAgent(region, r, h.slot, h.position, h.velocity);
+        requestTarget(region, h.slot);
+    }
+    // The slots it owns, still increasing: those that stayed merged with those that came.
+    region.scratch.clear();
+    std::size_t k = 0, gone = 0;
+    for (std::uint32_t slot : region.owned) {
+        if (gone < region.leaving.size() && region.leaving[gone].slot == slot) {  // left (listed in the same order)
+            ++gone;
+            continue;
+        }
+        while (k < region.arriving.size() && region.arriving[k].slot < slot) region.scratch.push_back(region.arriving[k++].slot);
+        region.scratch.push_back(slot);
+    }
+    for (; k < region.arriving.size(); ++k) region.scratch.push_back(region.arriving[k].slot);
+    region.owned.swap(region.scratch);
+}
+
+void Locomotion::advance(const FrameContext& context) {
+    if (!started_) start();
+    const float dt = static_cast<float>(context.deltaTime);
+    if (dt <= 0.0f) return;
+    const std::size_t regionCount = regions_.size();
+    auto eachRegion = [&](auto&& body) {
+        forEachChunk(regionCount, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t r = begin; r < end; ++r) body(std::uint32_t(r));
+        });
+    };
+    // Ghosts: every region lists its agents near another region; each region takes in what the
+    // others sent it, in order of the sending region and then of slot.
+    eachRegion([&](std::uint32_t r) { exportGhosts(r); });
+    lastGhosts_ = 0;
+    for (Region& region : regions_) region.ghostsIn.clear();
+    for (Region& region : regions_)
+        for (const GhostRecord& g : region.ghostsOut) regions_[g.region].ghostsIn.push_back(g), ++lastGhosts_;
+    eachRegion([&](std::uint32_t r) { stepRegion(r, dt); });
+    // Handover: agents now in another region leave their crowd and join the other's.
+    eachRegion([&](std::uint32_t r) { exportHandovers(r); });
+    lastHandovers_ = 0;
+    for (Region& region : regions_) region.arriving.clear();
+    for (Region& region : regions_)
+        for (const HandoverRecord& h : region.leaving) regions_[h.to].arriving.push_back(h), ++lastHandovers_;
+    eachRegion([&](std::uint32_t r) { importHandovers(r); });
     if (counters_) {
         counters_->ticked("locomotion", actors_.size());
         if (settings_.avoidance) counters_->ticked("avoidance", actors_.size());
@@ -162,9 +343,7 @@ void Locomotion::advance(const FrameContext& context) {
         for (std::size_t slot = begin; slot < end; ++slot) {
             State& s = state_[slot];
             const Actor& a = actors_[slot];
-            const dtCrowdAgent* agent = crowd_->getAgent(s.agent);
-            s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
-            const glm::vec3 v(agent->vel[0], 0.0f, agent->vel[2]);
+            const glm::vec3 v(s.velocity.x, 0.0f, s.velocity.z);
             s.speed = glm::length(v);
             if (s.speed > 0.05f) {  // face the way it goes, turning at a bounded rate
                 const float want = std::atan2(v.x, v.z);

@@ -11,7 +11,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
+#include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
 namespace {
@@ -175,7 +177,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("town")) {
         const Reader t = root.at("town");
-        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod"});
+        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod", "regions"});
         TownDescription town;
         if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
         if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
@@ -184,12 +186,35 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
         if (t.has("occluders")) town.occluders = t.at("occluders").boolean();
         if (t.has("lod")) town.lod = geometricLevels(t.at("lod"));
+        if (t.has("regions")) {
+            // {"size": [bx, bz]}: rectangles of so many blocks; or a list of {"from": [x, z], "to": [x, z]} (blocks, 'to' excluded).
+            const Reader r = t.at("regions");
+            const auto blocks = [](const Reader& v) {
+                const glm::dvec2 b = v.vec<2>();
+                if (b.x != std::floor(b.x) || b.y != std::floor(b.y) || b.x < 0 || b.y < 0 || b.x > 1e6 || b.y > 1e6)
+                    v.fail("must be two whole numbers of blocks");
+                return glm::ivec2(b);
+            };
+            if (r.value().is_object()) {
+                r.object({"size"});
+                town.regionBlocks = blocks(r.at("size"));
+                if (town.regionBlocks.x < 1 || town.regionBlocks.y < 1) r.at("size").fail("must be at least one block each way");
+            } else {
+                if (r.array() == 0) r.fail("must list at least one region");
+                for (std::size_t i = 0; i < r.array(); ++i) {
+                    const Reader one = r.at(i);
+                    one.object({"from", "to"});
+                    town.regions.push_back({blocks(one.at("from")), blocks(one.at("to"))});
+                }
+            }
+        }
         town.tiles = existingFile(t.at("tiles"), baseDirectory, true);
         for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
             if (!fs::is_regular_file(fs::path(town.tiles) / needed))
                 t.at("tiles").fail("has no '" + std::string(needed) + "'");
-        if (town.blocksX * town.blocksZ * (town.blockTiles + 1) * (town.blockTiles + 1) > 250000)
-            t.fail("is too large (more than 250,000 tiles)");
+        const std::int64_t tiles = (std::int64_t(town.blocksX) * (town.blockTiles + 1) + 1) * (std::int64_t(town.blocksZ) * (town.blockTiles + 1) + 1);
+        if (tiles > kMaxTownTiles) t.fail("is too large (" + std::to_string(tiles) + " tiles, more than " + std::to_string(kMaxTownTiles) + ")");
+        townRegions(town, file);  // every block in exactly one region
         s.town = town;
     }
 

@@ -26,6 +26,7 @@
 #include "throng/sim/IdleGroups.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/SceneError.h"
+#include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
 namespace {
@@ -246,6 +247,10 @@ void Simulation::buildActors(const BuildProgress& progress) {
         progress("building the navigation mesh", 0.55);
         NavMeshSettings settings;
         settings.agentMaxClimb = 0.45f;  // kerbs of the tiles at 8 m are 0.4 m
+        // One Recast tile numbers its vertices with 16 bits: beyond 16 x 16 blocks, Detour tiles of
+        // 2 x 2 blocks, built in parallel.
+        if (d.town && std::int64_t(d.town->blocksX) * d.town->blocksZ > 256)
+            settings.tileSize = float(2 * (d.town->blockTiles + 1) * d.town->tileSize);
         nav_ = NavMesh::build(navGeometry_, settings);
     }
     navGeometry_ = NavGeometry{};
@@ -286,6 +291,9 @@ void Simulation::buildActors(const BuildProgress& progress) {
                 Locomotion::Settings s;
                 s.avoidance = d.effects.avoidance;
                 s.seed = d.seed;
+                s.regions = townRegions(*d.town, file);
+                // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
+                if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
                 walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
                 if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects_);
             }
@@ -350,6 +358,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
         groups_.push_back(std::move(info));
         progress("placing actors", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
     }
+    walkers_ = walkers;
     for (const auto& b : {std::shared_ptr<Behaviour>(walkers), std::shared_ptr<Behaviour>(idlers), std::shared_ptr<Behaviour>(walkGaze),
                           std::shared_ptr<Behaviour>(idleGaze)})
         if (b) behaviours_.push_back(b);

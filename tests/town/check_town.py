@@ -71,6 +71,9 @@ def determinism(exe, scenes, work):
         sys.exit("the scene does not change from frame to frame: the comparison would prove nothing")
     if not any(int(r["impostors"]) > 0 for r in reference):
         sys.exit("no actor was drawn as an impostor: the scene should exercise them")
+    regions = json.load(open(os.path.join(runs["one"], "summary.json"))).get("regions", 0)
+    if regions < 2:
+        sys.exit(f"the walkers were stepped in {regions} region(s): the scene should exercise several")
     for name in list(variants)[1:]:
         other = stats_without_timing(runs[name])
         if other != reference:

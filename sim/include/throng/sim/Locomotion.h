@@ -4,6 +4,14 @@
 // calls for (speed matching) and blends into the run clip as the speed rises. Destinations come
 // from each actor's own random stream; the crowd steps once per frame for every actor, whatever
 // the camera, so trajectories are view-independent and deterministic.
+//
+// The ground is divided into fixed regions (a RegionGrid), each stepped by its own DetourCrowd and
+// navigation query, in parallel. An agent near a border is seen by the neighbouring region as a
+// ghost (a copy of it at the start of the step, which that region never moves); an agent that
+// crosses a border is handed over at the end of the step, in order of actor slot. Ghost export and
+// import and the handover are separate steps over flat records (GhostRecord, HandoverRecord), so
+// that regions owned elsewhere could exchange them as messages. The same layout gives the same
+// trajectories with any number of threads.
 
 #include <limits>
 #include <memory>
@@ -13,8 +21,10 @@
 #include "throng/actors/Behaviour.h"
 #include "throng/sim/EffectCounters.h"
 #include "throng/sim/NavMesh.h"
+#include "throng/sim/RegionGrid.h"
 
 class dtCrowd;
+class dtNavMeshQuery;
 
 namespace throng::sim {
 
@@ -29,6 +39,26 @@ public:
         float maxAcceleration = 6.0f;  ///< m/s^2
         float turnRate = 5.0f;         ///< radians per second the facing may turn
         std::uint64_t seed = 1;        ///< destinations' random seed
+        RegionGrid regions;            ///< the regions stepped apart (default: one)
+        /// Random destinations lie within this many metres of where the actor is (each way); 0:
+        /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
+        /// polygons, and a path across kilometres of town is longer.
+        double destinationRange = 0.0;
+    };
+    /// An agent as a neighbouring region sees it for avoidance during one step.
+    struct GhostRecord {
+        std::uint32_t slot = 0;        ///< the actor
+        std::uint32_t region = 0;      ///< the region that sees it
+        float position[3] = {};        ///< at the start of the step
+        float velocity[3] = {};        ///< at the start of the step
+    };
+    /// An agent leaving its region at the end of a step.
+    struct HandoverRecord {
+        std::uint32_t slot = 0;        ///< the actor
+        std::uint32_t from = 0;        ///< region left
+        std::uint32_t to = 0;          ///< region entered
+        float position[3] = {};        ///< where it is
+        float velocity[3] = {};        ///< how it moves
     };
     /// One actor.
     struct Actor {
@@ -59,6 +89,16 @@ public:
     std::size_t size() const { return actors_.size(); }
     /// Current speed of an actor, m/s.
     double speed(std::uint32_t slot) const { return state_[slot].speed; }
+    /// Where an actor is walking to.
+    glm::vec3 destination(std::uint32_t slot) const { return state_[slot].target; }
+    /// The region that owns an actor (after the first frame).
+    std::uint32_t region(std::uint32_t slot) const { return state_[slot].region; }
+    /// Number of regions.
+    std::uint32_t regionCount() const { return settings_.regions.regionCount(); }
+    /// Ghosts seen by neighbouring regions in the last step.
+    std::size_t lastGhostCount() const { return lastGhosts_; }
+    /// Agents handed over to another region at the end of the last step.
+    std::size_t lastHandoverCount() const { return lastHandovers_; }
 
     std::span<const double> levelEnds() const override { return levelEnds_; }
     void advance(const FrameContext& context) override;
@@ -82,12 +122,40 @@ private:
         float runWeight = 0.0f;
         std::uint64_t trips = 0;   // destinations drawn so far
         glm::vec3 target{0.0f};
-        int agent = -1;
+        glm::vec3 velocity{0.0f};  // DetourCrowd's, after the last step
+        int agent = -1;            // index in its region's crowd
+        std::uint32_t region = 0;
         BoundingSphere extent;
         double blendMargin = 0.0;
     };
+    // One region: its crowd and query, the actors it owns (increasing slots) and the records it
+    // exchanges with the others during a step.
+    struct Region {
+        dtCrowd* crowd = nullptr;
+        dtNavMeshQuery* query = nullptr;
+        int capacity = 0;
+        std::vector<std::uint32_t> owned, scratch;
+        std::vector<GhostRecord> ghostsOut, ghostsIn;
+        std::vector<int> ghostAgents;
+        std::vector<HandoverRecord> leaving, arriving;
+    };
+    // The extent and blend margin of one template's clips.
+    struct ClipBounds {
+        const ActorTemplate* tmpl;
+        int walkClip, runClip;
+        BoundingSphere extent;
+        double blendMargin;
+    };
     void start();
-    void newDestination(std::uint32_t slot);
+    void startRegion(std::uint32_t r);
+    int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity);
+    void requestTarget(Region& region, std::uint32_t slot);
+    void newDestination(Region& region, std::uint32_t slot);
+    void exportGhosts(std::uint32_t r);
+    void importGhosts(std::uint32_t r);
+    void stepRegion(std::uint32_t r, float dt);
+    void exportHandovers(std::uint32_t r);
+    void importHandovers(std::uint32_t r);
 
     std::shared_ptr<const NavMesh> nav_;
     Settings settings_;
@@ -95,7 +163,10 @@ private:
     EffectCounters* counters_;
     std::vector<Actor> actors_;
     std::vector<State> state_;
-    dtCrowd* crowd_ = nullptr;
+    std::vector<Region> regions_;
+    std::vector<ClipBounds> clipBounds_;
+    bool started_ = false;
+    std::size_t lastGhosts_ = 0, lastHandovers_ = 0;
 };
 
 }  // namespace throng::sim

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -31,6 +32,9 @@ struct NavMeshSettings {
     float edgeMaxError = 1.3f;        ///< cells
     float detailSampleDistance = 6.0f;///< cells
     float detailSampleMaxError = 1.0f;///< cells
+    /// Side of a square Detour tile, metres; 0: the whole mesh is one tile (whose polygon mesh
+    /// numbers vertices with 16 bits, which limits its size). Tiles are built in parallel.
+    float tileSize = 0.0f;
 };
 
 /// A built navigation mesh.
@@ -45,8 +49,13 @@ public:
 
     /// The nearest point on the mesh within `halfExtents` of `p`, if any.
     std::optional<glm::vec3> nearestPoint(const glm::vec3& p, const glm::vec3& halfExtents = glm::vec3(2, 4, 2)) const;
-    /// A random point on the mesh, area-weighted, a pure function of `rng` and `counter`.
+    /// A random point on the mesh, area-weighted over all walkable polygons (a binary search of their
+    /// running area, so its cost grows with the log of the mesh), a pure function of `rng` and `counter`.
     glm::vec3 randomPoint(const CounterRng& rng, std::uint64_t counter) const;
+    /// The same point, found with the caller's own `query` (so that threads can draw in parallel).
+    glm::vec3 randomPoint(const CounterRng& rng, std::uint64_t counter, dtNavMeshQuery& query) const;
+    /// A new query object on this mesh for one thread's use (free it with dtFreeNavMeshQuery).
+    dtNavMeshQuery* newQuery() const;
     /// Number of polygons.
     int polygonCount() const;
     /// The settings it was built with.
@@ -59,7 +68,10 @@ public:
 
 private:
     NavMesh() = default;
+    void indexPolygons();
     dtNavMesh* mesh_ = nullptr;
+    std::vector<std::uint64_t> polyRefs_;  // walkable polygons, tile by tile
+    std::vector<double> polyAreaSum_;      // running sum of their areas (for random points)
     dtNavMeshQuery* query_ = nullptr;
     NavMeshSettings settings_;
 };

@@ -17,6 +17,12 @@
 
 namespace throng::sim {
 
+/// A region of the town: the blocks [from, to) across (x) and deep (z).
+struct RegionRectangle {
+    glm::ivec2 from{0};
+    glm::ivec2 to{1};
+};
+
 /// The town the actors walk in.
 struct TownDescription {
     int blocksX = 5;            ///< city blocks across
@@ -30,6 +36,10 @@ struct TownDescription {
     /// triangles}, nearest first, as for templates; the last may reach to any distance. Empty: no
     /// town LOD (the full tiles everywhere, nothing simplified).
     std::vector<glm::dvec2> lod;
+    /// Regions stepped apart: rectangles of `regionBlocks` blocks (the last row and column may be
+    /// smaller), unless `regions` lists them; together they must cover every block once.
+    glm::ivec2 regionBlocks{4, 4};
+    std::vector<RegionRectangle> regions;  ///< explicit rectangles, or empty
 };
 
 /// An actor template: a glTF file, or a procedural one ("seed-humanoid", "table3", "bird").

@@ -24,6 +24,8 @@
 
 namespace throng::sim {
 
+class Locomotion;
+
 /// Reports a long build's progress: the stage and how far it is, in [0, 1].
 using BuildProgress = std::function<void(const std::string& stage, double fraction)>;
 
@@ -78,6 +80,8 @@ public:
     const SceneDescription& description() const { return description_; }
     /// The camera path.
     const CameraPath& camera() const { return *camera_; }
+    /// The walkers' locomotion (its regions, ghosts and handovers), or null when nothing walks.
+    const Locomotion* locomotion() const { return walkers_.get(); }
     /// The navigation mesh, or null when nothing walks.
     const NavMesh* navMesh() const { return nav_.get(); }
     /// The town's layout, or null when there is none.
@@ -109,6 +113,7 @@ private:
     std::vector<ActorGroupInfo> groups_;
     std::vector<TemplateInUse> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    std::shared_ptr<Locomotion> walkers_;
     NavGeometry navGeometry_;
     std::unique_ptr<SimulationClock> clock_;
     std::unique_ptr<ThreadTeam> team_;
