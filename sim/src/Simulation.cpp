@@ -290,6 +290,8 @@ void Simulation::buildActors(const BuildProgress& progress) {
             if (!walkers) {
                 Locomotion::Settings s;
                 s.avoidance = d.effects.avoidance;
+                s.avoidanceQuality = d.effects.avoidanceQuality;
+                s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
                 s.seed = d.seed;
                 s.regions = townRegions(*d.town, file);
                 walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
