@@ -129,12 +129,12 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
             seconds += dt;
             r.contact += static_cast<double>(before.size()) * dt;
             for (std::uint32_t s = 0; s < n; ++s) {
-                if (walk->target(s) != lastTarget[s]) continue;  // a new destination: no progress measured
+                if (walk->destination(s) != lastTarget[s]) continue;  // a new destination: no progress measured
                 const glm::vec2 to(lastTarget[s].x, lastTarget[s].z);
                 progress += glm::distance(glm::vec2(lastPos[s].x, lastPos[s].z), to) - glm::distance(glm::vec2(pos[s].x, pos[s].z), to);
             }
         }
-        for (std::uint32_t s = 0; s < n; ++s) lastPos[s] = pos[s], lastTarget[s] = walk->target(s);
+        for (std::uint32_t s = 0; s < n; ++s) lastPos[s] = pos[s], lastTarget[s] = walk->destination(s);
         if (fill) reference.push_back(pos);
         double sum = 0;
         for (std::uint32_t s = 0; s < n; ++s) {

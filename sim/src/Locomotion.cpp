@@ -141,7 +141,22 @@ void Locomotion::newDestination(Region& region, std::uint32_t slot) {
     const Actor& a = actors_[slot];
     if (a.goal && s.trips > 0) return;  // there, or on its way: a fixed goal is asked for once
     const CounterRng rng(settings_.seed, a.stream);
-    s.target = a.goal ? *a.goal : nav_->randomPoint(rng, s.trips, *region.query);
+    bool found = false;
+    if (!a.goal && settings_.destinationRange > 0.0) {
+        // A few tries at a point within range that lies on the mesh; then anywhere.
+        dtQueryFilter filter;
+        const glm::vec3 extents(2.0f, 4.0f, 2.0f);
+        for (std::uint64_t k = 0; k < 8 && !found; ++k) {
+            const std::uint64_t c = (s.trips * 8 + k) * 2 + (std::uint64_t(1) << 40);  // apart from randomPoint's counters
+            const glm::vec3 want = s.position + glm::vec3(float(rng.uniform(c, -1.0, 1.0) * settings_.destinationRange), 0.0f,
+                                                          float(rng.uniform(c + 1, -1.0, 1.0) * settings_.destinationRange));
+            dtPolyRef ref = 0;
+            glm::vec3 snapped;
+            region.query->findNearestPoly(&want.x, &extents.x, &filter, &ref, &snapped.x);
+            if (ref) s.target = snapped, found = true;
+        }
+    }
+    if (!found) s.target = a.goal ? *a.goal : nav_->randomPoint(rng, s.trips, *region.query);
     ++s.trips;
     requestTarget(region, slot);
 }

@@ -294,6 +294,8 @@ void Simulation::buildActors(const BuildProgress& progress) {
                 s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
                 s.seed = d.seed;
                 s.regions = townRegions(*d.town, file);
+                // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
+                if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
                 walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
                 if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects_);
             }

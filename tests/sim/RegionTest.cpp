@@ -246,3 +246,46 @@ TEST(Navigation, ATiledMeshIsJoinedAcrossItsTiles) {
     for (int f = 0; f < 40 * 60; ++f, clock.advance()) run->crowd.step(clock.context());
     EXPECT_NEAR(at(*run->walk, 0).x, 18.0f, 0.6f) << "it walked round the block through every tile";
 }
+
+TEST(Locomotion, DestinationsLieWithinTheRangeAskedFor) {
+    // A plaza of 60 m: with a range of 8 m, every new destination is within 8 m each way of where
+    // the walker stood (give or take the snap to the mesh); without one, they spread over it all.
+    NavGeometry g;
+    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
+    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    for (double range : {8.0, 0.0}) {
+        Locomotion::Settings s;
+        s.destinationRange = range;
+        auto walk = std::make_shared<Locomotion>(nav, s);
+        static const auto humanoid = makeSeedHumanoid();
+        for (int i = 0; i < 30; ++i) {
+            Locomotion::Actor a;
+            a.tmpl = humanoid;
+            a.walkClip = humanoid->findClip("walk");
+            a.start = nav->randomPoint(CounterRng(8, std::uint64_t(i)), 0);
+            a.stream = std::uint64_t(i);
+            walk->addActor(a);
+        }
+        SimulationClock clock;
+        std::vector<glm::vec3> before(walk->size()), last(walk->size());
+        float farthest = 0.0f;
+        int drawn = 0;
+        for (int f = 0; f < 60 * 60; ++f, clock.advance()) {
+            for (std::uint32_t i = 0; i < walk->size(); ++i) before[i] = at(*walk, i);
+            walk->advance(clock.context());
+            for (std::uint32_t i = 0; i < walk->size(); ++i) {
+                if (f > 0 && walk->destination(i) == last[i]) continue;
+                last[i] = walk->destination(i);
+                const glm::vec3 d = walk->destination(i) - (f > 0 ? before[i] : at(*walk, i));
+                farthest = std::max({farthest, std::abs(d.x), std::abs(d.z)});
+                ++drawn;
+            }
+        }
+        EXPECT_GT(drawn, 60) << "walkers reached destinations and drew new ones";
+        if (range > 0.0) {
+            EXPECT_LE(farthest, float(range) + 0.5f);
+        } else {
+            EXPECT_GT(farthest, 30.0f);
+        }
+    }
+}

@@ -46,6 +46,10 @@ public:
         /// Avoidance: how far an agent looks for neighbours, in agent radii (DetourCrowd's collision
         /// query range; also how near a border an agent is seen by the next region as a ghost).
         float neighbourRange = 12.0f;
+        /// Random destinations lie within this many metres of where the actor is (each way); 0:
+        /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
+        /// polygons, and a path across kilometres of town is longer.
+        double destinationRange = 0.0;
     };
     /// An agent as a neighbouring region sees it for avoidance during one step.
     struct GhostRecord {
@@ -93,10 +97,10 @@ public:
     const Settings& settings() const { return settings_; }
     /// Where an actor stands (after the last step).
     glm::vec3 position(std::uint32_t slot) const { return state_[slot].position; }
-    /// Where an actor is walking to.
-    glm::vec3 target(std::uint32_t slot) const { return state_[slot].target; }
     /// Current speed of an actor, m/s.
     double speed(std::uint32_t slot) const { return state_[slot].speed; }
+    /// Where an actor is walking to.
+    glm::vec3 destination(std::uint32_t slot) const { return state_[slot].target; }
     /// The region that owns an actor (after the first frame).
     std::uint32_t region(std::uint32_t slot) const { return state_[slot].region; }
     /// Number of regions.
