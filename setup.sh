@@ -15,6 +15,8 @@ packages=(
   libtbb-dev libcli11-dev libopenscenegraph-dev
   # exact key-pose selection (an integer program) to measure the greedy cache against
   libglpk-dev
+  # one simulation across processes and machines (optional at build time)
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -68,6 +68,12 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("background|grid|cpu|gl")
         ->check(oneOf({"background", "grid", "cpu", "gl"}))
         ->capture_default_str();
+    app.add_option("--cell-warp", o.cellWarp,
+                   "how the CPU makes a dropped impostor key-frame: proxy (warped through the figure's surface), "
+                   "lines (Beier-Neely along the bones); gl always uses the lines")
+        ->type_name("proxy|lines")
+        ->check(oneOf({"proxy", "lines"}))
+        ->capture_default_str();
     app.footer(
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
         "+/- LOD scale, C shrink the culling pyramid (watch culling at work), O show the occlusion buffer,\n"

@@ -27,6 +27,7 @@ struct TownOptions {
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
     int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)
     std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
+    std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

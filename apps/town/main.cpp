@@ -249,6 +249,7 @@ int main(int argc, char** argv) {
     rendererOptions.impostors.source = o.morph == "gl" ? MorphSource::Gpu : MorphSource::Cpu;
     rendererOptions.impostors.gridStep = o.morph == "grid" || o.morph == "background" ? 4 : 1;
     rendererOptions.impostors.backgroundMorph = o.morph == "background";
+    rendererOptions.impostors.warp = o.cellWarp == "lines" ? CellWarp::FeatureLines : CellWarp::SurfaceProxy;
     CrowdRenderer renderer(context, rendererOptions);
     if (impostors) {  // the atlases on the GPU before the first frame, not during it
         std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;

@@ -89,7 +89,7 @@ struct Row {
     std::size_t actors = 0;
     double appCull = 0, draw = 0, town = 0, meshes = 0, impostor = 0, morph = 0, quads = 0;
     double impostors = 0, morphed = 0, deferred = 0, textureBytes = 0, ticks = 0, background = 0;
-    double psnr = 0, ssim = 0, off8 = 0, images = 0;          // against all skinned
+    double psnr = 0, ssim = 0, off8 = 0, ncc = 0, images = 0;  // against all skinned (NCC: the whole frame)
     double psnrPool = 0, ssimPool = 0, off8Pool = 0, imagesPool = 0;  // against the unlimited pool
     void add(const ActorFrameStatistics& s, const CrowdRenderStatistics& r, double drawMs) {
         appCull += s.appCullMs();
@@ -108,21 +108,24 @@ struct Row {
     void divide() {
         for (double* v : {&appCull, &draw, &town, &meshes, &impostor, &morph, &quads, &impostors, &morphed, &deferred, &background})
             *v /= std::max(ticks, 1.0);
-        if (images > 0) psnr /= images, ssim /= images, off8 /= images;
+        if (images > 0) psnr /= images, ssim /= images, off8 /= images, ncc /= images;
         if (imagesPool > 0) psnrPool /= imagesPool, ssimPool /= imagesPool, off8Pool /= imagesPool;
     }
 };
 
-void compare(const Image& a, const Image& b, double& psnr, double& ssim, double& off8, double& n) {
+void compare(const Image& a, const Image& b, double& psnr, double& ssim, double& off8, double& n, double* ncc = nullptr) {
     const ImageDifference d = compareImages(a, b, 8);
+    if (ncc) *ncc += normalizedCrossCorrelation(a, b, false);
     psnr += std::min(d.psnr, 99.0);
     ssim += structuralSimilarity(a, b);
     off8 += d.fractionOverThreshold;
     n += 1;
 }
 
-CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1, bool background = false) {
+CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budget, int gridStep = 1, bool background = false,
+                                 CellWarp warp = CellWarp::FeatureLines) {
     CrowdRendererOptions r;
+    r.impostors.warp = warp;
     r.impostors.backgroundMorph = background;
     r.impostors.gridStep = gridStep;
     r.finishPasses = true;
@@ -161,9 +164,14 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         if (budget > 0)
             add("impostors, pool, CPU on a " + grid + " on another thread, budget " + std::to_string(budget), Kind::Impostors,
                 poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true), "morph budget", std::to_string(budget) + " on another thread");
+    for (int budget : o.gridBudgets)
+        if (budget > 0)
+            add("impostors, pool, surface proxy on another thread, budget " + std::to_string(budget), Kind::Impostors,
+                poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true, CellWarp::SurfaceProxy), "morph budget",
+                std::to_string(budget) + " on another thread, surface proxy");
     for (double d : o.distances)
-        add("impostors from " + std::to_string(int(d)) + " m, pool, " + grid + " on another thread, budget 2", Kind::Impostors,
-            poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true), "impostor distance", std::to_string(int(d)), d);
+        add("impostors from " + std::to_string(int(d)) + " m, pool, surface proxy on another thread, budget 2", Kind::Impostors,
+            poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy), "impostor distance", std::to_string(int(d)), d);
     add("impostors, pool, GL, no budget", Kind::Impostors, poolOptions(o, MorphSource::Gpu, -1), "morph budget", "unlimited");
     const std::size_t unlimited = methods.size() - 1;
     const auto& declared = world->description().representation;
@@ -213,7 +221,7 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         }
         if (!measureError) continue;
         for (std::size_t m = 1; m < methods.size(); ++m) {
-            compare(frames[m], frames[0], rows[m].psnr, rows[m].ssim, rows[m].off8, rows[m].images);
+            compare(frames[m], frames[0], rows[m].psnr, rows[m].ssim, rows[m].off8, rows[m].images, &rows[m].ncc);
             if (methods[m].kind == Kind::Impostors && m != unlimited && methods[m].distance == 0)
                 compare(frames[m], frames[unlimited], rows[m].psnrPool, rows[m].ssimPool, rows[m].off8Pool, rows[m].imagesPool);
         }
@@ -231,14 +239,15 @@ std::string methodsTable(const std::vector<Row>& rows) {
     std::ostringstream t;
     char line[1024];
     t << "| method | APP+CULL | DRAW | town | meshes | impostor pass | of which morphing | quads | morphing on another thread | impostors | cells morphed | "
-         "cells deferred | impostor texture MiB | PSNR dB | SSIM | pixels off > 8 | vs unlimited pool: PSNR / SSIM / off > 8 |\n"
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+         "cells deferred | impostor texture MiB | PSNR dB | SSIM | NCC | pixels off > 8 | vs unlimited pool: PSNR / SSIM / off > 8 |\n"
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const Row& r : rows) {
         const bool img = r.images > 0, pool = r.imagesPool > 0;
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s |\n",
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s | %s |\n",
                       r.method.c_str(), r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.background, r.impostors, r.morphed, r.deferred,
                       r.textureBytes / 1048576.0, img ? std::to_string(r.psnr).substr(0, 5).c_str() : "-",
                       img ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
+                      img ? std::to_string(r.ncc).substr(0, 6).c_str() : "-",
                       img ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-",
                       pool ? (std::to_string(r.psnrPool).substr(0, 5) + " / " + std::to_string(r.ssimPool).substr(0, 6) + " / " +
                               std::to_string(100.0 * r.off8Pool).substr(0, 5) + " %").c_str()
@@ -275,7 +284,7 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
             everyFrame.morphing = ImpostorMorphing::FrameCache;
             everyFrame.morph.capacity = 0;
             everyFrame.morph.features = std::size_t(features);
-            CrowdRendererOptions ours = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true);
+            CrowdRendererOptions ours = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true);  // lines: the features are the knob
             ours.impostors.morph.features = std::size_t(features);
             methods.push_back({"every cell each frame (GL, read back)", std::size_t(features), everyFrame, nullptr});
             methods.push_back({"pool, grid on another thread, budget 2", std::size_t(features), ours, nullptr});

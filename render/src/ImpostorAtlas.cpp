@@ -111,6 +111,14 @@ std::size_t ImpostorAtlas::textureBytes() const {
     return bytes;
 }
 
+void ImpostorAtlas::setProxy(std::shared_ptr<const ProxyMesh> proxy) {
+    if (proxy && (proxy->keyframeCount() != keyframes_ || proxy->cellSize() != cellSize_))
+        throw std::invalid_argument("ImpostorAtlas::setProxy: the proxy has " + std::to_string(proxy->keyframeCount()) +
+                                    " key-frames of " + std::to_string(proxy->cellSize()) + " px cells, the atlas " +
+                                    std::to_string(keyframes_) + " of " + std::to_string(cellSize_) + " px");
+    proxy_ = std::move(proxy);
+}
+
 std::size_t ImpostorAtlas::fullTextureBytes() const {
     return static_cast<std::size_t>(keyframes_) * views_.viewCount() * cellSize_ * cellSize_ * 4;
 }

@@ -15,6 +15,7 @@
 #include "throng/render/GpuMorpher.h"
 #include "throng/render/GridMorph.h"
 #include "throng/render/MorphPool.h"
+#include "throng/render/ProxyWarp.h"
 #include "throng/render/ImpostorDrawable.h"
 #include "throng/render/ShaderProgram.h"
 #include "throng/scenegraph/Camera.h"
@@ -92,7 +93,7 @@ struct GpuAtlas {
 };
 
 // Per view, the part of the cell any stored key-frame covers (alpha > 0) or any key-frame's bone
-// lines reach, widened by three texels for bilinear filtering and morphed in-betweens, as texture
+// lines or surface proxy reach, widened by three texels for bilinear filtering and morphed in-betweens, as texture
 // coordinates; the whole
 // cell when `tight` is false or the view is empty. Quads drawn over only this part shade the same
 // pixels: outside it every sample is transparent and discarded.
@@ -122,6 +123,13 @@ std::vector<glm::vec4> coveredRects(const ImpostorAtlas& atlas, bool tight) {
                     x0 = std::min(x0, static_cast<int>(std::floor(e.x))), y0 = std::min(y0, static_cast<int>(std::floor(e.y)));
                     x1 = std::max(x1, static_cast<int>(std::floor(e.x))), y1 = std::max(y1, static_cast<int>(std::floor(e.y)));
                 }
+        // Cells warped through the surface proxy show the proxy's outline at the dropped key-frame.
+        if (atlas.proxy())
+            for (int k = 0; k < atlas.keyframeCount(); ++k)
+                for (const glm::vec3& e : atlas.proxy()->project(k, atlas.views().direction(v))) {
+                    x0 = std::min(x0, static_cast<int>(std::floor(e.x))), y0 = std::min(y0, static_cast<int>(std::floor(e.y)));
+                    x1 = std::max(x1, static_cast<int>(std::floor(e.x))), y1 = std::max(y1, static_cast<int>(std::floor(e.y)));
+                }
         const int margin = 3;
         const float s = static_cast<float>(size);
         rects[v] = glm::vec4(static_cast<float>(std::max(x0 - margin, 0)) / s, static_cast<float>(std::max(y0 - margin, 0)) / s,
@@ -140,14 +148,40 @@ void setArrayParameters(const GladGLContext& gl) {
 
 }  // namespace
 
-// A cell morphed on the background thread: what it needs (copies: the atlas may go) and where it goes.
+// What making one dropped cell on the CPU needs (copies: the atlas may go meanwhile).
+struct CpuCell {
+    Image from, to;          // the stored key-frames around it, same view
+    DroppedCellLines lines;  // their lines, the target's, and the fraction between
+    std::shared_ptr<const ProxyMesh> proxy;  // the atlas's surface proxy, if it is to be used
+    glm::vec3 toEye{0.0f, 0.0f, 1.0f};       // the view's direction
+    int keyframe = 0;                        // the dropped key-frame
+};
+
+// A dropped cell made on the CPU: warped through the surface proxy when there is one, otherwise
+// morphed along the feature lines (on the warp grid, or per pixel).
+Image makeCpuCell(const CpuCell& c, const ImpostorRendererOptions& options) {
+    if (c.proxy) {
+        ProxyWarpOptions warp;
+        warp.opaqueInside = true;  // as measured best (throng-impostor-quality)
+        const ProxySource sources[2] = {{&c.from, c.toEye, c.lines.before, 1.0f - c.lines.t},
+                                        {&c.to, c.toEye, c.lines.after, c.lines.t}};
+        return warpProxy(*c.proxy, sources, c.toEye, c.keyframe, warp);
+    }
+    if (options.gridStep > 1)
+        return morphImagesOnGrid(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
+                                 options.gridStep);
+    return morphImages(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
+                       options.morph.threads);
+}
+
+// A cell made on the background thread, and where it goes.
 struct BackgroundCell {
     const ImpostorAtlas* atlas = nullptr;
     unsigned texture = 0;  // the texture it was meant for (an atlas uploaded again gets another)
     int layer = 0;
     int slot = 0;
-    Image from, to, result;
-    DroppedCellLines lines;
+    CpuCell job;
+    Image result;
 };
 
 struct ImpostorRenderer::Impl {
@@ -221,26 +255,26 @@ struct ImpostorRenderer::Impl {
         const std::uint32_t views = atlas.views().viewCount();
         for (const MorphFill& f : fills) {
             DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
-            if (options.source == MorphSource::Cpu && options.backgroundMorph) {
-                g.cells->setPending(f.slot);
-                background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, atlas.cell(f.view, c.before),
-                                      atlas.cell(f.view, c.after), {}, std::move(c)});
-            } else if (options.source == MorphSource::Gpu) {
-                if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
-                morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
-                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.texture, g.stored + f.slot, g.cellSize,
-                                   c.from, c.to, c.target, c.t, options.morph.parameters);
-            } else {
-                const Image cell = options.gridStep > 1
-                                       ? morphImagesOnGrid(atlas.cell(f.view, c.before), c.from, atlas.cell(f.view, c.after), c.to,
-                                                           c.target, c.t, options.morph.parameters, options.gridStep)
-                                       : morphImages(atlas.cell(f.view, c.before), c.from, atlas.cell(f.view, c.after), c.to, c.target,
-                                                     c.t, options.morph.parameters, options.morph.threads);
+            if (options.source == MorphSource::Cpu) {
+                CpuCell job{atlas.cell(f.view, c.before), atlas.cell(f.view, c.after), std::move(c),
+                            options.warp == CellWarp::SurfaceProxy ? atlas.proxy() : nullptr, atlas.views().direction(f.view),
+                            f.keyframe};
+                if (options.backgroundMorph) {
+                    g.cells->setPending(f.slot);
+                    background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, std::move(job), {}});
+                    continue;
+                }
+                const Image cell = makeCpuCell(job, options);
                 gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
                 gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
                 gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                                  cell.rgba.data());
                 ++stats.morphedUploads;
+            } else {
+                if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
+                morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
+                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.texture, g.stored + f.slot, g.cellSize,
+                                   c.from, c.to, c.target, c.t, options.morph.parameters);
             }
         }
     }
@@ -249,9 +283,7 @@ struct ImpostorRenderer::Impl {
 // Morphs every background cell (on the worker thread); returns the time taken.
 double morphBackground(std::vector<BackgroundCell>& cells, const ImpostorRendererOptions& options) {
     Stopwatch watch;
-    for (BackgroundCell& c : cells)
-        c.result = morphImagesOnGrid(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
-                                     options.gridStep);
+    for (BackgroundCell& c : cells) c.result = makeCpuCell(c.job, options);
     return watch.elapsedMs();
 }
 

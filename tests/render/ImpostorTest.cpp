@@ -214,14 +214,18 @@ struct HybridScene {
 
     // The scene drawn once at clip time `t` (default: a dropped key-frame, so the morph path is
     // drawn); with `frames` > 1 drawn that many times by one renderer, the last returned.
+    // `atlas` (default: the humanoid's, odd key-frames dropped, no surface proxy) is what is drawn.
     Image render(double impostorDistance, std::uint64_t* impostors = nullptr, CrowdRendererOptions ro = cpuMorphing(),
-                 double t = 0.25, int frames = 1, CrowdRenderStatistics* last = nullptr) {
+                 double t = 0.25, int frames = 1, CrowdRenderStatistics* last = nullptr,
+                 std::shared_ptr<ImpostorAtlas> atlas = nullptr) {
         BakedHumanoid& b = BakedHumanoid::get();
         ro.meshes.width = 160, ro.meshes.height = 120;
         ro.meshes.captureFrames = true;
         CrowdRenderer renderer(b.context, ro);
-        auto atlas = std::make_shared<ImpostorAtlas>(*b.full);
-        atlas->dropOddKeyframes();
+        if (!atlas) {
+            atlas = std::make_shared<ImpostorAtlas>(*b.full);
+            atlas->dropOddKeyframes();
+        }
         auto drawable = std::make_shared<ImpostorDrawable>(atlas);
         ActorProcessor processor(crowd);
         processor.setImpostorDistance(impostorDistance, 1.0);
@@ -366,6 +370,41 @@ TEST(Impostor, ZeroBudgetShowsTheNearestStoredKeyframe) {
     EXPECT_GT(stats.quads.poolOverflows, 0u);
     EXPECT_EQ(unmorphed.rgba, scene.render(1.0, nullptr, none, 0.0).rgba);  // key-frame 0: stored
     EXPECT_NE(unmorphed.rgba, scene.render(1.0, nullptr, cpuMorphing(), 0.25).rgba);
+}
+
+// A dropped key-frame warped through the figure's surface proxy is nearer the truly baked cell
+// than one morphed along the bone lines, on the drawing thread and on the other thread alike; an
+// atlas without a proxy is morphed along the lines whatever the option says.
+TEST(Impostor, SurfaceProxyWarpIsNearerTheBakedKeyframe) {
+    HybridScene scene({Vec3(-2, 0, -12), Vec3(1, 0, -14), Vec3(3, 0, -11)});
+    BakedHumanoid& b = BakedHumanoid::get();
+    auto all = std::make_shared<ImpostorAtlas>(*b.full);  // every key-frame stored: nothing morphed
+    auto withProxy = std::make_shared<ImpostorAtlas>(*b.full);
+    withProxy->setProxy(std::make_shared<const ProxyMesh>(b.baker->proxyMesh()));
+    withProxy->dropOddKeyframes();
+    CrowdRendererOptions lines = cpuMorphing(), proxy = cpuMorphing(), background = cpuMorphing();
+    lines.impostors.warp = CellWarp::FeatureLines;
+    background.impostors.backgroundMorph = true;
+    for (double t : {0.25, 0.75}) {  // key-frames 1 and 3 of 8 over 2 s: dropped
+        const Image truth = scene.render(1.0, nullptr, proxy, t, 1, nullptr, all);
+        const Image byLines = scene.render(1.0, nullptr, lines, t, 1, nullptr, withProxy);
+        const Image byProxy = scene.render(1.0, nullptr, proxy, t, 1, nullptr, withProxy);
+        const double linesPsnr = compareImages(byLines, truth, 8).psnr, proxyPsnr = compareImages(byProxy, truth, 8).psnr;
+        EXPECT_GT(proxyPsnr, linesPsnr + 2.0) << "clip time " << t << ": " << linesPsnr << " dB by lines, " << proxyPsnr << " by the proxy";
+        EXPECT_EQ(byLines.rgba, scene.render(1.0, nullptr, proxy, t).rgba) << "an atlas without a proxy: lines";
+        EXPECT_EQ(byProxy.rgba, scene.render(1.0, nullptr, background, t, 2, nullptr, withProxy).rgba) << "on the other thread";
+    }
+}
+
+// A proxy for other cells or key-frames than the atlas's is refused.
+TEST(Impostor, AtlasRefusesAProxyOfOtherCells) {
+    const BakedHumanoid& b = BakedHumanoid::get();
+    ImpostorAtlas atlas(*b.full);
+    EXPECT_THROW(atlas.setProxy(std::make_shared<const ProxyMesh>(10, 4, glm::vec3(0.0f), 1.0f, 64)), std::invalid_argument);
+    EXPECT_THROW(atlas.setProxy(std::make_shared<const ProxyMesh>(10, 8, glm::vec3(0.0f), 1.0f, 32)), std::invalid_argument);
+    EXPECT_NO_THROW(atlas.setProxy(std::make_shared<const ProxyMesh>(10, 8, glm::vec3(0.0f), 1.0f, 64)));
+    EXPECT_NO_THROW(atlas.setProxy(nullptr));
+    EXPECT_EQ(atlas.proxy(), nullptr);
 }
 
 }  // namespace

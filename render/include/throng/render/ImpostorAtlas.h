@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "throng/render/BeierNeely.h"
+#include "throng/render/ProxyMesh.h"
 #include "throng/render/ViewHemisphere.h"
 #include "throng/scenegraph/Image.h"
 
@@ -85,6 +87,13 @@ public:
     /// Bytes the pages would take with every key-frame stored.
     std::size_t fullTextureBytes() const;
 
+    /// The figure's surface for warping cells (ProxyWarp), or null when the atlas has none (then
+    /// in-betweens are morphed with the feature lines). Not saved: a loaded atlas has none.
+    const std::shared_ptr<const ProxyMesh>& proxy() const { return proxy_; }
+    /// Sets (or clears, with null) the surface proxy. Throws std::invalid_argument if its
+    /// key-frames or cell size differ from the atlas's.
+    void setProxy(std::shared_ptr<const ProxyMesh> proxy);
+
     /// Writes impostor.json and keyframe-<k>.png for each stored key-frame into `directory`
     /// (created). Throws std::runtime_error naming the file on failure.
     void save(const std::filesystem::path& directory) const;
@@ -108,6 +117,7 @@ private:
     float radius_ = 1.0f;
     std::vector<Image> pages_;               // per key-frame; empty rgba when dropped
     std::vector<FeatureLine> lines_;         // [keyframe][view][bone]
+    std::shared_ptr<const ProxyMesh> proxy_;
 };
 
 }  // namespace throng

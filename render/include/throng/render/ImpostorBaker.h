@@ -29,6 +29,9 @@ struct ImpostorBakeOptions {
     int elevations = 4;      ///< rings of views from the horizon up
     int keyframes = 16;      ///< key-frames over the clip (it loops)
     int cellSize = 128;      ///< pixels per cell side
+    /// ImpostorSet: also give each atlas the figure's surface proxy (ImpostorBaker::proxyMesh), so
+    /// its in-betweens are warped through the surface rather than morphed along bone lines.
+    bool surfaceProxy = true;
     /// Called after each key-frame with (done, total), for a progress bar.
     std::function<void(int, int)> progress;
 };

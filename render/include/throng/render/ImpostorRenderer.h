@@ -26,6 +26,14 @@ enum class MorphSource {
     Cpu,  ///< on the CPU (morphImages), then uploaded into the pool layer
 };
 
+/// How the CPU makes a dropped key-frame's cell from its stored neighbours.
+enum class CellWarp {
+    FeatureLines,  ///< Beier-Neely field morphing along the bones' lines (MorphCache's features)
+    /// Through the figure's surface (warpProxy) when the atlas carries a proxy (ImpostorSet bakes
+    /// one), else along the feature lines: limbs stay whole where lines would bend the background.
+    SurfaceProxy,
+};
+
 /// How an ImpostorRenderer keeps and makes morphed cells.
 struct ImpostorRendererOptions {
     /// Pool layers per atlas (texture memory: stored cells + these). Instances that carry their
@@ -39,6 +47,8 @@ struct ImpostorRendererOptions {
     /// Cpu: the warp evaluated every gridStep pixels and interpolated between (morphImagesOnGrid;
     /// 1: at every pixel, as the GL does).
     int gridStep = 4;
+    /// Cpu: how cells are made (the GL always morphs along the feature lines).
+    CellWarp warp = CellWarp::SurfaceProxy;
     /// Cpu: new cells are morphed on another thread while the frame goes on, and shown from the
     /// next frame (until then, the nearest stored key-frame). Deterministic: the next draw() waits
     /// for them.
