@@ -46,6 +46,11 @@ Locomotion::Locomotion(std::shared_ptr<const NavMesh> navMesh, Settings settings
     for (std::size_t i = 0; i < levelEnds_.size(); ++i)
         if (std::isnan(levelEnds_[i]) || levelEnds_[i] <= 0.0 || (i > 0 && levelEnds_[i] <= levelEnds_[i - 1]))
             throw std::invalid_argument("Locomotion: level ends must be positive and increasing");
+    if (settings_.avoidanceQuality < 0 || settings_.avoidanceQuality > 3)
+        throw std::invalid_argument("Locomotion: avoidance quality must be 0 to 3, not " + std::to_string(settings_.avoidanceQuality));
+    if (!(settings_.neighbourRange >= 1.0f) || !std::isfinite(settings_.neighbourRange))
+        throw std::invalid_argument("Locomotion: the neighbour range must be at least 1 agent radius, not " +
+                                    std::to_string(settings_.neighbourRange));
     if (counters_) {
         counters_->constructed("locomotion");
         if (settings_.avoidance) counters_->constructed("avoidance");
@@ -163,12 +168,12 @@ int Locomotion::addAgent(Region& region, std::uint32_t r, std::uint32_t slot, co
     p.height = settings_.height;
     p.maxAcceleration = settings_.maxAcceleration;
     p.maxSpeed = static_cast<float>(actors_[slot].speed);
-    p.collisionQueryRange = settings_.radius * 12.0f;
+    p.collisionQueryRange = settings_.radius * settings_.neighbourRange;
     p.pathOptimizationRange = settings_.radius * 30.0f;
     // A ghost only stands in the way: it neither steers nor avoids, and its own move is discarded.
     p.updateFlags = ghost ? 0 : DT_CROWD_ANTICIPATE_TURNS | DT_CROWD_OPTIMIZE_VIS | DT_CROWD_OPTIMIZE_TOPO;
     if (settings_.avoidance && !ghost) p.updateFlags |= DT_CROWD_OBSTACLE_AVOIDANCE | DT_CROWD_SEPARATION;
-    p.obstacleAvoidanceType = 3;
+    p.obstacleAvoidanceType = static_cast<unsigned char>(settings_.avoidanceQuality);
     p.separationWeight = 2.0f;
     const int agent = region.crowd->addAgent(position, &p);
     if (agent < 0)
@@ -189,6 +194,15 @@ void Locomotion::startRegion(std::uint32_t r) {
     if (!region.crowd || !region.crowd->init(region.capacity, settings_.radius, nav_->detourMesh()))
         throw std::runtime_error("Locomotion: DetourCrowd could not be initialised for " + std::to_string(region.capacity) +
                                  " agents in region " + std::to_string(r));
+    // Avoidance quality: the adaptive sampling's divisions, rings and depth, from coarse to Detour's
+    // own default (3); Detour's other weights stay as they are.
+    static constexpr unsigned char kSampling[4][3] = {{5, 2, 1}, {5, 2, 2}, {7, 2, 3}, {7, 2, 5}};
+    const int q = settings_.avoidanceQuality;
+    dtObstacleAvoidanceParams params = *region.crowd->getObstacleAvoidanceParams(q);
+    params.adaptiveDivs = kSampling[q][0];
+    params.adaptiveRings = kSampling[q][1];
+    params.adaptiveDepth = kSampling[q][2];
+    region.crowd->setObstacleAvoidanceParams(q, &params);
     for (std::uint32_t slot : region.owned) {
         state_[slot].agent = addAgent(region, r, slot, &state_[slot].position.x, nullptr);
         newDestination(region, slot);
@@ -198,7 +212,7 @@ void Locomotion::startRegion(std::uint32_t r) {
 void Locomotion::start() {
     started_ = true;
     const RegionGrid& grid = settings_.regions;
-    if (grid.regionCount() > 1 && settings_.radius * 12.0 >= grid.cellSize())
+    if (grid.regionCount() > 1 && double(settings_.radius) * double(settings_.neighbourRange) >= grid.cellSize())
         throw std::invalid_argument("Locomotion: region cells of " + std::to_string(grid.cellSize()) +
                                     " m are narrower than the agents' collision range");
     regions_.resize(grid.regionCount());
@@ -226,7 +240,7 @@ void Locomotion::exportGhosts(std::uint32_t r) {
     Region& region = regions_[r];
     region.ghostsOut.clear();
     if (regions_.size() == 1) return;
-    const double margin = settings_.radius * 12.0;  // the collision query range
+    const double margin = double(settings_.radius) * double(settings_.neighbourRange);  // the collision query range
     std::uint32_t near[8];
     for (std::uint32_t slot : region.owned) {
         const State& s = state_[slot];

@@ -287,7 +287,24 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
     if (root.has("effects")) {
         const Reader e = root.at("effects");
         e.object({"avoidance", "gaze"});
-        if (e.has("avoidance")) s.effects.avoidance = e.at("avoidance").boolean();
+        if (e.has("avoidance")) {
+            const Reader av = e.at("avoidance");
+            if (av.value().is_boolean()) {
+                s.effects.avoidance = av.boolean();
+            } else {
+                av.object({"quality", "range"});
+                s.effects.avoidance = true;
+                if (av.has("quality")) {
+                    const double q = av.at("quality").number();
+                    if (q != std::floor(q) || q < 0 || q > 3) av.at("quality").fail("must be 0, 1, 2 or 3");
+                    s.effects.avoidanceQuality = static_cast<int>(q);
+                }
+                if (av.has("range")) {
+                    s.effects.avoidanceRange = av.at("range").positive();
+                    if (s.effects.avoidanceRange < 1.0) av.at("range").fail("must be at least 1 (agent radii)");
+                }
+            }
+        }
         if (e.has("gaze")) {
             const Reader g = e.at("gaze");
             if (g.value().is_boolean()) {

@@ -290,6 +290,8 @@ void Simulation::buildActors(const BuildProgress& progress) {
             if (!walkers) {
                 Locomotion::Settings s;
                 s.avoidance = d.effects.avoidance;
+                s.avoidanceQuality = d.effects.avoidanceQuality;
+                s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
                 s.seed = d.seed;
                 s.regions = townRegions(*d.town, file);
                 // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.

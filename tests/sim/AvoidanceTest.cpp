@@ -38,9 +38,12 @@ struct Crossing {
 
 // Three walkers from each end of the corridor, each to the far end of its own lane, for 40 s:
 // lanes 1.5 m apart, so each walker meets another head on.
-Crossing cross(const std::shared_ptr<const NavMesh>& nav, bool avoidance) {
+Crossing cross(const std::shared_ptr<const NavMesh>& nav, bool avoidance, int quality = 3, float range = 12.0f,
+               std::vector<glm::vec3>* end = nullptr) {
     Locomotion::Settings settings;
     settings.avoidance = avoidance;
+    settings.avoidanceQuality = quality;
+    settings.neighbourRange = range;
     settings.radius = kRadius;
     auto walk = std::make_shared<Locomotion>(nav, settings);
     Crowd crowd;
@@ -77,6 +80,7 @@ Crossing cross(const std::shared_ptr<const NavMesh>& nav, bool avoidance) {
     }
     for (std::size_t i = 0; i < at.size(); ++i)
         result.progress += (glm::length(goals[i] - starts[i]) - glm::length(goals[i] - at[i])) / float(at.size());
+    if (end) *end = at;
     return result;
 }
 
@@ -111,4 +115,38 @@ TEST(Avoidance, AGoalOffTheMeshIsRefused) {
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("goal"), std::string::npos) << e.what();
     }
+}
+
+// Avoidance quality is a knob that acts: the coarsest sampling and the shortest neighbour range
+// still let the walkers pass each other, on other paths than the finest setting takes.
+TEST(Avoidance, CoarserQualityStillPassesOnOtherPaths) {
+    const auto nav = corridor();
+    std::vector<glm::vec3> fineEnd, coarseEnd;
+    const Crossing fine = cross(nav, true, 3, 12.0f, &fineEnd);
+    const Crossing coarse = cross(nav, true, 0, 6.0f, &coarseEnd);
+    const Crossing without = cross(nav, false);
+    EXPECT_LT(coarse.contact, 0.25 * without.contact) << "pair-seconds in contact, coarse avoidance";
+    EXPECT_GT(coarse.progress, 30.0f);
+    EXPECT_NE(fineEnd, coarseEnd) << "the quality setting changed nothing";
+    EXPECT_EQ(fineEnd.size(), coarseEnd.size());
+    std::vector<glm::vec3> again;
+    cross(nav, true, 3, 12.0f, &again);
+    EXPECT_EQ(fineEnd, again);
+    (void)fine;
+}
+
+TEST(Avoidance, QualityAndRangeOutOfRangeAreRefused) {
+    const auto nav = corridor();
+    Locomotion::Settings s;
+    s.avoidanceQuality = 4;
+    EXPECT_THROW(Locomotion(nav, s), std::invalid_argument);
+    s.avoidanceQuality = -1;
+    EXPECT_THROW(Locomotion(nav, s), std::invalid_argument);
+    s.avoidanceQuality = 0;
+    s.neighbourRange = 0.5f;
+    EXPECT_THROW(Locomotion(nav, s), std::invalid_argument);
+    s.neighbourRange = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(Locomotion(nav, s), std::invalid_argument);
+    s.neighbourRange = 6.0f;
+    EXPECT_NO_THROW(Locomotion(nav, s));
 }

@@ -157,6 +157,12 @@ INSTANTIATE_TEST_SUITE_P(
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [{"template": "x", "count": 1, "behaviour": "walk"}]})",
                  "/actors/0/behaviour", "needs a town"},
         BadScene{"bad gaze type", scene(kActors, R"(, "effects": {"gaze": 3})"), "/effects/gaze", "must be an object"},
+        BadScene{"avoidance quality out of range", scene(kActors, R"(, "effects": {"avoidance": {"quality": 4}})"),
+                 "/effects/avoidance/quality", "0, 1, 2 or 3"},
+        BadScene{"avoidance range under a radius", scene(kActors, R"(, "effects": {"avoidance": {"range": 0.5}})"),
+                 "/effects/avoidance/range", "at least 1"},
+        BadScene{"unknown avoidance field", scene(kActors, R"(, "effects": {"avoidance": {"speed": 1}})"),
+                 "/effects/avoidance/speed", "not a known field"},
         BadScene{"camera times not increasing",
                  scene(kActors, R"(, "camera": {"path": [{"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}, {"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
                  "/camera/path/1/time", "must increase"},
@@ -230,6 +236,17 @@ INSTANTIATE_TEST_SUITE_P(
             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
         return name;
     });
+
+TEST(SceneParser, AvoidanceQualityAndRangeAreRead) {
+    const SceneDescription plain = parseScene(scene(kActors, R"(, "effects": {"avoidance": true})"), kAssets);
+    EXPECT_TRUE(plain.effects.avoidance);
+    EXPECT_EQ(plain.effects.avoidanceQuality, 3);
+    EXPECT_DOUBLE_EQ(plain.effects.avoidanceRange, 12.0);
+    const SceneDescription coarse = parseScene(scene(kActors, R"(, "effects": {"avoidance": {"quality": 1, "range": 6}})"), kAssets);
+    EXPECT_TRUE(coarse.effects.avoidance);
+    EXPECT_EQ(coarse.effects.avoidanceQuality, 1);
+    EXPECT_DOUBLE_EQ(coarse.effects.avoidanceRange, 6.0);
+}
 
 TEST(SceneParser, OcclusionIsReadOnlyWhenDeclared) {
     EXPECT_FALSE(parseScene(scene(kActors), kAssets).representation.occlusion.has_value());

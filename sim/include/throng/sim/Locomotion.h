@@ -40,6 +40,12 @@ public:
         float turnRate = 5.0f;         ///< radians per second the facing may turn
         std::uint64_t seed = 1;        ///< destinations' random seed
         RegionGrid regions;            ///< the regions stepped apart (default: one)
+        /// Avoidance: how finely candidate velocities are sampled (DetourCrowd's adaptive sampling),
+        /// 0 coarsest and cheapest to 3 finest (Detour's own default); a measured accuracy knob.
+        int avoidanceQuality = 3;
+        /// Avoidance: how far an agent looks for neighbours, in agent radii (DetourCrowd's collision
+        /// query range; also how near a border an agent is seen by the next region as a ghost).
+        float neighbourRange = 12.0f;
         /// Random destinations lie within this many metres of where the actor is (each way); 0:
         /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
         /// polygons, and a path across kilometres of town is longer.
@@ -87,6 +93,10 @@ public:
     std::uint32_t addActor(const Actor& actor);
     /// Number of actors.
     std::size_t size() const { return actors_.size(); }
+    /// The shared settings.
+    const Settings& settings() const { return settings_; }
+    /// Where an actor stands (after the last step).
+    glm::vec3 position(std::uint32_t slot) const { return state_[slot].position; }
     /// Current speed of an actor, m/s.
     double speed(std::uint32_t slot) const { return state_[slot].speed; }
     /// Where an actor is walking to.
