@@ -7,7 +7,7 @@
 // each move, so these are the collisions avoidance failed to prevent), progress towards their destinations, and how far their paths
 // deviate from the finest setting's, tick by tick.
 //
-//   bench_avoidance [--actors N] [--ticks N] [--qualities 0,1,2,3] [--ranges 6,12] [--threads N]
+//   bench_avoidance [--actors N] [--warmup N] [--ticks N] [--qualities 0,1,2,3] [--ranges 6,12] [--threads N]
 //                   [--markdown FILE] [--accuracy-csv FILE]
 
 #include <algorithm>
@@ -41,6 +41,7 @@ struct Options {
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::int64_t actors = 2000;
     int ticks = 300;
+    int warmup = 30;
     int threads = 1;
     std::vector<int> qualities{0, 1, 2, 3};
     std::vector<double> ranges{6.0, 12.0};
@@ -111,21 +112,22 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     std::uint64_t overlaps = 0;
     double progress = 0, deviation = 0, seconds = 0;
     std::uint64_t collisions = 0;
-    for (int t = 0; t < o.ticks; ++t) {
+    // The first steps are not measured: walkers leave their start places and find their pace.
+    const int total = o.warmup + o.ticks;
+    for (int t = 0; t < total; ++t) {
         const double dt = world->step().deltaTime;
-        r.stepMs += world->lastStepMs();
-        r.ghosts += static_cast<double>(walk->lastGhostCount());
+        const bool measured = t >= o.warmup, since = t > o.warmup;  // since: a measured step before this one
+        if (measured) r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount());
         for (std::uint32_t s = 0; s < n; ++s) pos[s] = walk->position(s);
         closePairs(pos, reach, now);
-        // New contacts from the second step on (the first places the walkers where they start).
-        if (t > 0)
+        if (since)
             for (std::uint64_t pair : now) collisions += before.count(pair) == 0;
         std::swap(before, now);
         closePairs(pos, reach - 0.1f, overlapNow);
-        if (t > 0)
+        if (since)
             for (std::uint64_t pair : overlapNow) overlaps += overlapBefore.count(pair) == 0;
         std::swap(overlapBefore, overlapNow);
-        if (t > 0) {
+        if (since) {
             seconds += dt;
             r.contact += static_cast<double>(before.size()) * dt;
             for (std::uint32_t s = 0; s < n; ++s) {
@@ -141,8 +143,8 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
             const glm::vec3 ref = reference[static_cast<std::size_t>(t)][s];
             sum += glm::distance(glm::vec2(pos[s].x, pos[s].z), glm::vec2(ref.x, ref.z));
         }
-        deviation += sum / static_cast<double>(n);
-        if (t == o.ticks - 1) r.finalDeviation = sum / static_cast<double>(n);
+        if (measured) deviation += sum / static_cast<double>(n);
+        if (t == total - 1) r.finalDeviation = sum / static_cast<double>(n);
     }
     r.stepMs /= o.ticks;
     r.ghosts /= o.ticks;
@@ -183,7 +185,8 @@ int main(int argc, char** argv) {
     CLI::App& app = cl.app();
     app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
     app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000))->capture_default_str();
-    app.add_option("--ticks", o.ticks, "steps per setting")->type_name("N")->check(wholeNumber(2, 1'000'000))->capture_default_str();
+    app.add_option("--warmup", o.warmup, "steps first, not measured")->type_name("N")->check(wholeNumber(0, 1'000'000))->capture_default_str();
+    app.add_option("--ticks", o.ticks, "measured steps per setting")->type_name("N")->check(wholeNumber(2, 1'000'000))->capture_default_str();
     app.add_option("--threads", o.threads, "threads of the step")->type_name("N")->check(wholeNumber(1, 256))->capture_default_str();
     app.add_option("--qualities", o.qualities, "avoidance qualities (0 coarsest to 3 finest)")->delimiter(',')->type_name("Q,Q,...")
         ->check(wholeNumber(0, 3));
@@ -205,7 +208,7 @@ int main(int argc, char** argv) {
         fail(e.what());
     }
     std::ostringstream report;
-    report << "### Avoidance: " << rows.front().walkers << " walkers, " << o.ticks << " steps, " << o.threads
+    report << "### Avoidance: " << rows.front().walkers << " walkers, " << o.ticks << " steps after " << o.warmup << ", " << o.threads
            << " thread(s); deviation from quality 3 at the widest range\n\n"
            << table(rows) << "\n";
     std::fputs(report.str().c_str(), stdout);
