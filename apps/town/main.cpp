@@ -49,6 +49,8 @@ struct PreparedFrame {
     std::int64_t number = 0;           // frame number
     double time = 0.0;                 // simulation time
     double stepMs = 0.0;               // the simulation step
+    std::uint64_t ghosts = 0;          // walkers seen across a region border in that step
+    std::uint64_t handovers = 0;       // walkers handed to another region at its end
     Camera camera;                     // the camera it was culled for
     ActorFrameStatistics stats;        // APP and CULL
     const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
@@ -79,7 +81,7 @@ const char* kCsvHeader =
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
-    "key_pose_select_ms,key_pose_fills,background_morph_ms\n";
+    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers\n";
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
     const ActorFrameStatistics& s = f.stats;
@@ -95,7 +97,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
-      << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << '\n';
+      << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
+      << f.ghosts << ',' << f.handovers << '\n';
     return o.str();
 }
 
@@ -273,9 +276,11 @@ int main(int argc, char** argv) {
     auto prepare = [&](PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
         f.number = number;
         f.stepMs = 0.0;
+        f.ghosts = f.handovers = 0;
         if (step) {
             world->step();
             f.stepMs = world->lastStepMs();
+            if (const sim::Locomotion* walk = world->locomotion()) f.ghosts = walk->lastGhostCount(), f.handovers = walk->lastHandoverCount();
         }
         f.time = world->now().time;
         f.camera = camera;
