@@ -33,6 +33,7 @@
 #include "throng/scenegraph/OcclusionCulling.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/Locomotion.h"
+#include "throng/sim/Ranks.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
@@ -197,6 +198,15 @@ int main(int argc, char** argv) {
         return 2;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
+        return 2;
+    }
+    // Started by mpirun: until the regions are distributed over ranks, every rank would run the whole
+    // town and write the same files, so more than one rank is refused.
+    const sim::Ranks ranks;
+    if (ranks.size() > 1) {
+        if (ranks.rank() == 0)
+            std::fprintf(stderr, "throng-town: started as %d ranks, but distributing the town over ranks is not built yet: "
+                                 "run it without mpirun (it uses every core of one machine)\n", ranks.size());
         return 2;
     }
     if (o.seed) scene.seed = *o.seed;
