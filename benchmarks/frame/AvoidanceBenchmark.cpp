@@ -66,9 +66,12 @@ struct Result {
     std::size_t walkers = 0;
 };
 
-// Pairs of walkers closer than `reach` (metres, on the ground), as keys i * n + j with i < j.
-void closePairs(const std::vector<glm::vec3>& p, float reach, std::unordered_set<std::uint64_t>& out) {
+// Pairs of walkers closer than `reach` (metres, on the ground) into `out`, and of those the ones
+// closer than `inner` into `innerOut`, as keys i * n + j with i < j.
+void closePairs(const std::vector<glm::vec3>& p, float reach, float inner, std::unordered_set<std::uint64_t>& out,
+                std::unordered_set<std::uint64_t>& innerOut) {
     out.clear();
+    innerOut.clear();
     const auto cellOf = [reach](float v) { return static_cast<std::int64_t>(std::floor(v / reach)); };
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
     const auto key = [](std::int64_t x, std::int64_t z) { return (static_cast<std::uint64_t>(x) << 32) ^ static_cast<std::uint32_t>(z); };
@@ -83,7 +86,9 @@ void closePairs(const std::vector<glm::vec3>& p, float reach, std::unordered_set
                 for (std::uint32_t j : it->second) {
                     if (j <= i) continue;
                     const float ddx = p[i].x - p[j].x, ddz = p[i].z - p[j].z;
-                    if (ddx * ddx + ddz * ddz < reach * reach) out.insert(i * n + j);
+                    const float d2 = ddx * ddx + ddz * ddz;
+                    if (d2 < reach * reach) out.insert(i * n + j);
+                    if (d2 < inner * inner) innerOut.insert(i * n + j);
                 }
             }
     }
@@ -119,11 +124,10 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
         const bool measured = t >= o.warmup, since = t > o.warmup;  // since: a measured step before this one
         if (measured) r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount());
         for (std::uint32_t s = 0; s < n; ++s) pos[s] = walk->position(s);
-        closePairs(pos, reach, now);
+        closePairs(pos, reach, reach - 0.1f, now, overlapNow);
         if (since)
             for (std::uint64_t pair : now) collisions += before.count(pair) == 0;
         std::swap(before, now);
-        closePairs(pos, reach - 0.1f, overlapNow);
         if (since)
             for (std::uint64_t pair : overlapNow) overlaps += overlapBefore.count(pair) == 0;
         std::swap(overlapBefore, overlapNow);

@@ -93,10 +93,10 @@ struct GpuAtlas {
 };
 
 // Per view, the part of the cell any stored key-frame covers (alpha > 0) or any key-frame's bone
-// lines or surface proxy reach, widened by three texels for bilinear filtering and morphed in-betweens, as texture
-// coordinates; the whole
-// cell when `tight` is false or the view is empty. Quads drawn over only this part shade the same
-// pixels: outside it every sample is transparent and discarded.
+// lines or surface proxy reach, widened by three texels for bilinear filtering and morphed
+// in-betweens, as texture coordinates; the whole cell when `tight` is false or the view is empty.
+// Quads drawn over only this part shade the same pixels: outside it every sample is transparent
+// and discarded.
 std::vector<glm::vec4> coveredRects(const ImpostorAtlas& atlas, bool tight) {
     const std::uint32_t views = atlas.views().viewCount();
     std::vector<glm::vec4> rects(views, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
@@ -117,19 +117,16 @@ std::vector<glm::vec4> coveredRects(const ImpostorAtlas& atlas, bool tight) {
         if (x1 < 0) continue;
         // Dropped key-frames keep only their bones' lines: their ends count too, so an in-between
         // reaching beyond every stored pose is still covered.
+        const auto include = [&](float x, float y) {
+            x0 = std::min(x0, static_cast<int>(std::floor(x))), y0 = std::min(y0, static_cast<int>(std::floor(y)));
+            x1 = std::max(x1, static_cast<int>(std::floor(x))), y1 = std::max(y1, static_cast<int>(std::floor(y)));
+        };
         for (int k = 0; k < atlas.keyframeCount(); ++k)
-            for (const FeatureLine& l : atlas.lines(v, k))
-                for (const glm::vec2& e : {l.p, l.q}) {
-                    x0 = std::min(x0, static_cast<int>(std::floor(e.x))), y0 = std::min(y0, static_cast<int>(std::floor(e.y)));
-                    x1 = std::max(x1, static_cast<int>(std::floor(e.x))), y1 = std::max(y1, static_cast<int>(std::floor(e.y)));
-                }
+            for (const FeatureLine& l : atlas.lines(v, k)) include(l.p.x, l.p.y), include(l.q.x, l.q.y);
         // Cells warped through the surface proxy show the proxy's outline at the dropped key-frame.
         if (atlas.proxy())
             for (int k = 0; k < atlas.keyframeCount(); ++k)
-                for (const glm::vec3& e : atlas.proxy()->project(k, atlas.views().direction(v))) {
-                    x0 = std::min(x0, static_cast<int>(std::floor(e.x))), y0 = std::min(y0, static_cast<int>(std::floor(e.y)));
-                    x1 = std::max(x1, static_cast<int>(std::floor(e.x))), y1 = std::max(y1, static_cast<int>(std::floor(e.y)));
-                }
+                for (const glm::vec3& e : atlas.proxy()->project(k, atlas.views().direction(v))) include(e.x, e.y);
         const int margin = 3;
         const float s = static_cast<float>(size);
         rects[v] = glm::vec4(static_cast<float>(std::max(x0 - margin, 0)) / s, static_cast<float>(std::max(y0 - margin, 0)) / s,

@@ -100,6 +100,53 @@ struct Headers {
     }
 };
 
+// One collective step for this rank: sends `payloads[k]` to rank `sendTo[k]` and receives one message
+// from each rank of `receiveFrom` into `received` (indexed by rank), every message its size first,
+// all within `deadline`. Throws RankError naming the first rank missing.
+void transfer(std::span<const int> sendTo, std::span<const Bytes* const> payloads, std::span<const int> receiveFrom,
+              std::vector<Bytes>& received, int tag, Clock::time_point deadline, std::chrono::milliseconds timeout,
+              std::string_view what, std::size_t& bytesSent) {
+    for (std::size_t k = 0; k < sendTo.size(); ++k) messageCount(payloads[k]->size(), sendTo[k], what);
+    std::vector<std::uint64_t> sizesIn(receiveFrom.size(), 0);
+    Pending heads, sends;
+    for (std::size_t k = 0; k < receiveFrom.size(); ++k) {
+        MPI_Request q;
+        MPI_Irecv(&sizesIn[k], 1, MPI_UINT64_T, receiveFrom[k], sizeTag(tag), MPI_COMM_WORLD, &q);
+        heads.add(q, receiveFrom[k], false);
+    }
+    Headers sizesOut(sendTo.size());
+    for (std::size_t k = 0; k < sendTo.size(); ++k) {
+        const Bytes& payload = *payloads[k];
+        sizesOut.values[k] = payload.size();
+        MPI_Request q;
+        MPI_Isend(&sizesOut.values[k], 1, MPI_UINT64_T, sendTo[k], sizeTag(tag), MPI_COMM_WORLD, &q);
+        sends.add(q, sendTo[k], true);
+        if (!payload.empty()) {
+            MPI_Isend(payload.data(), static_cast<int>(payload.size()), MPI_BYTE, sendTo[k], payloadTag(tag), MPI_COMM_WORLD, &q);
+            sends.add(q, sendTo[k], true);
+        }
+        bytesSent += sizeof(std::uint64_t) + payload.size();
+    }
+    try {
+        heads.waitAll(deadline, timeout, what);
+        Pending bodies;
+        for (std::size_t k = 0; k < receiveFrom.size(); ++k) {
+            if (sizesIn[k] == 0) continue;
+            Bytes& into = received[static_cast<std::size_t>(receiveFrom[k])];
+            into.resize(sizesIn[k]);
+            MPI_Request q;
+            MPI_Irecv(into.data(), messageCount(into.size(), receiveFrom[k], what), MPI_BYTE, receiveFrom[k], payloadTag(tag),
+                      MPI_COMM_WORLD, &q);
+            bodies.add(q, receiveFrom[k], false);
+        }
+        bodies.append(sends);
+        bodies.waitAll(deadline, timeout, what);
+    } catch (const RankError&) {
+        sizesOut.abandon();
+        throw;
+    }
+}
+
 void finaliseAtExit() {
     int finalised = 0;
     MPI_Finalized(&finalised);
@@ -157,44 +204,11 @@ std::vector<Bytes> Ranks::exchange(std::span<const Bytes> outgoing, int tag, std
     incoming[static_cast<std::size_t>(rank_)] = outgoing[static_cast<std::size_t>(rank_)];
 #ifdef THRONG_HAVE_MPI
     if (size_ == 1) return incoming;
-    for (int r = 0; r < size_; ++r) messageCount(outgoing[static_cast<std::size_t>(r)].size(), r, what);
-    const Clock::time_point deadline = Clock::now() + timeout_;
-    Headers sendSizes(incoming.size());
-    std::vector<std::uint64_t> recvSizes(incoming.size(), 0);
-    Pending sizes, sends;
-    for (int r = 0; r < size_; ++r) {
-        if (r == rank_) continue;
-        const auto i = static_cast<std::size_t>(r);
-        sendSizes.values[i] = outgoing[i].size();
-        MPI_Request q;
-        MPI_Irecv(&recvSizes[i], 1, MPI_UINT64_T, r, sizeTag(tag), MPI_COMM_WORLD, &q);
-        sizes.add(q, r, false);
-        MPI_Isend(&sendSizes.values[i], 1, MPI_UINT64_T, r, sizeTag(tag), MPI_COMM_WORLD, &q);
-        sends.add(q, r, true);
-        bytesSent_ += sizeof(std::uint64_t);
-        if (!outgoing[i].empty()) {
-            MPI_Isend(outgoing[i].data(), messageCount(outgoing[i].size(), r, what), MPI_BYTE, r, payloadTag(tag), MPI_COMM_WORLD, &q);
-            sends.add(q, r, true);
-            bytesSent_ += outgoing[i].size();
-        }
-    }
-    try {
-        sizes.waitAll(deadline, timeout_, what);
-        Pending payloads;
-        for (int r = 0; r < size_; ++r) {
-            const auto i = static_cast<std::size_t>(r);
-            if (r == rank_ || recvSizes[i] == 0) continue;
-            incoming[i].resize(recvSizes[i]);
-            MPI_Request q;
-            MPI_Irecv(incoming[i].data(), messageCount(incoming[i].size(), r, what), MPI_BYTE, r, payloadTag(tag), MPI_COMM_WORLD, &q);
-            payloads.add(q, r, false);
-        }
-        payloads.append(sends);
-        payloads.waitAll(deadline, timeout_, what);
-    } catch (const RankError&) {
-        sendSizes.abandon();
-        throw;
-    }
+    std::vector<int> others;
+    std::vector<const Bytes*> payloads;
+    for (int r = 0; r < size_; ++r)
+        if (r != rank_) others.push_back(r), payloads.push_back(&outgoing[static_cast<std::size_t>(r)]);
+    transfer(others, payloads, others, incoming, tag, Clock::now() + timeout_, timeout_, what, bytesSent_);
 #endif
     return incoming;
 }
@@ -206,45 +220,16 @@ std::vector<Bytes> Ranks::gather(const Bytes& mine, int tag, std::string_view wh
 #ifdef THRONG_HAVE_MPI
     const Clock::time_point deadline = Clock::now() + timeout_;
     if (rank_ != 0) {
-        Headers size(1);
-        size.values[0] = mine.size();
-        Pending sends;
-        MPI_Request q;
-        MPI_Isend(size.values, 1, MPI_UINT64_T, 0, sizeTag(tag), MPI_COMM_WORLD, &q);
-        sends.add(q, 0, true);
-        if (!mine.empty()) {
-            MPI_Isend(mine.data(), messageCount(mine.size(), 0, what), MPI_BYTE, 0, payloadTag(tag), MPI_COMM_WORLD, &q);
-            sends.add(q, 0, true);
-        }
-        bytesSent_ += sizeof(std::uint64_t) + mine.size();
-        try {
-            sends.waitAll(deadline, timeout_, what);
-        } catch (const RankError&) {
-            size.abandon();
-            throw;
-        }
+        const int root = 0;
+        const Bytes* payload = &mine;
+        transfer(std::span(&root, 1), std::span(&payload, 1), {}, all, tag, deadline, timeout_, what, bytesSent_);
         return all;
     }
     all.resize(static_cast<std::size_t>(size_));
     all[0] = mine;
-    std::vector<std::uint64_t> sizes(all.size(), 0);
-    Pending heads;
-    for (int r = 1; r < size_; ++r) {
-        MPI_Request q;
-        MPI_Irecv(&sizes[static_cast<std::size_t>(r)], 1, MPI_UINT64_T, r, sizeTag(tag), MPI_COMM_WORLD, &q);
-        heads.add(q, r, false);
-    }
-    heads.waitAll(deadline, timeout_, what);
-    Pending payloads;
-    for (int r = 1; r < size_; ++r) {
-        const auto i = static_cast<std::size_t>(r);
-        if (sizes[i] == 0) continue;
-        all[i].resize(sizes[i]);
-        MPI_Request q;
-        MPI_Irecv(all[i].data(), messageCount(all[i].size(), r, what), MPI_BYTE, r, payloadTag(tag), MPI_COMM_WORLD, &q);
-        payloads.add(q, r, false);
-    }
-    payloads.waitAll(deadline, timeout_, what);
+    std::vector<int> others;
+    for (int r = 1; r < size_; ++r) others.push_back(r);
+    transfer({}, {}, others, all, tag, deadline, timeout_, what, bytesSent_);
 #endif
     return all;
 }
@@ -252,47 +237,20 @@ std::vector<Bytes> Ranks::gather(const Bytes& mine, int tag, std::string_view wh
 Bytes Ranks::broadcast(const Bytes& fromRoot, int tag, std::string_view what) {
     checkTag(tag, what);
     if (size_ == 1) return fromRoot;
-    Bytes result;
+    std::vector<Bytes> received(static_cast<std::size_t>(size_));
 #ifdef THRONG_HAVE_MPI
     const Clock::time_point deadline = Clock::now() + timeout_;
     if (rank_ == 0) {
-        messageCount(fromRoot.size(), 1, what);
-        Headers size(1);
-        size.values[0] = fromRoot.size();
-        Pending sends;
-        for (int r = 1; r < size_; ++r) {
-            MPI_Request q;
-            MPI_Isend(size.values, 1, MPI_UINT64_T, r, sizeTag(tag), MPI_COMM_WORLD, &q);
-            sends.add(q, r, true);
-            if (!fromRoot.empty()) {
-                MPI_Isend(fromRoot.data(), static_cast<int>(fromRoot.size()), MPI_BYTE, r, payloadTag(tag), MPI_COMM_WORLD, &q);
-                sends.add(q, r, true);
-            }
-            bytesSent_ += sizeof(std::uint64_t) + fromRoot.size();
-        }
-        try {
-            sends.waitAll(deadline, timeout_, what);
-        } catch (const RankError&) {
-            size.abandon();
-            throw;
-        }
+        std::vector<int> others;
+        for (int r = 1; r < size_; ++r) others.push_back(r);
+        const std::vector<const Bytes*> payloads(others.size(), &fromRoot);
+        transfer(others, payloads, {}, received, tag, deadline, timeout_, what, bytesSent_);
         return fromRoot;
     }
-    std::uint64_t size = 0;
-    Pending head;
-    MPI_Request q;
-    MPI_Irecv(&size, 1, MPI_UINT64_T, 0, sizeTag(tag), MPI_COMM_WORLD, &q);
-    head.add(q, 0, false);
-    head.waitAll(deadline, timeout_, what);
-    result.resize(size);
-    if (size > 0) {
-        Pending payload;
-        MPI_Irecv(result.data(), messageCount(result.size(), 0, what), MPI_BYTE, 0, payloadTag(tag), MPI_COMM_WORLD, &q);
-        payload.add(q, 0, false);
-        payload.waitAll(deadline, timeout_, what);
-    }
+    const int root = 0;
+    transfer({}, {}, std::span(&root, 1), received, tag, deadline, timeout_, what, bytesSent_);
 #endif
-    return result;
+    return std::move(received[0]);
 }
 
 void Ranks::abort(int code) {
