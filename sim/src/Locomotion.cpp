@@ -4,20 +4,25 @@
 #include <DetourNavMeshQuery.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/scenegraph/Stopwatch.h"
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/ClipBlend.h"
 #include "throng/sim/CounterRng.h"
+#include "throng/sim/Ranks.h"
 
 namespace throng::sim {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
+// Message tags of a distributed step's three exchanges.
+constexpr int kGhostTag = 101, kHandoverTag = 102, kWalkerTag = 103;
 
 float wrapAngle(float a) {
     while (a > kPi) a -= 2 * kPi;
@@ -161,8 +166,7 @@ void Locomotion::newDestination(Region& region, std::uint32_t slot) {
     requestTarget(region, slot);
 }
 
-int Locomotion::addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity) {
-    const bool ghost = state_[slot].region != r;
+int Locomotion::addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity, bool ghost) {
     dtCrowdAgentParams p{};
     p.radius = settings_.radius;
     p.height = settings_.height;
@@ -204,7 +208,7 @@ void Locomotion::startRegion(std::uint32_t r) {
     params.adaptiveDepth = kSampling[q][2];
     region.crowd->setObstacleAvoidanceParams(q, &params);
     for (std::uint32_t slot : region.owned) {
-        state_[slot].agent = addAgent(region, r, slot, &state_[slot].position.x, nullptr);
+        state_[slot].agent = addAgent(region, r, slot, &state_[slot].position.x, nullptr, false);
         newDestination(region, slot);
     }
 }
@@ -231,9 +235,59 @@ void Locomotion::start() {
                                      " agents; DetourCrowd numbers a crowd's agents with 16 bits, so declare smaller regions");
         regions_[r].capacity = int(std::min<std::size_t>(want, 65000));
     }
-    forEachChunk(regions_.size(), 1, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t r = begin; r < end; ++r) startRegion(std::uint32_t(r));
+    assignRanks();
+    forEachChunk(endRegion_ - firstRegion_, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) startRegion(firstRegion_ + std::uint32_t(r));
     });
+}
+
+void Locomotion::distribute(Ranks& ranks) {
+    if (started_) throw std::logic_error("Locomotion::distribute: the crowd has already started");
+    ranks_ = &ranks;
+}
+
+void Locomotion::assignRanks() {
+    const auto n = std::uint32_t(regions_.size());
+    firstRegion_ = 0, endRegion_ = n;
+    if (!ranks_) return;
+    // Consecutive regions per rank (a region's ghosts and handovers then arrive in the order of
+    // their sending region, as in one process), each rank with about as many starting walkers.
+    const auto size = std::size_t(ranks_->size());
+    const std::size_t total = actors_.size();
+    regionRank_.assign(n, 0);
+    std::size_t before = 0;
+    for (std::uint32_t r = 0; r < n; ++r) {
+        const std::size_t middle = before + regions_[r].owned.size() / 2;
+        const std::size_t k = total ? std::min(size - 1, middle * size / total) : std::size_t(r) * size / n;
+        regionRank_[r] = std::max(int(k), r > 0 ? regionRank_[r - 1] : 0);
+        before += regions_[r].owned.size();
+    }
+    const int me = ranks_->rank();
+    firstRegion_ = std::uint32_t(std::lower_bound(regionRank_.begin(), regionRank_.end(), me) - regionRank_.begin());
+    endRegion_ = std::uint32_t(std::upper_bound(regionRank_.begin(), regionRank_.end(), me) - regionRank_.begin());
+}
+
+template <class Record, class Deliver>
+std::uint64_t Locomotion::route(std::vector<Record> Region::*list, std::uint32_t Record::*to, int tag, const char* what,
+                                Deliver&& deliver) {
+    // Every rank sends each other rank the records for its regions, in order of sending region;
+    // each delivers what it received in order of sending rank, so of sending region.
+    const auto size = std::size_t(ranks_->size());
+    std::vector<std::vector<Record>> perRank(size);
+    for (std::uint32_t r = firstRegion_; r < endRegion_; ++r)
+        for (const Record& record : regions_[r].*list) perRank[std::size_t(regionRank_[record.*to])].push_back(record);
+    std::vector<Bytes> outgoing(size);
+    for (std::size_t k = 0; k < size; ++k) outgoing[k] = packRecords(std::span<const Record>(perRank[k]));
+    const std::size_t sentBefore = ranks_->bytesSent();
+    const std::vector<Bytes> incoming = ranks_->exchange(outgoing, tag, what);
+    for (std::size_t k = 0; k < size; ++k)
+        for (const Record& record : unpackRecords<Record>(incoming[k], int(k), what)) {
+            if (record.slot >= actors_.size() || record.*to < firstRegion_ || record.*to >= endRegion_)
+                throw RankError(int(k), "rank " + std::to_string(k) + " sent " + what + " for actor " + std::to_string(record.slot) +
+                                            " in region " + std::to_string(record.*to) + ", which this rank does not step");
+            deliver(record);
+        }
+    return ranks_->bytesSent() - sentBefore;
 }
 
 void Locomotion::exportGhosts(std::uint32_t r) {
@@ -258,7 +312,7 @@ void Locomotion::exportGhosts(std::uint32_t r) {
 void Locomotion::importGhosts(std::uint32_t r) {
     Region& region = regions_[r];
     region.ghostAgents.clear();
-    for (const GhostRecord& g : region.ghostsIn) region.ghostAgents.push_back(addAgent(region, r, g.slot, g.position, g.velocity));
+    for (const GhostRecord& g : region.ghostsIn) region.ghostAgents.push_back(addAgent(region, r, g.slot, g.position, g.velocity, true));
 }
 
 void Locomotion::stepRegion(std::uint32_t r, float dt) {
@@ -291,7 +345,8 @@ void Locomotion::exportHandovers(std::uint32_t r) {
         h.slot = slot;
         h.from = r;
         h.to = to;
-        for (int i = 0; i < 3; ++i) h.position[i] = s.position[i], h.velocity[i] = s.velocity[i];
+        for (int i = 0; i < 3; ++i) h.position[i] = s.position[i], h.velocity[i] = s.velocity[i], h.target[i] = s.target[i];
+        h.heading = s.heading, h.speed = s.speed, h.runWeight = s.runWeight, h.phase = s.phase, h.trips = s.trips;
         region.leaving.push_back(h);
         region.crowd->removeAgent(s.agent);
     }
@@ -303,9 +358,13 @@ void Locomotion::importHandovers(std::uint32_t r) {
     // Arrivals join in order of slot, whichever region they come from.
     std::sort(region.arriving.begin(), region.arriving.end(), [](const HandoverRecord& a, const HandoverRecord& b) { return a.slot < b.slot; });
     for (const HandoverRecord& h : region.arriving) {
-        State& s = state_[h.slot];
+        State& s = state_[h.slot];  // as the record has it: it may come from another rank
         s.region = r;
-        s.agent = addAgent(region, r, h.slot, h.position, h.velocity);
+        s.position = glm::vec3(h.position[0], h.position[1], h.position[2]);
+        s.velocity = glm::vec3(h.velocity[0], h.velocity[1], h.velocity[2]);
+        s.target = glm::vec3(h.target[0], h.target[1], h.target[2]);
+        s.heading = h.heading, s.speed = h.speed, s.runWeight = h.runWeight, s.phase = h.phase, s.trips = h.trips;
+        s.agent = addAgent(region, r, h.slot, h.position, h.velocity, false);
         requestTarget(region, h.slot);
     }
     // The slots it owns, still increasing: those that stayed merged with those that came.
@@ -327,10 +386,11 @@ void Locomotion::advance(const FrameContext& context) {
     if (!started_) start();
     const float dt = static_cast<float>(context.deltaTime);
     if (dt <= 0.0f) return;
-    const std::size_t regionCount = regions_.size();
+    const Stopwatch watch;
+    RankStepRecord mine;
     auto eachRegion = [&](auto&& body) {
-        forEachChunk(regionCount, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
-            for (std::size_t r = begin; r < end; ++r) body(std::uint32_t(r));
+        forEachChunk(endRegion_ - firstRegion_, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t r = begin; r < end; ++r) body(firstRegion_ + std::uint32_t(r));
         });
     };
     // Ghosts: every region lists its agents near another region; each region takes in what the
@@ -338,44 +398,126 @@ void Locomotion::advance(const FrameContext& context) {
     eachRegion([&](std::uint32_t r) { exportGhosts(r); });
     lastGhosts_ = 0;
     for (Region& region : regions_) region.ghostsIn.clear();
-    for (Region& region : regions_)
-        for (const GhostRecord& g : region.ghostsOut) regions_[g.region].ghostsIn.push_back(g), ++lastGhosts_;
+    if (!ranks_) {
+        for (Region& region : regions_)
+            for (const GhostRecord& g : region.ghostsOut) regions_[g.region].ghostsIn.push_back(g), ++lastGhosts_;
+    } else {
+        for (std::uint32_t r = firstRegion_; r < endRegion_; ++r) mine.ghosts += regions_[r].ghostsOut.size();
+        const Stopwatch wait;
+        mine.borderBytes += route(&Region::ghostsOut, &GhostRecord::region, kGhostTag, "ghosts",
+                                  [&](const GhostRecord& g) { regions_[g.region].ghostsIn.push_back(g); });
+        mine.waitMs += wait.elapsedMs();
+        lastGhosts_ = mine.ghosts;
+    }
     eachRegion([&](std::uint32_t r) { stepRegion(r, dt); });
     // Handover: agents now in another region leave their crowd and join the other's.
     eachRegion([&](std::uint32_t r) { exportHandovers(r); });
     lastHandovers_ = 0;
     for (Region& region : regions_) region.arriving.clear();
-    for (Region& region : regions_)
-        for (const HandoverRecord& h : region.leaving) regions_[h.to].arriving.push_back(h), ++lastHandovers_;
+    if (!ranks_) {
+        for (Region& region : regions_)
+            for (const HandoverRecord& h : region.leaving) regions_[h.to].arriving.push_back(h), ++lastHandovers_;
+    } else {
+        for (std::uint32_t r = firstRegion_; r < endRegion_; ++r)
+            for (const HandoverRecord& h : regions_[r].leaving) {
+                ++mine.handovers;
+                if (regionRank_[h.to] != ranks_->rank())  // gone: this rank no longer steps it
+                    ++mine.handedToRanks, state_[h.slot].region = h.to;
+            }
+        const Stopwatch wait;
+        mine.borderBytes += route(&Region::leaving, &HandoverRecord::to, kHandoverTag, "handovers",
+                                  [&](const HandoverRecord& h) { regions_[h.to].arriving.push_back(h); });
+        mine.waitMs += wait.elapsedMs();
+        lastHandovers_ = mine.handovers;
+    }
     eachRegion([&](std::uint32_t r) { importHandovers(r); });
     if (counters_) {
         counters_->ticked("locomotion", actors_.size());
         if (settings_.avoidance) counters_->ticked("avoidance", actors_.size());
     }
     // Per agent, in parallel: each touches its own state only.
-    forEachChunk(actors_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t slot = begin; slot < end; ++slot) {
-            State& s = state_[slot];
-            const Actor& a = actors_[slot];
-            const glm::vec3 v(s.velocity.x, 0.0f, s.velocity.z);
-            s.speed = glm::length(v);
-            if (s.speed > 0.05f) {  // face the way it goes, turning at a bounded rate
-                const float want = std::atan2(v.x, v.z);
-                const float turn = std::clamp(wrapAngle(want - s.heading), -settings_.turnRate * dt, settings_.turnRate * dt);
-                s.heading = wrapAngle(s.heading + turn);
-            }
-            // Speed matching: the walk cycle advances as far as the actor walked, in double with the
-            // exact step (a float step runs the cycle 5e-8 fast: 2e-4 cycles in a million steps).
-            const double walkDuration = a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
-            const double clipSpeed = a.runClip < 0 ? a.walkClipSpeed
-                                                   : a.walkClipSpeed + (a.runClipSpeed - a.walkClipSpeed) * s.runWeight;
-            if (walkDuration > 0.0) s.phase = std::fmod(s.phase + context.deltaTime * s.speed / (clipSpeed * walkDuration), 1.0);
-            if (a.runClip >= 0) {
-                const float u = std::clamp(float((s.speed - a.walkClipSpeed) / (a.runClipSpeed - a.walkClipSpeed)), 0.0f, 1.0f);
-                s.runWeight = u * u * (3.0f - 2.0f * u);
-            }
-        }
+    if (!ranks_) {
+        forEachChunk(actors_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t slot = begin; slot < end; ++slot) walk(std::uint32_t(slot), context.deltaTime);
+        });
+        return;
+    }
+    ownSlots_.clear();
+    for (std::uint32_t r = firstRegion_; r < endRegion_; ++r) ownSlots_.insert(ownSlots_.end(), regions_[r].owned.begin(), regions_[r].owned.end());
+    forEachChunk(ownSlots_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) walk(ownSlots_[k], context.deltaTime);
     });
+    mine.agents = ownSlots_.size();
+    mine.workMs = watch.elapsedMs() - mine.waitMs;
+    gatherWalkers(mine);
+}
+
+void Locomotion::walk(std::uint32_t slot, double dt) {
+    State& s = state_[slot];
+    const Actor& a = actors_[slot];
+    const glm::vec3 v(s.velocity.x, 0.0f, s.velocity.z);
+    s.speed = glm::length(v);
+    if (s.speed > 0.05f) {  // face the way it goes, turning at a bounded rate
+        const float want = std::atan2(v.x, v.z);
+        const float most = settings_.turnRate * static_cast<float>(dt);
+        s.heading = wrapAngle(s.heading + std::clamp(wrapAngle(want - s.heading), -most, most));
+    }
+    // Speed matching: the walk cycle advances as far as the actor walked, in double with the
+    // exact step (a float step runs the cycle 5e-8 fast: 2e-4 cycles in a million steps).
+    const double walkDuration = a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
+    const double clipSpeed = a.runClip < 0 ? a.walkClipSpeed : a.walkClipSpeed + (a.runClipSpeed - a.walkClipSpeed) * s.runWeight;
+    if (walkDuration > 0.0) s.phase = std::fmod(s.phase + dt * s.speed / (clipSpeed * walkDuration), 1.0);
+    if (a.runClip >= 0) {
+        const float u = std::clamp(float((s.speed - a.walkClipSpeed) / (a.runClipSpeed - a.walkClipSpeed)), 0.0f, 1.0f);
+        s.runWeight = u * u * (3.0f - 2.0f * u);
+    }
+}
+
+void Locomotion::gatherWalkers(RankStepRecord mine) {
+    // One message per rank: its share of the step, then a record per walker it steps.
+    std::vector<WalkerRecord> walkers(ownSlots_.size());
+    for (std::size_t k = 0; k < ownSlots_.size(); ++k) {
+        const State& s = state_[ownSlots_[k]];
+        WalkerRecord& w = walkers[k];
+        w.slot = ownSlots_[k], w.region = s.region;
+        for (int i = 0; i < 3; ++i) w.position[i] = s.position[i];
+        w.heading = s.heading, w.speed = s.speed, w.runWeight = s.runWeight, w.phase = s.phase;
+    }
+    Bytes message = packRecords(std::span<const RankStepRecord>(&mine, 1));
+    const Bytes body = packRecords(std::span<const WalkerRecord>(walkers));
+    message.insert(message.end(), body.begin(), body.end());
+    const std::size_t sentBefore = ranks_->bytesSent();
+    const std::vector<Bytes> all = ranks_->gather(message, kWalkerTag, "walkers");
+    rankSteps_.assign(std::size_t(ranks_->size()), RankStepRecord{});
+    if (ranks_->rank() != 0) {
+        mine.stateBytes = ranks_->bytesSent() - sentBefore;
+        rankSteps_[std::size_t(ranks_->rank())] = mine;
+        return;
+    }
+    lastGhosts_ = lastHandovers_ = 0;
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        const Bytes& bytes = all[k];
+        if (bytes.size() < sizeof(RankStepRecord) || (bytes.size() - sizeof(RankStepRecord)) % sizeof(WalkerRecord) != 0)
+            throw RankError(int(k), "rank " + std::to_string(k) + " sent " + std::to_string(bytes.size()) +
+                                        " bytes of walkers, not a step record and whole walker records");
+        RankStepRecord& step = rankSteps_[k];
+        std::memcpy(&step, bytes.data(), sizeof step);
+        if (k > 0) step.stateBytes = bytes.size() + sizeof(std::uint64_t);  // and its size header
+        lastGhosts_ += step.ghosts, lastHandovers_ += step.handovers;
+        if (k == 0) continue;  // rank 0's own walkers are already up to date
+        const std::size_t n = (bytes.size() - sizeof(RankStepRecord)) / sizeof(WalkerRecord);
+        for (std::size_t i = 0; i < n; ++i) {
+            WalkerRecord w;
+            std::memcpy(&w, bytes.data() + sizeof(RankStepRecord) + i * sizeof(WalkerRecord), sizeof w);
+            if (w.slot >= state_.size() || w.region >= regions_.size())
+                throw RankError(int(k), "rank " + std::to_string(k) + " sent a walker record for actor " + std::to_string(w.slot) +
+                                            " in region " + std::to_string(w.region) + ", which do not exist");
+            State& s = state_[w.slot];
+            s.region = w.region;
+            s.position = glm::vec3(w.position[0], w.position[1], w.position[2]);
+            s.heading = w.heading, s.speed = w.speed, s.runWeight = w.runWeight, s.phase = w.phase;
+        }
+    }
 }
 
 double Locomotion::clipTime(std::uint32_t slot, double) const {

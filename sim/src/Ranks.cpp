@@ -181,8 +181,10 @@ Ranks::Ranks(std::chrono::milliseconds timeout) : timeout_(timeout) {
         MPI_Initialized(&initialised);
         if (initialised) return;
         int provided = 0;
-        if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+        if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS)
             throw std::runtime_error("Ranks: MPI could not be started");
+        if (provided < MPI_THREAD_SERIALIZED)
+            throw std::runtime_error("Ranks: this MPI library cannot be called from more than one thread of a process");
         std::atexit(finaliseAtExit);
     });
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);

@@ -366,6 +366,11 @@ void Simulation::buildActors(const BuildProgress& progress) {
         if (b) behaviours_.push_back(b);
 }
 
+void Simulation::distribute(Ranks& ranks) {
+    if (started_) throw std::logic_error("Simulation::distribute: the simulation has already started");
+    if (walkers_) walkers_->distribute(ranks);
+}
+
 std::vector<std::shared_ptr<KeyPoseCache>> Simulation::makeKeyPoseCaches() {
     std::vector<std::shared_ptr<KeyPoseCache>> caches;
     const auto& declared = description_.representation.keyPoseCache;

@@ -10,12 +10,15 @@
 // ghost (a copy of it at the start of the step, which that region never moves); an agent that
 // crosses a border is handed over at the end of the step, in order of actor slot. Ghost export and
 // import and the handover are separate steps over flat records (GhostRecord, HandoverRecord), so
-// that regions owned elsewhere could exchange them as messages. The same layout gives the same
-// trajectories with any number of threads.
+// that regions owned by other processes exchange them as messages: distribute() splits the regions
+// over the ranks of an MPI run, and rank 0 gathers every walker's drawn state (WalkerRecord) after
+// each step. The same layout gives the same trajectories with any number of threads or ranks.
 
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "throng/actors/Behaviour.h"
@@ -27,6 +30,8 @@ class dtCrowd;
 class dtNavMeshQuery;
 
 namespace throng::sim {
+
+class Ranks;
 
 /// Navigation-mesh locomotion for many actors.
 class Locomotion : public Behaviour {
@@ -58,13 +63,41 @@ public:
         float position[3] = {};        ///< at the start of the step
         float velocity[3] = {};        ///< at the start of the step
     };
-    /// An agent leaving its region at the end of a step.
+    /// An agent leaving its region at the end of a step, with everything it walks on with (the
+    /// region entered may belong to another rank, which knows nothing else of it).
     struct HandoverRecord {
         std::uint32_t slot = 0;        ///< the actor
         std::uint32_t from = 0;        ///< region left
         std::uint32_t to = 0;          ///< region entered
         float position[3] = {};        ///< where it is
         float velocity[3] = {};        ///< how it moves
+        float target[3] = {};          ///< where it is walking to
+        float heading = 0.0f;          ///< radians about +Y
+        float speed = 0.0f;            ///< m/s, after the previous step
+        float runWeight = 0.0f;        ///< how far the run clip is blended in
+        double phase = 0.0;            ///< walk cycle, in cycles
+        std::uint64_t trips = 0;       ///< destinations drawn so far
+    };
+    /// What rank 0 draws a walker from, sent by the rank stepping it after each step.
+    struct WalkerRecord {
+        std::uint32_t slot = 0;        ///< the actor
+        std::uint32_t region = 0;      ///< the region owning it
+        float position[3] = {};        ///< where it stands
+        float heading = 0.0f;          ///< radians about +Y
+        float speed = 0.0f;            ///< m/s
+        float runWeight = 0.0f;        ///< how far the run clip is blended in
+        double phase = 0.0;            ///< walk cycle, in cycles
+    };
+    /// One rank's share of a step: what it stepped, sent and waited for.
+    struct RankStepRecord {
+        std::uint64_t agents = 0;          ///< walkers its regions own after the step
+        std::uint64_t ghosts = 0;          ///< ghost records its regions exported
+        std::uint64_t handovers = 0;       ///< agents that left its regions
+        std::uint64_t handedToRanks = 0;   ///< of those, agents handed to a region of another rank
+        std::uint64_t borderBytes = 0;     ///< bytes of ghosts and handovers sent to other ranks
+        std::uint64_t stateBytes = 0;      ///< bytes of walker records sent to rank 0
+        double workMs = 0.0;               ///< milliseconds stepping its regions and walkers
+        double waitMs = 0.0;               ///< milliseconds in exchanges with the other ranks
     };
     /// One actor.
     struct Actor {
@@ -101,14 +134,32 @@ public:
     double speed(std::uint32_t slot) const { return state_[slot].speed; }
     /// Where an actor is walking to.
     glm::vec3 destination(std::uint32_t slot) const { return state_[slot].target; }
-    /// The region that owns an actor (after the first frame).
+    /// The region that owns an actor (after the first frame; distributed, on ranks other than 0,
+    /// known for the walkers this rank steps or handed on).
     std::uint32_t region(std::uint32_t slot) const { return state_[slot].region; }
     /// Number of regions.
     std::uint32_t regionCount() const { return settings_.regions.regionCount(); }
-    /// Ghosts seen by neighbouring regions in the last step.
+    /// Ghosts seen by neighbouring regions in the last step (distributed: on rank 0 all ranks'
+    /// total, elsewhere this rank's).
     std::size_t lastGhostCount() const { return lastGhosts_; }
-    /// Agents handed over to another region at the end of the last step.
+    /// Agents handed over to another region at the end of the last step (counted as ghosts are).
     std::size_t lastHandoverCount() const { return lastHandovers_; }
+
+    /// Splits the regions over the ranks of the run (ranges of consecutive regions holding about
+    /// as many starting walkers each): this rank steps only its own, exchanging ghosts and handovers
+    /// with the others each step, and rank 0 gathers every walker's state (WalkerRecord), so that
+    /// position(), speed(), region() and the Behaviour calls there are those of one process. Other
+    /// ranks know only their own walkers. `ranks` must outlive the stepping. Throws
+    /// std::logic_error after the first step; exchanges throw RankError (a rank failed).
+    void distribute(Ranks& ranks);
+    /// Whether distribute() was called.
+    bool distributed() const { return ranks_ != nullptr; }
+    /// Regions this rank steps, [first, second) (all of them unless distributed; valid after the
+    /// first step).
+    std::pair<std::uint32_t, std::uint32_t> ownRegions() const { return {firstRegion_, endRegion_}; }
+    /// Each rank's share of the last step, indexed by rank: on rank 0 every rank's, elsewhere only
+    /// this rank's entry is filled; empty unless distributed.
+    std::span<const RankStepRecord> rankSteps() const { return rankSteps_; }
 
     std::span<const double> levelEnds() const override { return levelEnds_; }
     void advance(const FrameContext& context) override;
@@ -158,7 +209,7 @@ private:
     };
     void start();
     void startRegion(std::uint32_t r);
-    int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity);
+    int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity, bool ghost);
     void requestTarget(Region& region, std::uint32_t slot);
     void newDestination(Region& region, std::uint32_t slot);
     void exportGhosts(std::uint32_t r);
@@ -166,6 +217,11 @@ private:
     void stepRegion(std::uint32_t r, float dt);
     void exportHandovers(std::uint32_t r);
     void importHandovers(std::uint32_t r);
+    void assignRanks();
+    template <class Record, class Deliver>
+    std::uint64_t route(std::vector<Record> Region::*list, std::uint32_t Record::*to, int tag, const char* what, Deliver&& deliver);
+    void walk(std::uint32_t slot, double dt);
+    void gatherWalkers(RankStepRecord mine);
 
     std::shared_ptr<const NavMesh> nav_;
     Settings settings_;
@@ -177,6 +233,13 @@ private:
     std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
     std::size_t lastGhosts_ = 0, lastHandovers_ = 0;
+    // Distributed: the ranks, the region range this rank steps, each region's rank, the walkers of
+    // this rank's regions and each rank's share of the last step.
+    Ranks* ranks_ = nullptr;
+    std::uint32_t firstRegion_ = 0, endRegion_ = 0;
+    std::vector<int> regionRank_;
+    std::vector<std::uint32_t> ownSlots_;
+    std::vector<RankStepRecord> rankSteps_;
 };
 
 }  // namespace throng::sim

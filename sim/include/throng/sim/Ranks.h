@@ -5,8 +5,9 @@
 // call below is a local copy, so the same program runs either way.
 //
 // Every exchange is non-blocking with a deadline: a rank that died or hangs is named in a
-// RankError within the timeout instead of leaving the others waiting forever. Only the thread that
-// made the Ranks calls MPI (MPI_THREAD_FUNNELED): parallel loops inside a rank never do.
+// RankError within the timeout instead of leaving the others waiting forever. One thread at a time
+// calls MPI (MPI_THREAD_SERIALIZED): the frame loop may step on a worker thread while the main
+// thread draws, but parallel loops inside a rank never call it.
 
 #include <chrono>
 #include <cstddef>

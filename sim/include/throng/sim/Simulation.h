@@ -25,6 +25,7 @@
 namespace throng::sim {
 
 class Locomotion;
+class Ranks;
 
 /// Reports a long build's progress: the stage and how far it is, in [0, 1].
 using BuildProgress = std::function<void(const std::string& stage, double fraction)>;
@@ -67,6 +68,12 @@ public:
     /// Threads of the step's per-agent work (default 1). Results do not depend on it. Throws
     /// std::invalid_argument for 0.
     void setThreads(unsigned threads);
+
+    /// Steps the walkers' regions split over the ranks of the run (see Locomotion::distribute):
+    /// every rank builds the same world and calls step() as often, and rank 0's world is then that
+    /// of one process. Call before the first step; `ranks` must outlive the stepping. Throws
+    /// std::logic_error after the first step.
+    void distribute(Ranks& ranks);
 
     /// The scene graph: the town's tiles and one node per actor group.
     Group& root() { return *root_; }

@@ -1,0 +1,99 @@
+// Locomotion split over the ranks of a run: run plainly it is one rank (the distributed path with
+// local messages); run by CTest under mpiexec (label mpi) each rank steps its own regions. Every
+// rank also steps the same crowd alone, as one process would, and the two must agree bitwise: on
+// rank 0 for every walker (it gathers them all), elsewhere for the walkers the rank steps.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/scenegraph/ThreadTeam.h"
+#include "throng/sim/CounterRng.h"
+#include "throng/sim/Locomotion.h"
+#include "throng/sim/NavMesh.h"
+#include "throng/sim/Ranks.h"
+#include "throng/sim/SimulationClock.h"
+
+namespace throng::sim {
+namespace {
+
+// A plaza of 60 m in 3 x 3 regions around a pillar, with 400 walkers crossing it and avoiding
+// each other (so ghosts matter), as the thread-determinism test has it.
+std::shared_ptr<Locomotion> plaza(const std::shared_ptr<const NavMesh>& nav) {
+    Locomotion::Settings s;
+    s.avoidance = true;
+    s.regions = RegionGrid::tiled(glm::dvec2(-30.0), 20.0, 3, 3, 1, 1);
+    auto walk = std::make_shared<Locomotion>(nav, s);
+    static const auto humanoid = makeSeedHumanoid();
+    for (int i = 0; i < 400; ++i) {
+        Locomotion::Actor a;
+        a.tmpl = humanoid;
+        a.walkClip = humanoid->findClip("walk");
+        a.start = nav->randomPoint(CounterRng(5, std::uint64_t(i)), 0);
+        a.speed = 1.0 + 0.6 * CounterRng(6, std::uint64_t(i)).uniform(0);
+        a.stream = std::uint64_t(i);
+        walk->addActor(a);
+    }
+    return walk;
+}
+
+// What is drawn of a walker: its Reference Point and walk-cycle time, and its region.
+std::vector<float> drawnState(Locomotion& walk, std::uint32_t slot) {
+    const Mat4 m = walk.referencePoint(slot, FrameContext{}, nullptr);
+    std::vector<float> out;
+    for (int k = 0; k < 16; ++k) out.push_back(float(m[k / 4][k % 4]));
+    out.push_back(float(walk.clipTime(slot, 0.0)));
+    out.push_back(float(walk.region(slot)));
+    return out;
+}
+
+TEST(DistributedLocomotion, StepsBitwiseAsOneProcess) {
+    NavGeometry g;
+    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
+    g.addBox(glm::vec3(-4, 0, -4), glm::vec3(4, 6, 4), false);
+    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    Ranks ranks;
+    const auto alone = plaza(nav), shared = plaza(nav);
+    shared->distribute(ranks);
+    alone->advance(FrameContext{});  // starts it (a step of no time)
+    EXPECT_THROW(alone->distribute(ranks), std::logic_error) << "distribute() after the start is refused";
+    SimulationClock clock;
+    ThreadTeam team(2);
+    std::size_t acrossRanks = 0;
+    std::string firstMismatch;  // every rank steps all frames whatever it finds: the others wait for it
+    team.run([&] {
+        for (int f = 0; f < 300; ++f, clock.advance()) {
+            alone->advance(clock.context());
+            shared->advance(clock.context());
+            if (ranks.rank() != 0 || clock.context().deltaTime <= 0.0 || !firstMismatch.empty()) continue;  // the first frame does not move
+            std::uint64_t agents = 0;
+            for (const auto& step : shared->rankSteps()) agents += step.agents, acrossRanks += step.handedToRanks;
+            if (shared->lastGhostCount() != alone->lastGhostCount() || shared->lastHandoverCount() != alone->lastHandoverCount() ||
+                agents != alone->size())
+                firstMismatch = "frame " + std::to_string(f) + ": " + std::to_string(shared->lastGhostCount()) + " ghosts, " +
+                                std::to_string(shared->lastHandoverCount()) + " handovers and " + std::to_string(agents) +
+                                " walkers stepped, against " + std::to_string(alone->lastGhostCount()) + ", " +
+                                std::to_string(alone->lastHandoverCount()) + " and " + std::to_string(alone->size());
+        }
+    });
+    EXPECT_EQ(firstMismatch, "");
+    ASSERT_EQ(shared->rankSteps().size(), std::size_t(ranks.size()));
+    const auto [first, end] = shared->ownRegions();
+    std::size_t compared = 0;
+    for (std::uint32_t slot = 0; slot < alone->size(); ++slot) {
+        if (ranks.rank() != 0 && (shared->region(slot) < first || shared->region(slot) >= end)) continue;
+        const std::vector<float> a = drawnState(*alone, slot), b = drawnState(*shared, slot);
+        for (std::size_t k = 0; k < a.size(); ++k)
+            ASSERT_EQ(std::memcmp(&a[k], &b[k], sizeof(float)), 0)
+                << "actor " << slot << " on rank " << ranks.rank() << ", value " << k << ": " << a[k] << " alone, " << b[k] << " shared";
+        ++compared;
+    }
+    EXPECT_GT(compared, 0u);
+    if (ranks.rank() == 0 && ranks.size() > 1) {
+        EXPECT_GT(acrossRanks, 10u) << "walkers should cross from one rank's regions to another's, or the test proves little";
+    }
+}
+
+}  // namespace
+}  // namespace throng::sim
