@@ -74,7 +74,13 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("proxy|lines")
         ->check(oneOf({"proxy", "lines"}))
         ->capture_default_str();
+    app.add_option("--rank-timeout", o.rankTimeout,
+                   "under mpirun: seconds a rank waits for another in an exchange before the run stops, naming it")
+        ->type_name("S")
+        ->check(positiveNumber())
+        ->capture_default_str();
     app.footer(
+        "Under mpirun -np N (headless), each rank steps its share of the walkers' regions and rank 0 draws.\n"
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"
         "+/- LOD scale, C shrink the culling pyramid (watch culling at work), O show the occlusion buffer,\n"
         "P processing, Esc quit.");

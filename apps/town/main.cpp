@@ -7,6 +7,10 @@
 // Every frame is: step (the simulation advances once), APP/CULL (the seven phases), DRAW (meshes,
 // then impostors). With --pipeline on, DRAW of frame N runs while frame N+1 is stepped and culled,
 // from frame N's own draw list; the frames written are the same either way.
+//
+// Under mpirun -np N every rank builds the same world and steps its share of the walkers' regions;
+// rank 0 gathers every walker after each step, then culls, draws and writes as one process would
+// (stats.csv adds each rank's share of the step). The files are the same with any number of ranks.
 
 #include <GLFW/glfw3.h>
 
@@ -56,6 +60,7 @@ struct PreparedFrame {
     ActorFrameStatistics stats;        // APP and CULL
     const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
     Image occlusion;                   // its occlusion buffer as a picture, when the window shows it
+    std::vector<sim::Locomotion::RankStepRecord> ranks;  // each rank's share of the step, when distributed
 };
 
 // The occlusion buffer as a picture: near occluders light, far ones dark, nothing drawn clear.
@@ -82,7 +87,16 @@ const char* kCsvHeader =
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
-    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers\n";
+    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers";
+
+// Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
+std::string csvHeader(int ranks) {
+    std::string header = kCsvHeader;
+    for (int r = 0; r < ranks; ++r)
+        for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "state_bytes", "work_ms", "wait_ms"})
+            header += ",rank" + std::to_string(r) + "_" + column;
+    return header + "\n";
+}
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
     const ActorFrameStatistics& s = f.stats;
@@ -99,16 +113,28 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
-      << f.ghosts << ',' << f.handovers << '\n';
-    return o.str();
+      << f.ghosts << ',' << f.handovers;
+    for (const auto& share : f.ranks)
+        o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
+          << share.borderBytes << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
+    return o.str() + '\n';
 }
 
 // Running sums of what summary.json reports as means.
 struct Sums {
     double app = 0, phases[9] = {}, draw = 0, step = 0;
     double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
+    std::vector<sim::Locomotion::RankStepRecord> ranks;  // distributed: each rank's share, summed
     std::int64_t frames = 0;
     void add(const PreparedFrame& f, double drawMs) {
+        ranks.resize(std::max(ranks.size(), f.ranks.size()));
+        for (std::size_t r = 0; r < f.ranks.size(); ++r) {
+            sim::Locomotion::RankStepRecord& into = ranks[r];
+            const sim::Locomotion::RankStepRecord& from = f.ranks[r];
+            into.agents += from.agents, into.ghosts += from.ghosts, into.handovers += from.handovers;
+            into.handedToRanks += from.handedToRanks, into.borderBytes += from.borderBytes, into.stateBytes += from.stateBytes;
+            into.workMs += from.workMs, into.waitMs += from.waitMs;
+        }
         const ActorFrameStatistics& s = f.stats;
         app += s.appCullMs();
         const double p[9] = {s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
@@ -150,13 +176,14 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
 }
 
 nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& world, const Sums& sums, double wallSeconds,
-                           double firstFrameSeconds) {
+                           double firstFrameSeconds, int ranks) {
     nlohmann::json j;
     j["scene"] = world.description().name;
     j["sceneFile"] = o.scene;
     j["seed"] = world.description().seed;
     j["processing"] = o.processing;
     j["threads"] = o.threads;
+    j["ranks"] = ranks;
     j["pipeline"] = o.pipeline;
     j["width"] = o.width;
     j["height"] = o.height;
@@ -175,6 +202,10 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["meanMs"]["appCull"] = sums.app / n;
     j["meanMs"]["draw"] = sums.draw / n;
     j["meanMs"]["step"] = sums.step / n;  // the simulation step, before APP+CULL
+    for (const auto& r : sums.ranks)  // distributed: each rank's share of a step, on average
+        j["meanPerRank"].push_back({{"agents", double(r.agents) / n}, {"ghosts", double(r.ghosts) / n}, {"handovers", double(r.handovers) / n},
+                                    {"handedToRanks", double(r.handedToRanks) / n}, {"borderBytes", double(r.borderBytes) / n},
+                                    {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n}});
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders", "key-pose cache"}) {
@@ -182,6 +213,29 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
         j["effects"][effect] = {{"constructed", c.constructed}, {"ticks", c.ticks}};
     }
     return j;
+}
+
+// Message tag of the start signal rank 0 sends when it is ready to step.
+constexpr int kStartTag = 1;
+
+// " (rank N)" in messages of a run of several ranks.
+std::string rankLabel(const sim::Ranks& ranks) { return ranks.size() > 1 ? " (rank " + std::to_string(ranks.rank()) + ")" : ""; }
+
+// A rank other than 0: waits for rank 0's set-up, then steps its share of the regions as often as
+// rank 0 steps (once per frame), writing nothing. A failure stops every rank.
+int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions& o) {
+    try {
+        world.setThreads(unsigned(o.threads));
+        const auto timeout = ranks.timeout();
+        ranks.setTimeout(std::max<std::chrono::milliseconds>(timeout, std::chrono::minutes(30)));  // baking impostors takes a while
+        ranks.broadcast({}, kStartTag, "start");
+        ranks.setTimeout(timeout);
+        for (std::int64_t f = 0; f < o.frames; ++f) world.step();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
+        ranks.abort(3);
+    }
+    return 0;
 }
 
 }  // namespace
@@ -200,30 +254,29 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
-    // Started by mpirun: until the regions are distributed over ranks, every rank would run the whole
-    // town and write the same files, so more than one rank is refused.
-    const sim::Ranks ranks;
-    if (ranks.size() > 1) {
-        if (ranks.rank() == 0)
-            std::fprintf(stderr, "throng-town: started as %d ranks, but distributing the town over ranks is not built yet: "
-                                 "run it without mpirun (it uses every core of one machine)\n", ranks.size());
-        return 2;
-    }
+    // Started by mpirun, each rank steps its share of the walkers' regions (one rank alone too, so
+    // that `mpirun -np 1` takes the distributed path); rank 0 draws and writes.
+    sim::Ranks ranks(std::chrono::milliseconds(std::llround(o.rankTimeout * 1000.0)));
+    const bool distributed = sim::Ranks::launchedByMpi();
     if (o.seed) scene.seed = *o.seed;
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 
     std::unique_ptr<sim::Simulation> world;
     try {
-        support::ProgressBar bar("building", 100);
+        support::ProgressBar bar("building", 100, ranks.rank() == 0);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "\nthrong-town: %s\n", e.what());
+        std::fprintf(stderr, "\nthrong-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
+        if (ranks.size() > 1) ranks.abort(2);
         return 2;
     }
+    if (distributed) world->distribute(ranks);
+    if (ranks.rank() != 0) return stepShare(*world, ranks, o);
 
     std::string why;
-    const bool wantWindow = !o.headless && displayAvailable();
+    const bool wantWindow = !o.headless && displayAvailable() && ranks.size() == 1;
+    if (!o.headless && ranks.size() > 1) std::fprintf(stderr, "throng-town: %d ranks run headless\n", ranks.size());
     auto context = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town"}, &why);
     const bool window = !context->headless();
     if (wantWindow && !window) std::fprintf(stderr, "throng-town: no window (%s): running headless\n", why.c_str());
@@ -273,7 +326,7 @@ int main(int argc, char** argv) {
 
     fs::create_directories(o.out);
     std::ofstream csv(fs::path(o.out) / "stats.csv");
-    csv << kCsvHeader;
+    csv << csvHeader(distributed ? ranks.size() : 0);
     Sums sums;
     const auto start = std::chrono::steady_clock::now();
     double firstFrame = 0.0;
@@ -287,10 +340,14 @@ int main(int argc, char** argv) {
         f.number = number;
         f.stepMs = 0.0;
         f.ghosts = f.handovers = 0;
+        f.ranks.assign(distributed ? std::size_t(ranks.size()) : 0, {});
         if (step) {
             world->step();
             f.stepMs = world->lastStepMs();
-            if (const sim::Locomotion* walk = world->locomotion()) f.ghosts = walk->lastGhostCount(), f.handovers = walk->lastHandoverCount();
+            if (const sim::Locomotion* walk = world->locomotion()) {
+                f.ghosts = walk->lastGhostCount(), f.handovers = walk->lastHandoverCount();
+                if (!walk->rankSteps().empty()) f.ranks.assign(walk->rankSteps().begin(), walk->rankSteps().end());
+            }
         }
         f.time = world->now().time;
         f.camera = camera;
@@ -313,7 +370,10 @@ int main(int argc, char** argv) {
         lastFrameEnd = now;
     };
     FramePipeline pipeline(o.pipeline);
+    // The other ranks wait for rank 0's set-up (impostors, GL) before the first step.
+    if (ranks.size() > 1) ranks.broadcast({}, kStartTag, "start");
 
+    try {
     if (!window) {
         support::ProgressBar bar("running", std::size_t(o.frames));
         if (o.every > 0) fs::create_directories(fs::path(o.out) / "frames");
@@ -421,8 +481,13 @@ int main(int argc, char** argv) {
             fps = fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fps + 0.1 / std::max(dt, 1e-6);
         }
     }
+    } catch (const std::exception& e) {  // a rank failed, or stepping did (a region full)
+        std::fprintf(stderr, "\nthrong-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
+        if (ranks.size() > 1) ranks.abort(3);
+        return 3;
+    }
     const double wall = seconds();
-    std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame).dump(2) << '\n';
+    std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame, ranks.size()).dump(2) << '\n';
     std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums.frames, wall,
                  !window && o.every > 0 ? " and frames/" : "", o.out.c_str());
     return 0;

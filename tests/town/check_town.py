@@ -7,23 +7,27 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   effects      a scene that declares no avoidance, gaze or flight never constructs or ticks them;
                declaring them turns them on
   window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
+  mpi          under $THRONG_MPIEXEC with 1 and 2 ranks: the same stats.csv (timing and per-rank columns
+               aside) and the same frames as the plain program, with walkers crossing between ranks
 """
 import csv
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
 
-# stats.csv columns that hold wall-clock times (their names end in _ms): they differ from run to run.
+# stats.csv columns that hold wall-clock times (their names end in _ms) differ from run to run; those
+# of each rank's share of the step (rankN_...) exist only when the town is distributed over ranks.
 def is_timing(column):
-    return column.endswith("_ms")
+    return column.endswith("_ms") or re.match(r"rank\d+_", column) is not None
 
 
-def run(exe, out, *args):
+def run(exe, out, *args, launcher=()):
     if os.path.exists(out):
         shutil.rmtree(out)
-    cmd = [exe, "--out", out, *args]
+    cmd = [*launcher, exe, "--out", out, *args]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
@@ -90,6 +94,42 @@ def determinism(exe, scenes, work):
     print(f"3 runs agree: {len(reference)} rows of stats.csv, {len(reference_frames)} frames")
 
 
+def mpi(exe, scenes, work):
+    mpiexec = os.environ.get("THRONG_MPIEXEC")
+    if not mpiexec:
+        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    # 500 walkers in 16 regions: within 120 frames some cross from one rank's regions to the other's.
+    common = ["--scene", os.path.join(scenes, "effects.json"), "--headless", "--frames", "120", "--every", "40",
+              "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
+    variants = {"plain": (), "one-rank": (mpiexec, "-np", "1"), "two-ranks": (mpiexec, "-np", "2", "--oversubscribe")}
+    runs = {name: os.path.join(work, name) for name in variants}
+    for name, launcher in variants.items():
+        run(exe, runs[name], *common, launcher=launcher)
+    reference = stats_without_timing(runs["plain"])
+    reference_frames = frames(runs["plain"])
+    for name in list(variants)[1:]:
+        other = stats_without_timing(runs[name])
+        if other != reference:
+            sys.exit(f"stats.csv of run '{name}' differs from the plain run: {first_difference(reference, other)}")
+        other_frames = frames(runs[name])
+        if other_frames != reference_frames:
+            sys.exit(f"run '{name}' wrote other frames than the plain run ({sorted(other_frames)} against {sorted(reference_frames)})")
+    # Each rank's share: both step walkers, every walker is stepped by one rank, and some cross.
+    rows = list(csv.DictReader(open(os.path.join(runs["two-ranks"], "stats.csv"))))
+    actors = json.load(open(os.path.join(runs["plain"], "summary.json")))["actors"]
+    for r in rows[1:]:
+        shares = [int(r["rank0_agents"]), int(r["rank1_agents"])]
+        if min(shares) == 0 or sum(shares) > actors:
+            sys.exit(f"frame {r['frame']}: the ranks stepped {shares} walkers of {actors} actors")
+    across = sum(int(r["rank0_handed_to_ranks"]) + int(r["rank1_handed_to_ranks"]) for r in rows)
+    border = sum(int(r["rank0_border_bytes"]) + int(r["rank1_border_bytes"]) for r in rows)
+    if across == 0 or border == 0:
+        sys.exit(f"{across} walkers crossed between the ranks and {border} bytes of ghosts and handovers travelled: "
+                 "the comparison would not cover the exchange")
+    print(f"plain, 1 and 2 ranks agree: {len(reference)} rows, {len(reference_frames)} frames; "
+          f"{across} walkers crossed between ranks, {border} border bytes")
+
+
 def effects(exe, scenes, work):
     summaries = {}
     for scene in ("plain", "effects"):
@@ -143,4 +183,4 @@ if __name__ == "__main__":
         sys.exit(__doc__)
     exe, mode, scenes, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
-    {"determinism": determinism, "effects": effects, "window": window}[mode](exe, scenes, work)
+    {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi}[mode](exe, scenes, work)

@@ -6,10 +6,11 @@
 
 namespace throng::support {
 
-ProgressBar::ProgressBar(std::string label, std::size_t total)
-    : label_(std::move(label)), total_(std::max<std::size_t>(total, 1)), terminal_(isatty(fileno(stderr)) != 0) {}
+ProgressBar::ProgressBar(std::string label, std::size_t total, bool shown)
+    : label_(std::move(label)), total_(std::max<std::size_t>(total, 1)), terminal_(isatty(fileno(stderr)) != 0), shown_(shown) {}
 
 void ProgressBar::update(std::size_t done, const std::string& detail) {
+    if (!shown_) return;
     const double f = std::min(1.0, double(done) / double(total_));
     if (terminal_) {
         constexpr int kWidth = 30;
@@ -25,7 +26,7 @@ void ProgressBar::update(std::size_t done, const std::string& detail) {
 
 void ProgressBar::finish(const std::string& detail) {
     update(total_, detail);
-    if (terminal_) std::fprintf(stderr, "\n");
+    if (terminal_ && shown_) std::fprintf(stderr, "\n");
 }
 
 }  // namespace throng::support

@@ -10,8 +10,9 @@ namespace throng::support {
 /// Progress of `total` steps, written to stderr.
 class ProgressBar {
 public:
-    /// A bar for `total` steps labelled `label`.
-    ProgressBar(std::string label, std::size_t total);
+    /// A bar for `total` steps labelled `label`; one not `shown` writes nothing (every MPI rank but
+    /// the first, say, whose bars would interleave with its).
+    ProgressBar(std::string label, std::size_t total, bool shown = true);
     /// Shows that `done` steps are done, with `detail` after the bar.
     void update(std::size_t done, const std::string& detail = {});
     /// Ends the bar (a final newline on a terminal).
@@ -21,6 +22,7 @@ private:
     std::string label_;
     std::size_t total_;
     bool terminal_;
+    bool shown_;
     int lastTenth_ = -1;
 };
 
