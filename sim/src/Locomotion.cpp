@@ -402,7 +402,8 @@ void Locomotion::advance(const FrameContext& context) {
         for (Region& region : regions_)
             for (const GhostRecord& g : region.ghostsOut) regions_[g.region].ghostsIn.push_back(g), ++lastGhosts_;
     } else {
-        for (std::uint32_t r = firstRegion_; r < endRegion_; ++r) mine.ghosts += regions_[r].ghostsOut.size();
+        for (std::uint32_t r = firstRegion_; r < endRegion_; ++r)
+            for (const GhostRecord& g : regions_[r].ghostsOut) ++mine.ghosts, mine.ghostsToRanks += regionRank_[g.region] != ranks_->rank();
         const Stopwatch wait;
         mine.borderBytes += route(&Region::ghostsOut, &GhostRecord::region, kGhostTag, "ghosts",
                                   [&](const GhostRecord& g) { regions_[g.region].ghostsIn.push_back(g); });

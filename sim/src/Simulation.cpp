@@ -24,7 +24,9 @@
 #include "throng/sim/Flock.h"
 #include "throng/sim/GazeLayer.h"
 #include "throng/sim/IdleGroups.h"
+#include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/Locomotion.h"
+#include "throng/sim/Ranks.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/TownRegions.h"
 
@@ -120,7 +122,13 @@ const FrameContext& Simulation::step() {
     if (started_) clock_->advance();
     started_ = true;
     now_ = clock_->context();
-    team_->run([&] { crowd_.step(now_); });
+    if (walkersOnly_) {  // a rank other than 0: its share of the walkers is all it steps
+        const Stopwatch watch;
+        team_->run([&] { walkers_->advance(now_); });
+        walkersOnlyMs_ = watch.elapsedMs();
+    } else {
+        team_->run([&] { crowd_.step(now_); });
+    }
     return now_;
 }
 
@@ -368,7 +376,11 @@ void Simulation::buildActors(const BuildProgress& progress) {
 
 void Simulation::distribute(Ranks& ranks) {
     if (started_) throw std::logic_error("Simulation::distribute: the simulation has already started");
-    if (walkers_) walkers_->distribute(ranks);
+    if (!walkers_) return;
+    walkers_->distribute(ranks);
+    // Only rank 0 draws: elsewhere the behaviours of the other actors (standing, gazing, flying)
+    // would be computed for nothing.
+    walkersOnly_ = ranks.rank() != 0;
 }
 
 std::vector<std::shared_ptr<KeyPoseCache>> Simulation::makeKeyPoseCaches() {

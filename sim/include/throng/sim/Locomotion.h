@@ -92,6 +92,7 @@ public:
     struct RankStepRecord {
         std::uint64_t agents = 0;          ///< walkers its regions own after the step
         std::uint64_t ghosts = 0;          ///< ghost records its regions exported
+        std::uint64_t ghostsToRanks = 0;   ///< of those, records for a region of another rank
         std::uint64_t handovers = 0;       ///< agents that left its regions
         std::uint64_t handedToRanks = 0;   ///< of those, agents handed to a region of another rank
         std::uint64_t borderBytes = 0;     ///< bytes of ghosts and handovers sent to other ranks

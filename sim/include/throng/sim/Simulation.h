@@ -64,14 +64,14 @@ public:
     /// The context of the last step (time 0, frame 0 before the first).
     const FrameContext& now() const { return now_; }
     /// Milliseconds the last step took.
-    double lastStepMs() const { return crowd_.lastStepMs(); }
+    double lastStepMs() const { return walkersOnly_ ? walkersOnlyMs_ : crowd_.lastStepMs(); }
     /// Threads of the step's per-agent work (default 1). Results do not depend on it. Throws
     /// std::invalid_argument for 0.
     void setThreads(unsigned threads);
 
     /// Steps the walkers' regions split over the ranks of the run (see Locomotion::distribute):
     /// every rank builds the same world and calls step() as often, and rank 0's world is then that
-    /// of one process. Call before the first step; `ranks` must outlive the stepping. Throws
+    /// of one process; the other ranks step their walkers only. Call before the first step; `ranks` must outlive the stepping. Throws
     /// std::logic_error after the first step.
     void distribute(Ranks& ranks);
 
@@ -126,6 +126,8 @@ private:
     std::unique_ptr<ThreadTeam> team_;
     FrameContext now_;
     bool started_ = false;
+    bool walkersOnly_ = false;     // distributed, on a rank other than 0: steps its walkers only
+    double walkersOnlyMs_ = 0.0;
     std::uint64_t townTriangles_ = 0;
 };
 
