@@ -56,6 +56,7 @@ struct PreparedFrame {
     double stepMs = 0.0;               // the simulation step
     std::uint64_t ghosts = 0;          // walkers seen across a region border in that step
     std::uint64_t handovers = 0;       // walkers handed to another region at its end
+    std::uint64_t deferred = 0;        // walkers of far regions that did not step (a declared approximation)
     Camera camera;                     // the camera it was culled for
     ActorFrameStatistics stats;        // APP and CULL
     const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
@@ -87,7 +88,7 @@ const char* kCsvHeader =
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
-    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers";
+    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred";
 
 // Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
 std::string csvHeader(int ranks) {
@@ -113,7 +114,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
-      << f.ghosts << ',' << f.handovers;
+      << f.ghosts << ',' << f.handovers << ',' << f.deferred;
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
           << share.borderBytes << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
@@ -339,13 +340,13 @@ int main(int argc, char** argv) {
     auto prepare = [&](PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
         f.number = number;
         f.stepMs = 0.0;
-        f.ghosts = f.handovers = 0;
+        f.ghosts = f.handovers = f.deferred = 0;
         f.ranks.assign(distributed ? std::size_t(ranks.size()) : 0, {});
         if (step) {
             world->step();
             f.stepMs = world->lastStepMs();
             if (const sim::Locomotion* walk = world->locomotion()) {
-                f.ghosts = walk->lastGhostCount(), f.handovers = walk->lastHandoverCount();
+                f.ghosts = walk->lastGhostCount(), f.handovers = walk->lastHandoverCount(), f.deferred = walk->lastDeferredCount();
                 if (!walk->rankSteps().empty()) f.ranks.assign(walk->rankSteps().begin(), walk->rankSteps().end());
             }
         }

@@ -53,6 +53,9 @@ Locomotion::Locomotion(std::shared_ptr<const NavMesh> navMesh, Settings settings
             throw std::invalid_argument("Locomotion: level ends must be positive and increasing");
     if (settings_.avoidanceQuality < 0 || settings_.avoidanceQuality > 3)
         throw std::invalid_argument("Locomotion: avoidance quality must be 0 to 3, not " + std::to_string(settings_.avoidanceQuality));
+    if (!(settings_.farDistance >= 0.0) || !std::isfinite(settings_.farDistance) || settings_.farEvery < 1 || settings_.farEvery > 1000)
+        throw std::invalid_argument("Locomotion: far regions need a distance of 0 m or more and a rate of 1 to 1000 steps, not " +
+                                    std::to_string(settings_.farDistance) + " m and " + std::to_string(settings_.farEvery));
     if (!(settings_.neighbourRange >= 1.0f) || !std::isfinite(settings_.neighbourRange))
         throw std::invalid_argument("Locomotion: the neighbour range must be at least 1 agent radius, not " +
                                     std::to_string(settings_.neighbourRange));
@@ -220,6 +223,9 @@ void Locomotion::start() {
         throw std::invalid_argument("Locomotion: region cells of " + std::to_string(grid.cellSize()) +
                                     " m are narrower than the agents' collision range");
     regions_.resize(grid.regionCount());
+    regionBounds_ = grid.regionBounds();
+    pending_.assign(regions_.size(), 0.0);
+    stepping_.assign(regions_.size(), 1);
     for (std::uint32_t slot = 0; slot < actors_.size(); ++slot) {
         State& s = state_[slot];
         s.region = grid.regionOf(s.position.x, s.position.z);
@@ -317,6 +323,12 @@ void Locomotion::importGhosts(std::uint32_t r) {
 
 void Locomotion::stepRegion(std::uint32_t r, float dt) {
     Region& region = regions_[r];
+    if (!stepping_[r]) {  // a far region waiting for its turn: its walkers carry on as they went
+        for (std::uint32_t slot : region.owned) state_[slot].position += state_[slot].velocity * dt;
+        return;
+    }
+    dt = static_cast<float>(pending_[r]);  // the time since it last stepped
+    pending_[r] = 0.0;
     for (std::uint32_t slot : region.owned) {
         const State& s = state_[slot];
         const glm::vec3 d = s.target - s.position;
@@ -388,6 +400,24 @@ void Locomotion::advance(const FrameContext& context) {
     if (dt <= 0.0f) return;
     const Stopwatch watch;
     RankStepRecord mine;
+    // Which regions step now: every one, unless the scene lets far ones step less often.
+    ++steps_;
+    std::size_t deferred = 0;
+    const double farSquared = settings_.farDistance * settings_.farDistance;
+    for (std::uint32_t r = firstRegion_; r < endRegion_; ++r) {
+        pending_[r] += context.deltaTime;
+        bool now = true;
+        if (settings_.farEvery > 1 && regions_.size() > 1) {
+            const glm::dvec4& b = regionBounds_[r];
+            const double dx = std::max({0.0, b.x - viewpoint_.x, viewpoint_.x - b.z});
+            const double dz = std::max({0.0, b.y - viewpoint_.z, viewpoint_.z - b.w});
+            now = dx * dx + dz * dz <= farSquared || (steps_ + r) % std::uint64_t(settings_.farEvery) == 0;
+        }
+        stepping_[r] = now;
+        if (!now) deferred += regions_[r].owned.size();
+    }
+    lastDeferred_ = deferred;
+    mine.deferred = deferred;
     auto eachRegion = [&](auto&& body) {
         forEachChunk(endRegion_ - firstRegion_, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
             for (std::size_t r = begin; r < end; ++r) body(firstRegion_ + std::uint32_t(r));
@@ -495,7 +525,7 @@ void Locomotion::gatherWalkers(RankStepRecord mine) {
         rankSteps_[std::size_t(ranks_->rank())] = mine;
         return;
     }
-    lastGhosts_ = lastHandovers_ = 0;
+    lastGhosts_ = lastHandovers_ = lastDeferred_ = 0;
     for (std::size_t k = 0; k < all.size(); ++k) {
         const Bytes& bytes = all[k];
         if (bytes.size() < sizeof(RankStepRecord) || (bytes.size() - sizeof(RankStepRecord)) % sizeof(WalkerRecord) != 0)
@@ -504,7 +534,7 @@ void Locomotion::gatherWalkers(RankStepRecord mine) {
         RankStepRecord& step = rankSteps_[k];
         std::memcpy(&step, bytes.data(), sizeof step);
         if (k > 0) step.stateBytes = bytes.size() + sizeof(std::uint64_t);  // and its size header
-        lastGhosts_ += step.ghosts, lastHandovers_ += step.handovers;
+        lastGhosts_ += step.ghosts, lastHandovers_ += step.handovers, lastDeferred_ += step.deferred;
         if (k == 0) continue;  // rank 0's own walkers are already up to date
         const std::size_t n = (bytes.size() - sizeof(RankStepRecord)) / sizeof(WalkerRecord);
         for (std::size_t i = 0; i < n; ++i) {

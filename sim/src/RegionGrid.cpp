@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace throng::sim {
@@ -37,6 +38,20 @@ std::uint32_t RegionGrid::regionOf(double x, double z) const {
     const int cx = std::clamp(int(std::floor((x - origin_.x) / cellSize_)), 0, cellsX_ - 1);
     const int cz = std::clamp(int(std::floor((z - origin_.y) / cellSize_)), 0, cellsZ_ - 1);
     return cellRegion_[std::size_t(cz) * cellsX_ + cx];
+}
+
+std::vector<glm::dvec4> RegionGrid::regionBounds() const {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<glm::dvec4> bounds(regions_, glm::dvec4(kInf, kInf, -kInf, -kInf));
+    for (int cz = 0; cz < cellsZ_; ++cz)
+        for (int cx = 0; cx < cellsX_; ++cx) {
+            glm::dvec4& b = bounds[cellRegion_[std::size_t(cz) * cellsX_ + cx]];
+            const double x0 = cx == 0 ? -kInf : origin_.x + cx * cellSize_, z0 = cz == 0 ? -kInf : origin_.y + cz * cellSize_;
+            const double x1 = cx == cellsX_ - 1 ? kInf : origin_.x + (cx + 1) * cellSize_;
+            const double z1 = cz == cellsZ_ - 1 ? kInf : origin_.y + (cz + 1) * cellSize_;
+            b = glm::dvec4(std::min(b.x, x0), std::min(b.y, z0), std::max(b.z, x1), std::max(b.w, z1));
+        }
+    return bounds;
 }
 
 int RegionGrid::regionsNear(double x, double z, double margin, std::uint32_t own, std::uint32_t out[8]) const {

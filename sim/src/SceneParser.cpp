@@ -286,7 +286,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("effects")) {
         const Reader e = root.at("effects");
-        e.object({"avoidance", "gaze"});
+        e.object({"avoidance", "gaze", "farUpdate"});
         if (e.has("avoidance")) {
             const Reader av = e.at("avoidance");
             if (av.value().is_boolean()) {
@@ -304,6 +304,14 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
                     if (s.effects.avoidanceRange < 1.0) av.at("range").fail("must be at least 1 (agent radii)");
                 }
             }
+        }
+        if (e.has("farUpdate")) {  // an approximation: regions far from the camera step less often
+            const Reader f = e.at("farUpdate");
+            f.object({"distance", "every"});
+            s.effects.farUpdateDistance = f.at("distance").positive();
+            const double every = f.at("every").number();
+            if (every != std::floor(every) || every < 2 || every > 1000) f.at("every").fail("must be a whole number of steps from 2 to 1000");
+            s.effects.farUpdateEvery = static_cast<int>(every);
         }
         if (e.has("gaze")) {
             const Reader g = e.at("gaze");

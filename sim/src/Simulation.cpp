@@ -122,6 +122,8 @@ const FrameContext& Simulation::step() {
     if (started_) clock_->advance();
     started_ = true;
     now_ = clock_->context();
+    // Regions far from the camera (its path at this step's time) step less often when declared.
+    if (walkers_ && walkers_->settings().farEvery > 1) walkers_->setViewpoint(glm::vec3(camera_->at(now_.time, 1.0).eye()));
     if (walkersOnly_) {  // a rank other than 0: its share of the walkers is all it steps
         const Stopwatch watch;
         team_->run([&] { walkers_->advance(now_); });
@@ -300,6 +302,8 @@ void Simulation::buildActors(const BuildProgress& progress) {
                 s.avoidance = d.effects.avoidance;
                 s.avoidanceQuality = d.effects.avoidanceQuality;
                 s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
+                s.farDistance = d.effects.farUpdateDistance;
+                s.farEvery = d.effects.farUpdateEvery;
                 s.seed = d.seed;
                 s.regions = townRegions(*d.town, file);
                 // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.

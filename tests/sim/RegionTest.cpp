@@ -289,3 +289,56 @@ TEST(Locomotion, DestinationsLieWithinTheRangeAskedFor) {
         }
     }
 }
+
+TEST(Regions, FarRegionsStepInTurnAndTheirWalkersKeepTheirPace) {
+    // The plaza in 3 x 3 regions seen from one corner: regions beyond 15 m step every fourth step.
+    NavGeometry g;
+    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
+    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    auto run = [&](int every, unsigned threads, std::size_t* deferred) {
+        Locomotion::Settings s;
+        s.regions = RegionGrid::tiled(glm::dvec2(-30.0), 20.0, 3, 3, 1, 1);
+        s.farDistance = 15.0, s.farEvery = every;
+        auto walk = std::make_shared<Locomotion>(nav, s);
+        walk->setViewpoint(glm::vec3(-30.0f, 2.0f, -30.0f));
+        static const auto humanoid = makeSeedHumanoid();
+        for (int i = 0; i < 300; ++i) {
+            Locomotion::Actor a;
+            a.tmpl = humanoid;
+            a.walkClip = humanoid->findClip("walk");
+            a.start = nav->randomPoint(CounterRng(5, std::uint64_t(i)), 0);
+            a.stream = std::uint64_t(i);
+            walk->addActor(a);
+        }
+        ThreadTeam team(threads);
+        SimulationClock clock;
+        std::vector<float> travelled(walk->size(), 0.0f), out;
+        *deferred = 0;
+        team.run([&] {
+            for (int f = 0; f < 120; ++f, clock.advance()) {
+                std::vector<glm::vec3> before(walk->size());
+                for (std::uint32_t i = 0; i < walk->size(); ++i) before[i] = walk->position(i);
+                walk->advance(clock.context());
+                *deferred += walk->lastDeferredCount();
+                for (std::uint32_t i = 0; i < walk->size(); ++i) travelled[i] += glm::distance(before[i], walk->position(i));
+            }
+        });
+        for (std::uint32_t i = 0; i < walk->size(); ++i) out.push_back(walk->position(i).x), out.push_back(walk->position(i).z);
+        out.insert(out.end(), travelled.begin(), travelled.end());
+        return out;
+    };
+    std::size_t deferred = 0, other = 0;
+    const std::vector<float> every = run(1, 1, &deferred);
+    EXPECT_EQ(deferred, 0u) << "without the approximation every region steps";
+    const std::vector<float> far = run(4, 1, &deferred);
+    // Eight regions of nine are far; three steps in four they wait: most walkers are deferred most steps.
+    EXPECT_GT(deferred, 300u * 120u / 3u);
+    EXPECT_LT(deferred, 300u * 120u * 3u / 4u);
+    // Deferred walkers carry on at their last velocity: the distance walked stays within 5 %.
+    double walkedEvery = 0, walkedFar = 0;
+    for (std::size_t i = 600; i < every.size(); ++i) walkedEvery += every[i], walkedFar += far[i];
+    EXPECT_NEAR(walkedFar / walkedEvery, 1.0, 0.05) << walkedFar << " m against " << walkedEvery << " m";
+    // Which regions wait is decided by the step count and the viewpoint only: threads change nothing.
+    EXPECT_EQ(run(4, 2, &other), far);
+    EXPECT_EQ(other, deferred);
+}

@@ -163,6 +163,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "/effects/avoidance/range", "at least 1"},
         BadScene{"unknown avoidance field", scene(kActors, R"(, "effects": {"avoidance": {"speed": 1}})"),
                  "/effects/avoidance/speed", "not a known field"},
+        BadScene{"far update every step", scene(kActors, R"(, "effects": {"farUpdate": {"distance": 80, "every": 1}})"),
+                 "/effects/farUpdate/every", "from 2 to 1000"},
+        BadScene{"far update without distance", scene(kActors, R"(, "effects": {"farUpdate": {"every": 4}})"),
+                 "/effects/farUpdate/distance", "is missing"},
         BadScene{"camera times not increasing",
                  scene(kActors, R"(, "camera": {"path": [{"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}, {"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
                  "/camera/path/1/time", "must increase"},
@@ -246,6 +250,13 @@ TEST(SceneParser, AvoidanceQualityAndRangeAreRead) {
     EXPECT_TRUE(coarse.effects.avoidance);
     EXPECT_EQ(coarse.effects.avoidanceQuality, 1);
     EXPECT_DOUBLE_EQ(coarse.effects.avoidanceRange, 6.0);
+}
+
+TEST(SceneParser, FarUpdateIsReadOnlyWhenDeclared) {
+    EXPECT_EQ(parseScene(scene(kActors), kAssets).effects.farUpdateEvery, 1);
+    const SceneDescription far = parseScene(scene(kActors, R"(, "effects": {"farUpdate": {"distance": 80, "every": 4}})"), kAssets);
+    EXPECT_DOUBLE_EQ(far.effects.farUpdateDistance, 80.0);
+    EXPECT_EQ(far.effects.farUpdateEvery, 4);
 }
 
 TEST(SceneParser, OcclusionIsReadOnlyWhenDeclared) {

@@ -55,6 +55,12 @@ public:
         /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
         /// polygons, and a path across kilometres of town is longer.
         double destinationRange = 0.0;
+        /// Regions wholly farther than this from the viewpoint (metres, on the ground) step only once
+        /// every `farEvery` steps, over the time since they last stepped, their walkers carried on at
+        /// their last velocity in between: an approximation a scene declares (0: never).
+        double farDistance = 0.0;
+        /// How often far regions step (see farDistance); 1: every step.
+        int farEvery = 1;
     };
     /// An agent as a neighbouring region sees it for avoidance during one step.
     struct GhostRecord {
@@ -91,6 +97,7 @@ public:
     /// One rank's share of a step: what it stepped, sent and waited for.
     struct RankStepRecord {
         std::uint64_t agents = 0;          ///< walkers its regions own after the step
+        std::uint64_t deferred = 0;        ///< of those, walkers of far regions that did not step
         std::uint64_t ghosts = 0;          ///< ghost records its regions exported
         std::uint64_t ghostsToRanks = 0;   ///< of those, records for a region of another rank
         std::uint64_t handovers = 0;       ///< agents that left its regions
@@ -145,6 +152,10 @@ public:
     std::size_t lastGhostCount() const { return lastGhosts_; }
     /// Agents handed over to another region at the end of the last step (counted as ghosts are).
     std::size_t lastHandoverCount() const { return lastHandovers_; }
+    /// Walkers of far regions that did not step in the last step (counted as ghosts are).
+    std::size_t lastDeferredCount() const { return lastDeferred_; }
+    /// Where the camera is for the next steps: far regions (Settings::farDistance) lie far from it.
+    void setViewpoint(glm::vec3 eye) { viewpoint_ = eye; }
 
     /// Splits the regions over the ranks of the run (ranges of consecutive regions holding about
     /// as many starting walkers each): this rank steps only its own, exchanging ghosts and handovers
@@ -233,7 +244,14 @@ private:
     std::vector<Region> regions_;
     std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
-    std::size_t lastGhosts_ = 0, lastHandovers_ = 0;
+    std::size_t lastGhosts_ = 0, lastHandovers_ = 0, lastDeferred_ = 0;
+    // Far regions: the viewpoint, each region's bounds, the time since it last stepped, whether it
+    // steps in this step, and the steps so far (which far regions take their turn).
+    glm::vec3 viewpoint_{0.0f};
+    std::vector<glm::dvec4> regionBounds_;
+    std::vector<double> pending_;
+    std::vector<std::uint8_t> stepping_;
+    std::uint64_t steps_ = 0;
     // Distributed: the ranks, the region range this rank steps, each region's rank, the walkers of
     // this rank's regions and each rank's share of the last step.
     Ranks* ranks_ = nullptr;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 namespace throng::sim {
 
@@ -34,6 +35,9 @@ public:
     /// written to `out` in increasing order without repeats; returns how many (at most 8). The
     /// margin must be below the cell size.
     int regionsNear(double x, double z, double margin, std::uint32_t own, std::uint32_t out[8]) const;
+    /// Each region's bounding rectangle on the ground (min x, min z, max x, max z), unbounded on the
+    /// sides where it reaches the grid's edge (points beyond the grid belong to the edge cells).
+    std::vector<glm::dvec4> regionBounds() const;
     /// Side of a cell, metres.
     double cellSize() const { return cellSize_; }
     /// Cells across.

@@ -83,6 +83,8 @@ struct EffectsDescription {
     bool avoidance = false;                ///< local avoidance between walkers
     int avoidanceQuality = 3;              ///< avoidance's velocity sampling, 0 (coarsest) to 3 (finest)
     double avoidanceRange = 12.0;          ///< how far walkers look for neighbours, agent radii
+    double farUpdateDistance = 0.0;        ///< walkers' regions farther than this from the camera step less often (0: never)
+    int farUpdateEvery = 1;                ///< how often those far regions step: every N steps
     bool gaze = false;                     ///< heads and necks turn to look at things
     std::vector<double> gazeLevels{12.0, 40.0};  ///< gaze bands: eyes-and-neck precise, then neck only
     double gazeRange = 10.0;               ///< how far people notice others, m
