@@ -5,10 +5,11 @@
 // 5 cm, as test Avoidance.* counts it), the share of time walkers spend in contact, overlaps per
 // agent-second (centres closer than two radii less 5 cm: DetourCrowd pushes overlaps apart after
 // each move, so these are the collisions avoidance failed to prevent), progress towards their destinations, and how far their paths
-// deviate from the finest setting's, tick by tick.
+// deviate from the finest setting's, tick by tick. --far-every adds the update rate of regions far
+// from the camera path (effects.farUpdate) as a third axis.
 //
 //   bench_avoidance [--actors N] [--warmup N] [--ticks N] [--qualities 0,1,2,3] [--ranges 6,12] [--threads N]
-//                   [--markdown FILE] [--accuracy-csv FILE]
+//                   [--far-every 1,4] [--far-distance M] [--markdown FILE] [--accuracy-csv FILE]
 
 #include <algorithm>
 #include <cmath>
@@ -45,12 +46,15 @@ struct Options {
     int threads = 1;
     std::vector<int> qualities{0, 1, 2, 3};
     std::vector<double> ranges{6.0, 12.0};
+    std::vector<int> farEvery{1};
+    double farDistance = 60.0;
     std::string markdown, accuracyCsv;
 };
 
 struct Setting {
     int quality = 3;
     double range = 12.0;
+    int farEvery = 1;  // far regions step every N steps (1: every region every step)
 };
 
 struct Result {
@@ -63,6 +67,7 @@ struct Result {
     double deviation = 0;       // m from the reference path, mean over agents and ticks
     double finalDeviation = 0;  // m, mean over agents at the last tick
     double ghosts = 0;          // mean ghosts per step
+    double deferred = 0;        // mean walkers of far regions waiting per step
     std::size_t walkers = 0;
 };
 
@@ -102,6 +107,8 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     d.effects.avoidance = true;
     d.effects.avoidanceQuality = setting.quality;
     d.effects.avoidanceRange = setting.range;
+    d.effects.farUpdateEvery = setting.farEvery;
+    d.effects.farUpdateDistance = setting.farEvery > 1 ? o.farDistance : 0.0;
     auto world = sim::Simulation::build(std::move(d));
     world->setThreads(static_cast<unsigned>(o.threads));
     const sim::Locomotion* walk = world->locomotion();
@@ -122,7 +129,9 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     for (int t = 0; t < total; ++t) {
         const double dt = world->step().deltaTime;
         const bool measured = t >= o.warmup, since = t > o.warmup;  // since: a measured step before this one
-        if (measured) r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount());
+        if (measured)
+            r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount()),
+                r.deferred += static_cast<double>(walk->lastDeferredCount());
         for (std::uint32_t s = 0; s < n; ++s) pos[s] = walk->position(s);
         closePairs(pos, reach, reach - 0.1f, now, overlapNow);
         if (since)
@@ -152,25 +161,27 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     }
     r.stepMs /= o.ticks;
     r.ghosts /= o.ticks;
+    r.deferred /= o.ticks;
     r.deviation = deviation / o.ticks;
     r.overlaps = seconds > 0 ? static_cast<double>(overlaps) / (static_cast<double>(n) * seconds) : 0.0;
     r.contact = seconds > 0 ? r.contact / (static_cast<double>(n) * seconds) : 0.0;
     r.collisions = seconds > 0 ? static_cast<double>(collisions) / (static_cast<double>(n) * seconds) : 0.0;
     r.progress = seconds > 0 ? progress / (static_cast<double>(n) * seconds) : 0.0;
-    std::fprintf(stderr, "bench_avoidance: quality %d, range %.0f: done\n", setting.quality, setting.range);
+    std::fprintf(stderr, "bench_avoidance: quality %d, range %.0f, far regions every %d: done\n", setting.quality, setting.range,
+                 setting.farEvery);
     return r;
 }
 
 std::string table(const std::vector<Result>& rows) {
     std::ostringstream t;
     char line[512];
-    t << "| quality | neighbour range (radii) | walkers | step ms | vs finest | contacts per agent-second | contact s per agent-second | overlaps per agent-second | "
+    t << "| quality | neighbour range (radii) | far regions step every | walkers deferred | walkers | step ms | vs finest | contacts per agent-second | contact s per agent-second | overlaps per agent-second | "
          "progress m/s | path deviation m (mean) | at the last tick | ghosts per step |\n"
-         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     const double finest = rows.front().stepMs;
     for (const Result& r : rows) {
-        std::snprintf(line, sizeof line, "| %d | %.0f | %zu | %.2f | %.2fx | %.4f | %.4f | %.4f | %.3f | %.3f | %.3f | %.0f |\n", r.setting.quality,
-                      r.setting.range, r.walkers, r.stepMs, r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts);
+        std::snprintf(line, sizeof line, "| %d | %.0f | %d | %.0f | %zu | %.2f | %.2fx | %.4f | %.4f | %.4f | %.3f | %.3f | %.3f | %.0f |\n", r.setting.quality,
+                      r.setting.range, r.setting.farEvery, r.deferred, r.walkers, r.stepMs, r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts);
         t << line;
     }
     return t.str();
@@ -196,16 +207,21 @@ int main(int argc, char** argv) {
         ->check(wholeNumber(0, 3));
     app.add_option("--ranges", o.ranges, "neighbour ranges, agent radii (at least 1)")->delimiter(',')->type_name("R,R,...")
         ->check(CLI::Range(1.0, 1000.0));
+    app.add_option("--far-every", o.farEvery, "far regions step every N steps (1: every step)")->delimiter(',')->type_name("N,N,...")
+        ->check(wholeNumber(1, 1000));
+    app.add_option("--far-distance", o.farDistance, "regions farther than this from the camera path are far, metres")
+        ->type_name("M")->check(CLI::Range(1.0, 1e6))->capture_default_str();
     app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
     app.add_option("--accuracy-csv", o.accuracyCsv, "write the rows in the common accuracy CSV")->type_name("FILE");
     if (const auto code = cl.parse(argc, argv)) return *code;
     std::vector<Result> rows;
     try {
         // The finest setting first: it is the reference the others deviate from.
-        std::vector<Setting> settings{{3, *std::max_element(o.ranges.begin(), o.ranges.end())}};
-        for (double range : o.ranges)
-            for (int q : o.qualities)
-                if (!(q == settings[0].quality && range == settings[0].range)) settings.push_back({q, range});
+        std::vector<Setting> settings{{3, *std::max_element(o.ranges.begin(), o.ranges.end()), 1}};
+        for (int every : o.farEvery)
+            for (double range : o.ranges)
+                for (int q : o.qualities)
+                    if (!(q == settings[0].quality && range == settings[0].range && every == 1)) settings.push_back({q, range, every});
         std::vector<std::vector<glm::vec3>> reference;
         for (const Setting& s : settings) rows.push_back(run(o, s, reference));
     } catch (const std::exception& e) {
@@ -227,7 +243,8 @@ int main(int argc, char** argv) {
         csv << "knob,value,contacts_per_agent_second,contact_share,overlaps_per_agent_second,progress_m_per_s,path_deviation_m,ms,ms_phase,memory_bytes,scene,camera,actors\n";
         const std::string scene = o.scene.substr(o.scene.find_last_of('/') + 1);
         for (const Result& r : rows)
-            csv << "avoidance quality,\"" << r.setting.quality << " at range " << r.setting.range << "\"," << r.collisions << ',' << r.contact << ',' << r.overlaps << ',' << r.progress
+            csv << (r.setting.farEvery > 1 ? "avoidance quality and far update," : "avoidance quality,") << '"' << r.setting.quality
+                << " at range " << r.setting.range << (r.setting.farEvery > 1 ? ", far every " + std::to_string(r.setting.farEvery) : "") << "\"," << r.collisions << ',' << r.contact << ',' << r.overlaps << ',' << r.progress
                 << ',' << r.deviation << ',' << r.stepMs << ",step,0," << scene << ",none," << r.walkers << '\n';
     }
     return 0;
