@@ -9,14 +9,18 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
   mpi          under $THRONG_MPIEXEC with 1 and 2 ranks: the same stats.csv (timing and per-rank columns
                aside) and the same frames as the plain program, with walkers crossing between ranks
+  mpiHang      under $THRONG_MPIEXEC with 2 ranks, rank 1 stopped mid-run: the run ends within the
+               rank timeout with an error naming rank 1, never hangs
 """
 import csv
 import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 # stats.csv columns that hold wall-clock times (their names end in _ms) differ from run to run; those
 # of each rank's share of the step (rankN_...) exist only when the town is distributed over ranks.
@@ -130,6 +134,65 @@ def mpi(exe, scenes, work):
           f"{across} walkers crossed between ranks, {border} border bytes")
 
 
+def process_of_rank(launcher_pid, rank):
+    """The pid of MPI rank `rank` among the launcher's descendants (Open MPI marks each rank's environment)."""
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            environ = open(f"/proc/{pid}/environ", "rb").read().split(b"\0")
+        except OSError:
+            continue
+        if f"OMPI_COMM_WORLD_RANK={rank}".encode() in environ and b"THRONG_HANG_TEST=" + str(launcher_pid).encode() in environ:
+            return int(pid)
+    return None
+
+
+def mpiHang(exe, scenes, work):
+    mpiexec = os.environ.get("THRONG_MPIEXEC")
+    if not mpiexec:
+        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    out = os.path.join(work, "hang")
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    timeout = 5
+    cmd = [mpiexec, "-np", "2", "--oversubscribe", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
+           "--headless", "--frames", "100000", "--every", "0", "--width", "64", "--height", "36", "--rank-timeout", str(timeout)]
+    env = dict(os.environ)
+    env["THRONG_HANG_TEST"] = str(os.getpid())
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    # Wait until rank 1 steps (rank 0 has written rows), then stop it as a hung process would be.
+    stats = os.path.join(out, "stats.csv")
+    deadline = time.time() + 120
+    while time.time() < deadline and (not os.path.exists(stats) or sum(1 for _ in open(stats)) < 20):
+        if p.poll() is not None:
+            sys.exit(f"the run ended before rank 1 was stopped ({p.returncode}):\n{p.stderr.read()}")
+        time.sleep(0.2)
+    rank1 = process_of_rank(os.getpid(), 1)
+    if rank1 is None:
+        p.kill()
+        sys.exit("rank 1's process was not found")
+    os.kill(rank1, signal.SIGSTOP)
+    stopped = time.time()
+    try:
+        _, err = p.communicate(timeout=timeout + 60)
+    except subprocess.TimeoutExpired:
+        os.kill(rank1, signal.SIGKILL)
+        p.kill()
+        sys.exit(f"the run still hung {timeout + 60} s after rank 1 stopped")
+    finally:
+        try:
+            os.kill(rank1, signal.SIGKILL)
+        except OSError:
+            pass
+    took = time.time() - stopped
+    if p.returncode == 0:
+        sys.exit("the run succeeded although rank 1 stopped")
+    if "rank 1 did not take part" not in err:
+        sys.exit(f"the error does not name rank 1:\n{err}")
+    print(f"rank 1 stopped: the run ended after {took:.1f} s (timeout {timeout} s) naming it")
+
+
 def effects(exe, scenes, work):
     summaries = {}
     for scene in ("plain", "effects"):
@@ -183,4 +246,4 @@ if __name__ == "__main__":
         sys.exit(__doc__)
     exe, mode, scenes, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
-    {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi}[mode](exe, scenes, work)
+    {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang}[mode](exe, scenes, work)
