@@ -5,7 +5,7 @@
 // other ranks' walkers), each rank's work and wait, and what crossed between ranks: ghost and
 // handover records with their bytes, and the walkers' state sent to rank 0.
 //
-//   bench_ranks [--actors N,N,...] [--warmup N] [--steps N] [--threads N] [--csv FILE]
+//   bench_ranks [--actors N,N,...] [--region-blocks B] [--warmup N] [--steps N] [--threads N] [--csv FILE]
 //
 // --csv appends (a header first when the file is new), so plain and mpirun runs collect in one file.
 
@@ -36,6 +36,7 @@ struct Options {
     int warmup = 10;
     int steps = 20;
     int threads = 1;
+    int regionBlocks = 0;  // regions of B x B blocks instead of the scene's (0: the scene's)
     std::string csv;
 };
 
@@ -59,6 +60,7 @@ Row measure(const Options& o, std::int64_t actors, sim::Ranks& ranks) {
     row.actors = actors;
     sim::SceneDescription d = sim::parseSceneFile(o.scene);
     sim::scaleActors(d, actors);
+    if (o.regionBlocks > 0 && d.town) d.town->regions.clear(), d.town->regionBlocks = {o.regionBlocks, o.regionBlocks};
     const auto t0 = std::chrono::steady_clock::now();
     auto world = sim::Simulation::build(std::move(d));
     row.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -112,6 +114,8 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", o.warmup, "steps first, not measured")->type_name("N")->check(support::wholeNumber(0, 100000))->capture_default_str();
     app.add_option("--steps", o.steps, "measured steps")->type_name("N")->check(support::wholeNumber(1, 100000))->capture_default_str();
     app.add_option("--threads", o.threads, "threads of each rank's step")->type_name("N")->check(support::wholeNumber(1, 256))->capture_default_str();
+    app.add_option("--region-blocks", o.regionBlocks, "regions of B x B city blocks instead of the scene's")
+        ->type_name("B")->check(support::wholeNumber(1, 1000));
     app.add_option("--csv", o.csv, "append the rows to this CSV")->type_name("FILE");
     try {
         if (!cl.parseOrThrow(argc, argv)) {

@@ -257,17 +257,31 @@ void Locomotion::assignRanks() {
     firstRegion_ = 0, endRegion_ = n;
     if (!ranks_) return;
     // Consecutive regions per rank (a region's ghosts and handovers then arrive in the order of
-    // their sending region, as in one process), each rank with about as many starting walkers.
+    // their sending region, as in one process), split so that the most walkers any rank starts with
+    // is as small as it can be (the linear partition: the least load for which filling ranks in
+    // order fits every region, by bisection).
     const auto size = std::size_t(ranks_->size());
-    const std::size_t total = actors_.size();
-    regionRank_.assign(n, 0);
-    std::size_t before = 0;
-    for (std::uint32_t r = 0; r < n; ++r) {
-        const std::size_t middle = before + regions_[r].owned.size() / 2;
-        const std::size_t k = total ? std::min(size - 1, middle * size / total) : std::size_t(r) * size / n;
-        regionRank_[r] = std::max(int(k), r > 0 ? regionRank_[r - 1] : 0);
-        before += regions_[r].owned.size();
+    auto fill = [&](std::size_t most, bool assign) {  // ranks used when none takes more than `most`
+        std::size_t rank = 0, load = 0;
+        for (std::uint32_t r = 0; r < n; ++r) {
+            const std::size_t w = regions_[r].owned.size();
+            if (load > 0 && load + w > most && rank + 1 < size) ++rank, load = 0;
+            load += w;
+            if (assign) regionRank_[r] = int(rank);
+        }
+        return load <= most ? rank + 1 : size + 1;
+    };
+    std::size_t low = 0, high = actors_.size();
+    for (std::uint32_t r = 0; r < n; ++r) low = std::max(low, regions_[r].owned.size());
+    while (low < high) {
+        const std::size_t mid = (low + high) / 2;
+        if (fill(mid, false) <= size)
+            high = mid;
+        else
+            low = mid + 1;
     }
+    regionRank_.assign(n, 0);
+    fill(low, true);
     const int me = ranks_->rank();
     firstRegion_ = std::uint32_t(std::lower_bound(regionRank_.begin(), regionRank_.end(), me) - regionRank_.begin());
     endRegion_ = std::uint32_t(std::upper_bound(regionRank_.begin(), regionRank_.end(), me) - regionRank_.begin());
