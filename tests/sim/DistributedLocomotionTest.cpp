@@ -7,36 +7,23 @@
 #include <cstring>
 #include <string>
 
-#include "throng/actors/SeedHumanoid.h"
+#include "PlazaWalkers.h"
 #include "throng/scenegraph/ThreadTeam.h"
-#include "throng/sim/CounterRng.h"
-#include "throng/sim/Locomotion.h"
-#include "throng/sim/NavMesh.h"
 #include "throng/sim/Ranks.h"
 #include "throng/sim/SimulationClock.h"
 
 namespace throng::sim {
 namespace {
 
-// A plaza of 60 m in 3 x 3 regions around a pillar, with 400 walkers crossing it and avoiding
-// each other (so ghosts matter), as the thread-determinism test has it.
-// With `far`, regions farther than 15 m from a corner of the plaza step every third step only.
-std::shared_ptr<Locomotion> plaza(const std::shared_ptr<const NavMesh>& nav, bool far) {
+// The plaza in 3 x 3 regions with 400 walkers crossing it and avoiding each other (so ghosts
+// matter), as the thread-determinism test has it; with `far`, regions farther than 15 m from a
+// corner step every third step only.
+std::shared_ptr<Locomotion> crossing(const std::shared_ptr<const NavMesh>& nav, bool far) {
     Locomotion::Settings s;
     s.avoidance = true;
     if (far) s.farDistance = 15.0, s.farEvery = 3;
     s.regions = RegionGrid::tiled(glm::dvec2(-30.0), 20.0, 3, 3, 1, 1);
-    auto walk = std::make_shared<Locomotion>(nav, s);
-    static const auto humanoid = makeSeedHumanoid();
-    for (int i = 0; i < 400; ++i) {
-        Locomotion::Actor a;
-        a.tmpl = humanoid;
-        a.walkClip = humanoid->findClip("walk");
-        a.start = nav->randomPoint(CounterRng(5, std::uint64_t(i)), 0);
-        a.speed = 1.0 + 0.6 * CounterRng(6, std::uint64_t(i)).uniform(0);
-        a.stream = std::uint64_t(i);
-        walk->addActor(a);
-    }
+    auto walk = test::plazaWalkers(nav, s, 400, 5, true);
     walk->setViewpoint(glm::vec3(-30.0f, 2.0f, -30.0f));
     return walk;
 }
@@ -53,12 +40,9 @@ std::vector<float> drawnState(Locomotion& walk, std::uint32_t slot) {
 
 // Steps the plaza alone and split over the ranks (with `far`, far regions deferred), then compares.
 void stepsBitwiseAsOneProcess(bool far) {
-    NavGeometry g;
-    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
-    g.addBox(glm::vec3(-4, 0, -4), glm::vec3(4, 6, 4), false);
-    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    const std::shared_ptr<const NavMesh> nav = test::plaza(true);
     Ranks ranks;
-    const auto alone = plaza(nav, far), shared = plaza(nav, far);
+    const auto alone = crossing(nav, far), shared = crossing(nav, far);
     shared->distribute(ranks);
     alone->advance(FrameContext{});  // starts it (a step of no time)
     EXPECT_THROW(alone->distribute(ranks), std::logic_error) << "distribute() after the start is refused";

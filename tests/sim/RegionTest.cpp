@@ -8,6 +8,7 @@
 #include <limits>
 #include <set>
 
+#include "PlazaWalkers.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/scenegraph/ThreadTeam.h"
@@ -176,25 +177,12 @@ TEST(Regions, AnAgentCrossingABorderIsHandedOverAndWalksOnWithoutAJump) {
 
 TEST(Determinism, RegionsStepBitwiseIdenticallyWithOneTwoOrFourThreads) {
     // A plaza of 60 m in 3 x 3 regions, 400 walkers with avoidance crossing it.
-    NavGeometry g;
-    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
-    g.addBox(glm::vec3(-4, 0, -4), glm::vec3(4, 6, 4), false);
-    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    const std::shared_ptr<const NavMesh> nav = test::plaza(true);
     auto trajectory = [&](unsigned threads, std::size_t* handovers) {
         Locomotion::Settings s;
         s.avoidance = true;
         s.regions = RegionGrid::tiled(glm::dvec2(-30.0), 20.0, 3, 3, 1, 1);
-        auto walk = std::make_shared<Locomotion>(nav, s);
-        static const auto humanoid = makeSeedHumanoid();
-        for (int i = 0; i < 400; ++i) {
-            Locomotion::Actor a;
-            a.tmpl = humanoid;
-            a.walkClip = humanoid->findClip("walk");
-            a.start = nav->randomPoint(CounterRng(5, std::uint64_t(i)), 0);
-            a.speed = 1.0 + 0.6 * CounterRng(6, std::uint64_t(i)).uniform(0);
-            a.stream = std::uint64_t(i);
-            walk->addActor(a);
-        }
+        auto walk = test::plazaWalkers(nav, s, 400, 5, true);
         ThreadTeam team(threads);
         SimulationClock clock;
         std::vector<float> out;
@@ -250,22 +238,11 @@ TEST(Navigation, ATiledMeshIsJoinedAcrossItsTiles) {
 TEST(Locomotion, DestinationsLieWithinTheRangeAskedFor) {
     // A plaza of 60 m: with a range of 8 m, every new destination is within 8 m each way of where
     // the walker stood (give or take the snap to the mesh); without one, they spread over it all.
-    NavGeometry g;
-    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
-    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    const std::shared_ptr<const NavMesh> nav = test::plaza(false);
     for (double range : {8.0, 0.0}) {
         Locomotion::Settings s;
         s.destinationRange = range;
-        auto walk = std::make_shared<Locomotion>(nav, s);
-        static const auto humanoid = makeSeedHumanoid();
-        for (int i = 0; i < 30; ++i) {
-            Locomotion::Actor a;
-            a.tmpl = humanoid;
-            a.walkClip = humanoid->findClip("walk");
-            a.start = nav->randomPoint(CounterRng(8, std::uint64_t(i)), 0);
-            a.stream = std::uint64_t(i);
-            walk->addActor(a);
-        }
+        auto walk = test::plazaWalkers(nav, s, 30, 8, false);
         SimulationClock clock;
         std::vector<glm::vec3> before(walk->size()), last(walk->size());
         float farthest = 0.0f;
@@ -292,24 +269,13 @@ TEST(Locomotion, DestinationsLieWithinTheRangeAskedFor) {
 
 TEST(Regions, FarRegionsStepInTurnAndTheirWalkersKeepTheirPace) {
     // The plaza in 3 x 3 regions seen from one corner: regions beyond 15 m step every fourth step.
-    NavGeometry g;
-    g.addBox(glm::vec3(-30, -0.5f, -30), glm::vec3(30, 0, 30), true);
-    const std::shared_ptr<const NavMesh> nav = NavMesh::build(g);
+    const std::shared_ptr<const NavMesh> nav = test::plaza(false);
     auto run = [&](int every, unsigned threads, std::size_t* deferred) {
         Locomotion::Settings s;
         s.regions = RegionGrid::tiled(glm::dvec2(-30.0), 20.0, 3, 3, 1, 1);
         s.farDistance = 15.0, s.farEvery = every;
-        auto walk = std::make_shared<Locomotion>(nav, s);
+        auto walk = test::plazaWalkers(nav, s, 300, 5, false);
         walk->setViewpoint(glm::vec3(-30.0f, 2.0f, -30.0f));
-        static const auto humanoid = makeSeedHumanoid();
-        for (int i = 0; i < 300; ++i) {
-            Locomotion::Actor a;
-            a.tmpl = humanoid;
-            a.walkClip = humanoid->findClip("walk");
-            a.start = nav->randomPoint(CounterRng(5, std::uint64_t(i)), 0);
-            a.stream = std::uint64_t(i);
-            walk->addActor(a);
-        }
         ThreadTeam team(threads);
         SimulationClock clock;
         std::vector<float> travelled(walk->size(), 0.0f), out;
