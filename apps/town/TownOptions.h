@@ -28,6 +28,8 @@ struct TownOptions {
     int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)
     std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
     std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
+    std::string vtk;                        ///< folder for crowd data for ParaView (VTK files), empty: none
+    int vtkEvery = 10;                      ///< --vtk: an actors file every K steps
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

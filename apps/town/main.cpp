@@ -39,6 +39,7 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
 namespace fs = std::filesystem;
@@ -189,10 +190,16 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
 int main(int argc, char** argv) {
     town::TownOptions o;
     sim::SceneDescription scene;
+    std::unique_ptr<vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
         scene = sim::parseSceneFile(o.scene);
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
+        if (!o.vtk.empty()) try {
+            recorder = std::make_unique<vtk::CrowdRecorder>(o.vtk, o.vtkEvery);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("--vtk: ") + e.what());
+        }
     } catch (const sim::SceneError& e) {
         std::fprintf(stderr, "throng-town: %s\n", e.what());
         return 2;
@@ -217,6 +224,7 @@ int main(int argc, char** argv) {
         support::ProgressBar bar("building", 100);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
+        if (recorder) recorder->writeScene(world->root());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "\nthrong-town: %s\n", e.what());
         return 2;
@@ -296,6 +304,12 @@ int main(int argc, char** argv) {
         f.camera = camera;
         f.stats = processor.processFrame(world->root(), camera, f.time);
         f.list = &processor.drawList();
+        if (recorder) try {
+            recorder->record(world->crowd(), processor);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "\nthrong-town: --vtk: %s; recording stops\n", e.what());
+            recorder.reset();  // finishes what was written
+        }
         f.occlusion = showOcclusion && processor.occlusion() ? occlusionPicture(processor.occlusion()->buffer()) : Image{};
     };
     double lastFrameEnd = 0.0;
@@ -422,6 +436,11 @@ int main(int argc, char** argv) {
         }
     }
     const double wall = seconds();
+    if (recorder) try {
+        recorder->finish();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-town: --vtk: %s\n", e.what());
+    }
     std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame).dump(2) << '\n';
     std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums.frames, wall,
                  !window && o.every > 0 ? " and frames/" : "", o.out.c_str());
