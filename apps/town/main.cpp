@@ -190,13 +190,13 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
 int main(int argc, char** argv) {
     town::TownOptions o;
     sim::SceneDescription scene;
-    std::unique_ptr<vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
+    std::unique_ptr<throng::vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
         scene = sim::parseSceneFile(o.scene);
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
         if (!o.vtk.empty()) try {
-            recorder = std::make_unique<vtk::CrowdRecorder>(o.vtk, o.vtkEvery);
+            recorder = std::make_unique<throng::vtk::CrowdRecorder>(o.vtk, o.vtkEvery);
         } catch (const std::invalid_argument& e) {
             throw std::invalid_argument(std::string("--vtk: ") + e.what());
         }
