@@ -1,0 +1,87 @@
+#include "throng/vtk/CascadeCuller.h"
+
+#include <stdexcept>
+#include <string>
+
+#include <vtkCamera.h>
+#include <vtkObjectFactory.h>
+#include <vtkProp.h>
+#include <vtkRenderer.h>
+
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/scenegraph/Node.h"
+#include "throng/vtk/CameraFromVtk.h"
+
+namespace throng::vtk {
+
+vtkStandardNewMacro(CascadeCuller)
+
+CascadeCuller::CascadeCuller() = default;
+CascadeCuller::~CascadeCuller() = default;
+
+namespace {
+
+// Whether the cascade rejected an actor of class `c` before posing it: with its generic group, by
+// CULL 1, by CULL 2 or by occlusion (or it is in no node of the scene).
+bool rejectedByCascade(ActorClass c) {
+    switch (c) {
+        case ActorClass::NotInScene:
+        case ActorClass::CulledWithGroup:
+        case ActorClass::A:
+        case ActorClass::C1:
+        case ActorClass::Occluded: return true;
+        default: return false;
+    }
+}
+
+}  // namespace
+
+void CascadeCuller::SetScene(Crowd* crowd, Node* root) {
+    if (!crowd || !root) throw std::invalid_argument("CascadeCuller::SetScene: the crowd and the scene root are required");
+    crowd_ = crowd;
+    root_ = root;
+    processor_ = std::make_unique<ActorProcessor>(*crowd);
+    Modified();
+}
+
+void CascadeCuller::SetActorProp(ActorId id, vtkProp* prop) {
+    if (!crowd_) throw std::invalid_argument("CascadeCuller::SetActorProp: no scene set (SetScene first)");
+    if (id >= crowd_->size())
+        throw std::invalid_argument("CascadeCuller::SetActorProp: actor " + std::to_string(id) + " is not in the crowd (" +
+                                    std::to_string(crowd_->size()) + " actors)");
+    std::erase_if(actorOf_, [&](const auto& entry) { return entry.second == id; });
+    if (prop) actorOf_[prop] = id;
+    Modified();
+}
+
+double CascadeCuller::Cull(vtkRenderer* renderer, vtkProp** props, int& count, int& initialized) {
+    kept_ = removed_ = 0;
+    if (!processor_ || !renderer || !props) return 0.0;
+    const Camera camera = cameraFromVtk(*renderer->GetActiveCamera(), renderer->GetTiledAspectRatio());
+    last_ = processor_->processFrame(*root_, camera, crowd_->time());
+    const Crowd::State& s = crowd_->state();
+    double total = 0.0;
+    int out = 0;
+    for (int i = 0; i < count; ++i) {
+        vtkProp* prop = props[i];
+        const auto actor = actorOf_.find(prop);
+        if (actor != actorOf_.end()) {
+            if (rejectedByCascade(s.actorClass[actor->second])) {
+                ++removed_;
+                continue;
+            }
+            ++kept_;
+            if (!initialized) prop->SetRenderTimeMultiplier(1.0);
+        } else if (!initialized) {
+            prop->SetRenderTimeMultiplier(1.0);
+        }
+        total += prop->GetRenderTimeMultiplier();
+        props[out++] = prop;
+    }
+    count = out;
+    initialized = 1;
+    return total;
+}
+
+}  // namespace throng::vtk
