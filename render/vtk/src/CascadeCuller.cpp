@@ -50,8 +50,14 @@ void CascadeCuller::SetActorProp(ActorId id, vtkProp* prop) {
     if (id >= crowd_->size())
         throw std::invalid_argument("CascadeCuller::SetActorProp: actor " + std::to_string(id) + " is not in the crowd (" +
                                     std::to_string(crowd_->size()) + " actors)");
-    std::erase_if(actorOf_, [&](const auto& entry) { return entry.second == id; });
-    if (prop) actorOf_[prop] = id;
+    if (propOf_.size() < crowd_->size()) propOf_.resize(crowd_->size(), nullptr);
+    if (propOf_[id]) actorOf_.erase(propOf_[id]);  // the actor's previous prop stands for nothing now
+    if (prop) {
+        const auto previous = actorOf_.find(prop);  // a prop stands for one actor: the last given
+        if (previous != actorOf_.end()) propOf_[previous->second] = nullptr;
+        actorOf_[prop] = id;
+    }
+    propOf_[id] = prop;
     Modified();
 }
 

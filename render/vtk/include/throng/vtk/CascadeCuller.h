@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <unordered_map>
+#include <vector>
 
 #include <vtkCuller.h>
 
@@ -43,7 +44,8 @@ public:
     /// application steps the crowd). Makes a fresh ActorProcessor; props set before are kept.
     /// Throws std::invalid_argument if either is null.
     void SetScene(Crowd* crowd, Node* root);
-    /// Prop `prop` stands for actor `id` (null removes the actor's prop). The culler does not own
+    /// Prop `prop` stands for actor `id` (null removes the actor's prop; a prop given for another
+    /// actor stands for that one only). The culler does not own
     /// props: the renderer does. Throws std::invalid_argument if no scene is set or `id` is not
     /// an actor of its crowd.
     void SetActorProp(ActorId id, vtkProp* prop);
@@ -75,7 +77,8 @@ private:
     Crowd* crowd_ = nullptr;
     Node* root_ = nullptr;
     std::unique_ptr<ActorProcessor> processor_;
-    std::unordered_map<const vtkProp*, ActorId> actorOf_;
+    std::unordered_map<const vtkProp*, ActorId> actorOf_;  // the actor each prop stands for
+    std::vector<const vtkProp*> propOf_;                    // per actor: its prop, or null
     ActorFrameStatistics last_;
     int kept_ = 0, removed_ = 0;
 };
