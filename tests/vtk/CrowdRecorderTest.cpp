@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -82,6 +83,9 @@ struct World {
         root->addChild(lod);
     }
 };
+
+template <class Predicate>
+std::size_t countIf(const std::vector<double>& v, Predicate p) { return std::size_t(std::count_if(v.begin(), v.end(), p)); }
 
 Camera camera() {
     Camera c;
@@ -240,4 +244,32 @@ TEST(CrowdRecorder, NothingRecordedStillGivesAnEmptyCollection) {
     const auto trajectories = readPolyData(dir / "trajectories.vtp");
     ASSERT_TRUE(trajectories);
     EXPECT_EQ(trajectories->GetNumberOfLines(), 0);
+}
+
+TEST(CrowdRecorder, TraditionalProcessingClassifiesNobody) {
+    World w;
+    ActorProcessor processor(w.crowd);
+    processor.setProcessing(Processing::Traditional);
+    const fs::path dir = freshFolder("traditional");
+    {
+        throng::vtk::CrowdRecorder recorder(dir, 1);
+        FrameContext context;
+        w.crowd.step(context);
+        processor.processFrame(*w.root, camera(), context.time);
+        recorder.record(w.crowd, processor);
+    }
+    const auto data = readPolyData(dir / "actors_000000.vtp");
+    ASSERT_TRUE(data);
+    for (const char* array : {"cascade_class", "rejected_at"})
+        for (double v : pointValues(*data, array)) EXPECT_EQ(v, -1.0) << array;
+    const auto tier = pointValues(*data, "tier");
+    EXPECT_GT(countIf(tier, [](double t) { return t == 0.0; }), 0u) << "traditional processing draws meshes too";
+    // One frame: each trajectory is a line from its one position to itself.
+    const auto trajectories = readPolyData(dir / "trajectories.vtp");
+    ASSERT_TRUE(trajectories);
+    ASSERT_EQ(trajectories->GetNumberOfLines(), kActors);
+    vtkCell* line = trajectories->GetCell(3);
+    ASSERT_EQ(line->GetNumberOfPoints(), 2);
+    EXPECT_EQ(line->GetPointId(0), line->GetPointId(1));
+    EXPECT_EQ(line->GetPointId(0), 3);
 }

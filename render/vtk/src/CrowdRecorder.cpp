@@ -203,7 +203,9 @@ void CrowdRecorder::writeFrame(const Crowd& crowd, const ActorProcessor& process
     sampleSpeed_.resize(sampleSpeed_.size() + n);
     groupOf_.assign(n, -1);
     templateOf_.assign(n, -1);
-    const bool haveLast = lastStep_ >= 0 && !last_.empty() && time > lastTime_;
+    const bool haveLast = !last_.empty() && time > lastTime_;
+    // Traditional processing runs no cascade: it classifies nobody.
+    const bool cascade = processor.processing() == Processing::Actor;
     const double lodScale = processor.lodScale();
     for (ActorId a = 0; a < n; ++a) {
         const auto i = static_cast<vtkIdType>(a);
@@ -233,8 +235,8 @@ void CrowdRecorder::writeFrame(const Crowd& crowd, const ActorProcessor& process
                 (time - lastTime_);
         speed->SetValue(i, v);
         sampleSpeed_[frame.offset / 3 + a] = v;
-        cls->SetValue(i, static_cast<int>(s.actorClass[a]));
-        rejected->SetValue(i, rejectedAt(s.actorClass[a], tier_[a]));
+        cls->SetValue(i, cascade ? static_cast<int>(s.actorClass[a]) : -1);
+        rejected->SetValue(i, cascade ? rejectedAt(s.actorClass[a], tier_[a]) : -1);
     }
 
     auto data = vtkSmartPointer<vtkPolyData>::New();
@@ -278,11 +280,12 @@ void CrowdRecorder::writeTrajectories() {
     auto speed = namedArray<vtkDoubleArray>("speed", static_cast<vtkIdType>(pointCount));
     for (std::size_t i = 0; i < pointCount; ++i) speed->SetValue(static_cast<vtkIdType>(i), sampleSpeed_[i]);
 
+    // A line of one sample repeats it (VTK's poly data does not take a one-point line).
+    auto samples = [&](vtkIdType a) { return static_cast<vtkIdType>(frames_.size() - firstFrame[std::size_t(a)]); };
     const auto lines = cells(
-        static_cast<vtkIdType>(actors),
-        [&](vtkIdType a) { return static_cast<vtkIdType>(frames_.size() - firstFrame[std::size_t(a)]); },
+        static_cast<vtkIdType>(actors), [&](vtkIdType a) { return std::max<vtkIdType>(samples(a), 2); },
         [&](vtkIdType a, vtkIdType k) {
-            const WrittenFrame& f = frames_[firstFrame[std::size_t(a)] + std::size_t(k)];
+            const WrittenFrame& f = frames_[firstFrame[std::size_t(a)] + std::size_t(std::min(k, samples(a) - 1))];
             return static_cast<vtkIdType>(f.offset / 3 + std::size_t(a));
         });
     auto id = namedArray<vtkIntArray>("id", static_cast<vtkIdType>(actors));

@@ -11,15 +11,19 @@
 //       tier             how it was drawn: -1 not drawn, 0 mesh, 1 key-pose cache, 2 impostor
 //       lod              vaLod level of the geometry drawn (0 highest), -1 not drawn or an impostor
 //       behaviour_level  the behaviour's level it was posed at, -1 not posed this frame
-//       speed            m/s of its Reference Point since the previous recorded step (0 on the first)
-//       cascade_class    its class in the culling cascade (seed 002 Table 2; names: class_names)
+//       speed            m/s of its Reference Point over the step before (from the last positions
+//                        kept, when that step was not recorded; 0 on the first)
+//       cascade_class    its class in the culling cascade (seed 002 Table 2; names: class_names),
+//                        -1 under traditional processing (no cascade)
 //       rejected_at      the phase that rejected it: 0 none (drawn), 1 with its generic group,
 //                        2 CULL 1 (Refpoint Bsphere), 3 CULL 2 (Sklsroot Bsphere), 4 occlusion,
-//                        5 CULL 3 (no part visible), 6 not in the scene (names: rejected_at_names)
+//                        5 CULL 3 (no part visible), 6 not in the scene (names: rejected_at_names);
+//                        -1 under traditional processing
 //     field data TimeValue (simulation seconds) and step.
 //   DIR/town.vtp           writeScene(): the scene's triangles (scenePolyData)
-//   DIR/trajectories.vtp   finish(): one polyline per actor through its recorded positions; point
-//                          data time and speed, cell data id, group, template
+//   DIR/trajectories.vtp   finish(): one polyline per actor through its recorded positions (one
+//                          recorded position: a line from it to itself); point data time and
+//                          speed, cell data id, group, template
 //   DIR/crowd.pvd          finish(): the actors files with their times
 
 #include <cstdint>
