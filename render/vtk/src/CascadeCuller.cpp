@@ -3,15 +3,13 @@
 #include <stdexcept>
 #include <string>
 
-#include <vtkCamera.h>
 #include <vtkObjectFactory.h>
 #include <vtkProp.h>
 #include <vtkRenderer.h>
 
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
-#include "throng/scenegraph/Node.h"
-#include "throng/vtk/CameraFromVtk.h"
+#include "throng/vtk/CameraCascade.h"
 
 namespace throng::vtk {
 
@@ -38,19 +36,19 @@ bool rejectedByCascade(ActorClass c) {
 }  // namespace
 
 void CascadeCuller::SetScene(Crowd* crowd, Node* root) {
-    if (!crowd || !root) throw std::invalid_argument("CascadeCuller::SetScene: the crowd and the scene root are required");
-    crowd_ = crowd;
-    root_ = root;
-    processor_ = std::make_unique<ActorProcessor>(*crowd);
+    cascade_ = std::make_unique<CameraCascade>(crowd, root, "CascadeCuller::SetScene");
     Modified();
 }
 
+ActorProcessor* CascadeCuller::GetProcessor() { return cascade_ ? &cascade_->processor() : nullptr; }
+
 void CascadeCuller::SetActorProp(ActorId id, vtkProp* prop) {
-    if (!crowd_) throw std::invalid_argument("CascadeCuller::SetActorProp: no scene set (SetScene first)");
-    if (id >= crowd_->size())
+    if (!cascade_) throw std::invalid_argument("CascadeCuller::SetActorProp: no scene set (SetScene first)");
+    const std::size_t actors = cascade_->crowd().size();
+    if (id >= actors)
         throw std::invalid_argument("CascadeCuller::SetActorProp: actor " + std::to_string(id) + " is not in the crowd (" +
-                                    std::to_string(crowd_->size()) + " actors)");
-    if (propOf_.size() < crowd_->size()) propOf_.resize(crowd_->size(), nullptr);
+                                    std::to_string(actors) + " actors)");
+    if (propOf_.size() < actors) propOf_.resize(actors, nullptr);
     if (propOf_[id]) actorOf_.erase(propOf_[id]);  // the actor's previous prop stands for nothing now
     if (prop) {
         const auto previous = actorOf_.find(prop);  // a prop stands for one actor: the last given
@@ -63,10 +61,9 @@ void CascadeCuller::SetActorProp(ActorId id, vtkProp* prop) {
 
 double CascadeCuller::Cull(vtkRenderer* renderer, vtkProp** props, int& count, int& initialized) {
     kept_ = removed_ = 0;
-    if (!processor_ || !renderer || !props) return 0.0;
-    const Camera camera = cameraFromVtk(*renderer->GetActiveCamera(), renderer->GetTiledAspectRatio());
-    last_ = processor_->processFrame(*root_, camera, crowd_->time());
-    const Crowd::State& s = crowd_->state();
+    if (!cascade_ || !renderer || !props) return 0.0;
+    last_ = cascade_->run(*renderer);
+    const Crowd::State& s = cascade_->crowd().state();
     double total = 0.0;
     int out = 0;
     for (int i = 0; i < count; ++i) {

@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include <vtkActor.h>
-#include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkFloatArray.h>
 #include <vtkObjectFactory.h>
@@ -17,11 +16,9 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/Crowd.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/MeshDrawable.h"
-#include "throng/scenegraph/Node.h"
-#include "throng/vtk/CameraFromVtk.h"
+#include "throng/vtk/CameraCascade.h"
 
 namespace throng::vtk {
 
@@ -38,12 +35,11 @@ CrowdProp::CrowdProp() {
 CrowdProp::~CrowdProp() = default;
 
 void CrowdProp::SetScene(Crowd* crowd, Node* root) {
-    if (!crowd || !root) throw std::invalid_argument("CrowdProp::SetScene: the crowd and the scene root are required");
-    crowd_ = crowd;
-    root_ = root;
-    processor_ = std::make_unique<ActorProcessor>(*crowd);
+    cascade_ = std::make_unique<CameraCascade>(crowd, root, "CrowdProp::SetScene");
     Modified();
 }
+
+ActorProcessor* CrowdProp::GetProcessor() { return cascade_ ? &cascade_->processor() : nullptr; }
 
 vtkProperty* CrowdProp::GetActorProperty() { return actor_->GetProperty(); }
 
@@ -61,7 +57,7 @@ void CrowdProp::buildMeshes() {
     colours->SetNumberOfComponents(3);
     auto polys = vtkSmartPointer<vtkCellArray>::New();
     skipped_ = triangles_ = 0;
-    for (const DrawItem& item : processor_->drawList().items()) {
+    for (const DrawItem& item : cascade_->processor().drawList().items()) {
         if (item.actor == kNoActor) continue;  // the scene's own geometry is the application's to draw
         const auto* mesh = item.representation == Representation::Mesh ? dynamic_cast<const MeshDrawable*>(item.drawable) : nullptr;
         if (!mesh || !item.worldMatrix) {
@@ -105,9 +101,8 @@ void CrowdProp::buildMeshes() {
 
 int CrowdProp::RenderOpaqueGeometry(vtkViewport* viewport) {
     auto* renderer = vtkRenderer::SafeDownCast(viewport);
-    if (!renderer || !processor_ || !GetVisibility()) return 0;
-    const Camera camera = cameraFromVtk(*renderer->GetActiveCamera(), renderer->GetTiledAspectRatio());
-    last_ = processor_->processFrame(*root_, camera, crowd_->time());
+    if (!renderer || !cascade_ || !GetVisibility()) return 0;
+    last_ = cascade_->run(*renderer);
     buildMeshes();
     if (data_->GetNumberOfPolys() == 0) return 0;
     return actor_->RenderOpaqueGeometry(viewport);

@@ -33,6 +33,8 @@ class Node;
 
 namespace throng::vtk {
 
+class CameraCascade;
+
 /// Culls actor props with the actor cascade.
 class CascadeCuller : public vtkCuller {
 public:
@@ -51,7 +53,7 @@ public:
     void SetActorProp(ActorId id, vtkProp* prop);
     /// The processor running the cascade (its LOD scale, threads, occlusion are the application's
     /// to set); null before SetScene. Its statistics and draw list are those of the last Cull().
-    ActorProcessor* GetProcessor() { return processor_.get(); }
+    ActorProcessor* GetProcessor();
     /// Statistics of the cascade in the last Cull().
     const ActorFrameStatistics& GetLastStatistics() const { return last_; }
     /// Props kept and removed by the last Cull() among those standing for actors.
@@ -74,9 +76,7 @@ private:
     CascadeCuller(const CascadeCuller&) = delete;
     void operator=(const CascadeCuller&) = delete;
 
-    Crowd* crowd_ = nullptr;
-    Node* root_ = nullptr;
-    std::unique_ptr<ActorProcessor> processor_;
+    std::unique_ptr<CameraCascade> cascade_;
     std::unordered_map<const vtkProp*, ActorId> actorOf_;  // the actor each prop stands for
     std::vector<const vtkProp*> propOf_;                    // per actor: its prop, or null
     ActorFrameStatistics last_;

@@ -37,6 +37,8 @@ class Node;
 
 namespace throng::vtk {
 
+class CameraCascade;
+
 /// Draws a Throng crowd in a VTK scene, culled and posed by the actor cascade for VTK's camera.
 class CrowdProp : public vtkProp3D {
 public:
@@ -50,7 +52,7 @@ public:
     void SetScene(Crowd* crowd, Node* root);
     /// The processor running the cascade (LOD scale, threads, occlusion are the application's to
     /// set); null before SetScene. Its statistics and draw list are those of the last render.
-    ActorProcessor* GetProcessor() { return processor_.get(); }
+    ActorProcessor* GetProcessor();
     /// Statistics of the cascade in the last render.
     const ActorFrameStatistics& GetLastStatistics() const { return last_; }
     /// Draw items of actors the last render did not draw (impostors, key-pose cache items).
@@ -83,9 +85,7 @@ private:
     void operator=(const CrowdProp&) = delete;
     void buildMeshes();
 
-    Crowd* crowd_ = nullptr;
-    Node* root_ = nullptr;
-    std::unique_ptr<ActorProcessor> processor_;
+    std::unique_ptr<CameraCascade> cascade_;
     ActorFrameStatistics last_;
     std::uint64_t skipped_ = 0, triangles_ = 0;
     vtkNew<vtkActor> actor_;
