@@ -79,6 +79,12 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("S")
         ->check(positiveNumber())
         ->capture_default_str();
+    app.add_option("--vtk", o.vtk, "write crowd data for ParaView here: actors every K steps, town, trajectories, crowd.pvd")
+        ->type_name("DIR");
+    app.add_option("--vtk-every", o.vtkEvery, "--vtk: an actors file every K simulation steps")
+        ->type_name("K")
+        ->check(wholeNumber(1, 100'000'000))
+        ->capture_default_str();
     app.footer(
         "Under mpirun -np N (headless), each rank steps its share of the walkers' regions and rank 0 draws.\n"
         "In a window: mouse drag looks, W/A/S/D/Q/E move, Tab path/free camera, Space pause,\n"

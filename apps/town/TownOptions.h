@@ -29,6 +29,8 @@ struct TownOptions {
     std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
     std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
     double rankTimeout = 120.0;             ///< under mpirun: seconds a rank waits for another before the run stops
+    std::string vtk;                        ///< folder for crowd data for ParaView (VTK files), empty: none
+    int vtkEvery = 10;                      ///< --vtk: an actors file every K steps
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

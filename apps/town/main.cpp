@@ -43,6 +43,7 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
 namespace fs = std::filesystem;
@@ -244,6 +245,7 @@ int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions
 int main(int argc, char** argv) {
     town::TownOptions o;
     sim::SceneDescription scene;
+    std::unique_ptr<throng::vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
         scene = sim::parseSceneFile(o.scene);
@@ -259,6 +261,14 @@ int main(int argc, char** argv) {
     // that `mpirun -np 1` takes the distributed path); rank 0 draws and writes.
     sim::Ranks ranks(std::chrono::milliseconds(std::llround(o.rankTimeout * 1000.0)));
     const bool distributed = sim::Ranks::launchedByMpi();
+    // Only rank 0 writes, --vtk files too.
+    if (!o.vtk.empty() && ranks.rank() == 0) try {
+        recorder = std::make_unique<throng::vtk::CrowdRecorder>(o.vtk, o.vtkEvery);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "throng-town: --vtk: %s\n%s", e.what(), town::townUsage().c_str());
+        if (ranks.size() > 1) ranks.abort(2);
+        return 2;
+    }
     if (o.seed) scene.seed = *o.seed;
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 
@@ -267,6 +277,7 @@ int main(int argc, char** argv) {
         support::ProgressBar bar("building", 100, ranks.rank() == 0);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
+        if (recorder) recorder->writeScene(world->root());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "\nthrong-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
         if (ranks.size() > 1) ranks.abort(2);
@@ -354,6 +365,12 @@ int main(int argc, char** argv) {
         f.camera = camera;
         f.stats = processor.processFrame(world->root(), camera, f.time);
         f.list = &processor.drawList();
+        if (recorder) try {
+            recorder->record(world->crowd(), processor);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "\nthrong-town: --vtk: %s; recording stops\n", e.what());
+            recorder.reset();  // finishes what was written
+        }
         f.occlusion = showOcclusion && processor.occlusion() ? occlusionPicture(processor.occlusion()->buffer()) : Image{};
     };
     double lastFrameEnd = 0.0;
@@ -488,6 +505,11 @@ int main(int argc, char** argv) {
         return 3;
     }
     const double wall = seconds();
+    if (recorder) try {
+        recorder->finish();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-town: --vtk: %s\n", e.what());
+    }
     std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame, ranks.size()).dump(2) << '\n';
     std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums.frames, wall,
                  !window && o.every > 0 ? " and frames/" : "", o.out.c_str());

@@ -55,10 +55,14 @@ public:
     Processing processing() const { return processing_; }
     /// LOD scale (distance multiplier, > 0; above 1 lowers detail sooner).
     void setLodScale(double scale);
+    /// The LOD scale in use.
+    double lodScale() const { return lodScale_; }
     /// Switches skeletal LOD (actor processing): off, every Skeleton node is processed.
     void setSkeletalLod(bool on) { skeletalLod_ = on; }
     /// Switches behavioural LOD (actor processing): off, behaviours always run at level 0.
     void setBehaviouralLod(bool on) { behaviouralLod_ = on; }
+    /// Whether behavioural LOD is on.
+    bool behaviouralLod() const { return behaviouralLod_; }
     /// Hybrid LOD (actor processing): beyond `distance` metres (scaled by the LOD scale and the
     /// actor's priority, like every LOD distance) an actor whose template has an impostor is drawn
     /// as one item showing it, placed at its Reference Point, and none of its Skeleton nodes is

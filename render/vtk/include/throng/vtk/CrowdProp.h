@@ -1,0 +1,97 @@
+#pragma once
+// A crowd inside an ordinary vtkRenderer: a VTK prop that, each time the renderer draws it, runs
+// Throng's actor cascade (culling, LOD, behavioural LOD, poses) for the renderer's active camera
+// and draws the visible actors' meshes through a VTK mapper in VTK's own OpenGL context, so they
+// share the depth buffer with the scene's other props (a cone in front hides the actors behind it).
+// The meshes are placed (and skinned on the CPU) from the cascade's draw list, coloured by their
+// material's base colour times the actor's tint; textures, impostors and key-pose cache items are
+// not drawn by this first version (GetLastSkippedItems counts them).
+//
+//   auto crowdProp = vtkSmartPointer<throng::vtk::CrowdProp>::New();
+//   crowdProp->SetScene(&crowd, root.get());   // the application steps the crowd
+//   renderer->AddViewProp(crowdProp);
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <vtkNew.h>
+#include <vtkProp3D.h>
+#include <vtkSmartPointer.h>
+
+#include "throng/actors/ActorFrameStatistics.h"
+
+class vtkActor;
+class vtkPolyData;
+class vtkPolyDataMapper;
+class vtkProperty;
+class vtkViewport;
+class vtkWindow;
+
+namespace throng {
+class ActorProcessor;
+class Crowd;
+class Node;
+}  // namespace throng
+
+namespace throng::vtk {
+
+class CameraCascade;
+
+/// Draws a Throng crowd in a VTK scene, culled and posed by the actor cascade for VTK's camera.
+class CrowdProp : public vtkProp3D {
+public:
+    /// A new prop (VTK reference counting).
+    static CrowdProp* New();
+    vtkTypeMacro(CrowdProp, vtkProp3D)
+
+    /// Draws the actors of `crowd` held by nodes under `root` (both must outlive the prop; the
+    /// application steps the crowd; generic nodes under `root` are not drawn by the prop). Makes a
+    /// fresh ActorProcessor. Throws std::invalid_argument if either is null.
+    void SetScene(Crowd* crowd, Node* root);
+    /// The processor running the cascade (LOD scale, threads, occlusion are the application's to
+    /// set); null before SetScene. Its statistics and draw list are those of the last render.
+    ActorProcessor* GetProcessor();
+    /// Statistics of the cascade in the last render.
+    const ActorFrameStatistics& GetLastStatistics() const { return last_; }
+    /// Draw items of actors the last render did not draw (impostors, key-pose cache items).
+    std::uint64_t GetLastSkippedItems() const { return skipped_; }
+    /// Triangles the last render drew.
+    std::uint64_t GetLastTriangles() const { return triangles_; }
+    /// The actors' meshes drawn in the last render, in world coordinates (point data "colour").
+    vtkPolyData* GetLastMeshes() { return data_; }
+    /// The look of the actors' meshes (lighting, shading); colours come from the meshes.
+    vtkProperty* GetActorProperty();
+
+    /// Null (unknown): VTK's cullers then keep the prop, and its own cascade culls the actors. The
+    /// crowd's bounds of the last frame could be stale, and a crowd culled on them would never be
+    /// processed again. (So vtkRenderer::ResetCamera does not frame the crowd.)
+    double* GetBounds() override;
+    using vtkProp3D::GetBounds;
+    /// Runs the cascade for the viewport's active camera and draws the visible actors' meshes.
+    int RenderOpaqueGeometry(vtkViewport* viewport) override;
+    /// The crowd's meshes are opaque.
+    vtkTypeBool HasTranslucentPolygonalGeometry() override { return 0; }
+    /// Frees the mapper's GPU resources for `window`.
+    void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+    CrowdProp();
+    ~CrowdProp() override;
+
+private:
+    CrowdProp(const CrowdProp&) = delete;
+    void operator=(const CrowdProp&) = delete;
+    void buildMeshes();
+
+    std::unique_ptr<CameraCascade> cascade_;
+    ActorFrameStatistics last_;
+    std::uint64_t skipped_ = 0, triangles_ = 0;
+    vtkNew<vtkActor> actor_;
+    vtkNew<vtkPolyDataMapper> mapper_;
+    vtkSmartPointer<vtkPolyData> data_;
+    std::vector<glm::vec3> scratch_;  // one mesh's skinned positions
+};
+
+}  // namespace throng::vtk
