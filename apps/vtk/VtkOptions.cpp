@@ -1,9 +1,7 @@
 #include "VtkOptions.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include "throng/support/CommandLine.h"
+#include "throng/support/SceneOptions.h"
 #include "throng/support/Validators.h"
 
 namespace throng::vtkapp {
@@ -15,17 +13,12 @@ constexpr const char* kName = "throng-vtk";
 void declare(support::CommandLine& cl, VtkOptions& o) {
     using namespace support;
     CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file (JSON)")->type_name("FILE")->check(existingFile());
-    app.add_option("--actors", o.actors, "total actors, the scene's groups scaled to it")
-        ->type_name("N")
-        ->check(wholeNumber(0, 2'000'000))
-        ->default_str("the scene's");
-    app.add_option("--seed", o.seed, "random seed")->type_name("N")->check(wholeNumberFrom(0))->default_str("the scene's");
+    declareSceneOptions(app, o.scene, o.actors, o.seed);
     app.add_option("--screenshot", o.screenshot,
                    "no window: step --frames times, write a PNG of the scene camera's view at that time, exit")
         ->type_name("FILE")
         ->check(fileToWrite());
-    app.add_option("--frames", o.frames, "--screenshot: simulation steps before the picture")
+    app.add_option("--frames", o.frames, "steps before the --screenshot picture (in a window: quit after N steps when given)")
         ->type_name("N")
         ->check(wholeNumber(0, 100'000'000))
         ->capture_default_str();
@@ -44,19 +37,14 @@ std::string vtkUsage() { return support::CommandLine::hint(kName); }
 VtkOptions parseVtkOptions(int argc, char** argv, const std::string& defaultScene) {
     VtkOptions o;
     o.scene = defaultScene;
-    std::string help;
-    {
-        support::CommandLine cl(kName,
-                                "A Throng crowd in a VTK scene: the town a scene file declares, its tiles as VTK polydata\n"
-                                "and its crowd drawn by throng::vtk::CrowdProp (the actor cascade run for VTK's camera),\n"
-                                "with VTK's trackball interactor and the cascade's statistics as a text overlay.");
-        declare(cl, o);
-        if (cl.parseOrThrow(argc, argv)) return o;
-        help = cl.help();
-    }
-    std::fputs(help.c_str(), stdout);
-    std::fflush(stdout);
-    std::exit(0);
+    support::CommandLine::parseOrExitOnHelp(
+        kName,
+        "A Throng crowd in a VTK scene: the town a scene file declares, its tiles as VTK polydata\n"
+        "and its crowd drawn by throng::vtk::CrowdProp (the actor cascade run for VTK's camera),\n"
+        "with VTK's trackball interactor and the cascade's statistics as a text overlay.",
+        argc, argv, [&](support::CommandLine& cl) { declare(cl, o); },
+        [&](support::CommandLine& cl) { o.framesGiven = cl.app().count("--frames") > 0; });
+    return o;
 }
 
 }  // namespace throng::vtkapp

@@ -14,6 +14,7 @@ struct VtkOptions {
     std::optional<std::uint64_t> seed;    ///< overrides the scene's seed
     std::string screenshot;               ///< write a PNG here and exit (empty: open a window)
     std::int64_t frames = 60;             ///< --screenshot: simulation steps before the picture
+    bool framesGiven = false;             ///< --frames was given: a window also closes after them
     int width = 1280, height = 720;       ///< pixels
 };
 

@@ -16,6 +16,7 @@
 #include <exception>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,7 +27,6 @@
 #include <vtkCommand.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkLightKit.h>
@@ -37,7 +37,6 @@
 #include <vtkSmartPointer.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 #include "VtkOptions.h"
 #include "throng/actors/ActorProcessor.h"
@@ -48,6 +47,7 @@
 #include "throng/support/ProgressBar.h"
 #include "throng/vtk/CrowdProp.h"
 #include "throng/vtk/ScenePolyData.h"
+#include "throng/vtk/WindowPng.h"
 
 using namespace throng;
 
@@ -156,21 +156,13 @@ public:
 
     // The view of the scene's camera path at the world's current time, rendered twice so that the
     // overlay shows that very render's statistics, written to `path` as a PNG. Throws
-    // std::runtime_error if VTK cannot write it.
+    // std::runtime_error if it cannot be written.
     void screenshot(const std::string& path) {
         const int* size = window_->GetSize();
         placeCamera(*renderer_->GetActiveCamera(), world_.camera().at(world_.now().time, double(size[0]) / double(size[1])));
         render();
         render();
-        vtkNew<vtkWindowToImageFilter> grab;
-        grab->SetInput(window_);
-        grab->ReadFrontBufferOff();
-        grab->Update();
-        vtkNew<vtkPNGWriter> writer;
-        writer->SetFileName(path.c_str());
-        writer->SetInputConnection(grab->GetOutputPort());
-        writer->Write();
-        if (writer->GetErrorCode() != 0) throw std::runtime_error("cannot write the PNG '" + path + "'");
+        throng::vtk::writeWindowPng(*window_, path);
     }
 
 private:
@@ -211,9 +203,10 @@ private:
 // The window: VTK's trackball camera, and a repeating timer that steps the world and renders.
 class Viewer {
 public:
-    Viewer(sim::Simulation& world, TownView& view) : world_(world), view_(view) {}
+    // `steps`: the window closes after that many timer steps (none: when the user closes it).
+    Viewer(sim::Simulation& world, TownView& view, std::optional<std::int64_t> steps) : world_(world), view_(view), steps_(steps) {}
 
-    // Runs until the window closes (or Q/E). Throws what a step throws.
+    // Runs until the window closes (or Q/E, or the steps are done). Throws what a step throws.
     void run() {
         vtkNew<vtkRenderWindowInteractor> interactor;
         vtkNew<vtkInteractorStyleTrackballCamera> style;
@@ -235,10 +228,14 @@ private:
     // One timer tick: a simulation step, then a render. An exception must not cross VTK's event
     // loop: it is kept, the loop ends, and run() throws it.
     void tick() {
-        if (failure_) return;
+        if (failure_ || done_) return;
         try {
             world_.step();
             view_.render();
+            if (steps_ && ++stepped_ >= *steps_) {
+                done_ = true;
+                view_.window().GetInteractor()->TerminateApp();
+            }
         } catch (...) {
             failure_ = std::current_exception();
             view_.window().GetInteractor()->TerminateApp();
@@ -247,6 +244,9 @@ private:
 
     sim::Simulation& world_;
     TownView& view_;
+    std::optional<std::int64_t> steps_;
+    std::int64_t stepped_ = 0;
+    bool done_ = false;
     std::exception_ptr failure_;
 };
 
@@ -297,7 +297,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "throng-vtk: %s after %lld steps (time %.2f s)\n", o.screenshot.c_str(), (long long)o.frames,
                          world->now().time);
         } else {
-            Viewer(*world, view).run();
+            Viewer(*world, view, o.framesGiven ? std::optional<std::int64_t>(o.frames) : std::nullopt).run();
+            std::fprintf(stderr, "throng-vtk: window closed at time %.2f s\n", world->now().time);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "throng-vtk: %s\n", e.what());

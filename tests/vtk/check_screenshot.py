@@ -2,9 +2,12 @@
 """Runs throng-vtk --screenshot and checks the PNG it writes: it exists, has the size asked for and
 is not one flat colour (the town and its crowd were drawn). Standard library only: the PNG is
 decoded here (8-bit RGB or RGBA, non-interlaced, as vtkPNGWriter writes a render window).
+Then, with --window, runs the window (its interactor's timer stepping the world) for the same
+FRAMES and checks that it closed by itself at the simulation time the screenshot was taken at.
 
-usage: check_screenshot.py THRONG_VTK SCENE OUT.png WIDTH HEIGHT FRAMES"""
+usage: check_screenshot.py THRONG_VTK SCENE OUT.png WIDTH HEIGHT FRAMES [--window]"""
 import os
+import re
 import struct
 import subprocess
 import sys
@@ -52,6 +55,7 @@ def read_png(path):
 
 def main():
     exe, scene, out, width, height, frames = sys.argv[1:7]
+    window = sys.argv[7:] == ["--window"]
     if os.path.exists(out):
         os.remove(out)
     run = subprocess.run([exe, "--scene", scene, "--screenshot", out, "--frames", frames, "--width", width, "--height", height],
@@ -73,6 +77,17 @@ def main():
     if len(colours) < 50:
         sys.exit(f"{out} has only {len(colours)} colours: the town was not drawn")
     print(f"{out}: {w}x{h}, {len(colours)} colours")
+    if window:
+        shot_time = re.search(r"after \d+ steps \(time ([0-9.]+) s\)", run.stderr)
+        run = subprocess.run([exe, "--scene", scene, "--frames", frames, "--width", width, "--height", height],
+                             capture_output=True, text=True, timeout=600)
+        if run.returncode != 0:
+            sys.exit(f"throng-vtk (window) exited with {run.returncode}:\n{run.stderr}")
+        closed = re.search(r"window closed at time ([0-9.]+) s", run.stderr)
+        if not shot_time or not closed or closed.group(1) != shot_time.group(1):
+            sys.exit(f"the window did not step {frames} times: screenshot {shot_time and shot_time.group(0)}, "
+                     f"window {closed and closed.group(0)}\n{run.stderr}")
+        print(f"window: closed after {frames} steps at time {closed.group(1)} s")
 
 
 if __name__ == "__main__":
