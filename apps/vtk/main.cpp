@@ -75,7 +75,7 @@ std::unique_ptr<sim::Simulation> buildWorld(const sim::SceneDescription& scene) 
 }
 
 // The cascade's statistics of the last render, as the overlay shows them: where actors left it
-// (seed 002 Table 2; occluded when the scene declares occlusion), the draw items drawn, and the
+// (seed 002 Table 2; occluded when the scene declares occlusion), the actors drawn, and the
 // cascade's time (APP and CULL; building the meshes and drawing them are not in it).
 std::string statisticsText(throng::vtk::CrowdProp& crowd, std::uint64_t actorsDrawn) {
     const ActorFrameStatistics& s = crowd.GetLastStatistics();
