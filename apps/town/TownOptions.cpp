@@ -1,9 +1,7 @@
 #include "TownOptions.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include "throng/support/CommandLine.h"
+#include "throng/support/SceneOptions.h"
 #include "throng/support/Validators.h"
 
 namespace throng::town {
@@ -15,15 +13,10 @@ constexpr const char* kName = "throng-town";
 void declare(support::CommandLine& cl, TownOptions& o) {
     using namespace support;
     CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file (JSON)")->type_name("FILE")->check(existingFile());
-    app.add_option("--actors", o.actors, "total actors, the scene's groups scaled to it")
-        ->type_name("N")
-        ->check(wholeNumber(0, 2'000'000))
-        ->default_str("the scene's");
+    declareSceneOptions(app, o.scene, o.actors, o.seed);
     app.add_option("--frames", o.frames, "frames to run headless; in a window, quit after N")
         ->type_name("N")
         ->check(wholeNumber(1, 100'000'000));
-    app.add_option("--seed", o.seed, "random seed")->type_name("N")->check(wholeNumberFrom(0))->default_str("the scene's");
     app.add_option("--out", o.out, "frames, stats.csv and summary.json go here")->type_name("DIR");
     app.add_option("--width", o.width, "image width in pixels")->type_name("W")->check(wholeNumber(16, 8192));
     app.add_option("--height", o.height, "image height in pixels")->type_name("H")->check(wholeNumber(16, 8192));
@@ -99,22 +92,14 @@ std::string townUsage() { return support::CommandLine::hint(kName); }
 TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene) {
     TownOptions o;
     o.scene = defaultScene;
-    std::string help;
-    {
-        support::CommandLine cl(kName,
-                                "The town-crowd example: builds the world a scene file declares (a town, walkers on its\n"
-                                "navigation mesh, standing groups, a flock) and runs it: in a window when there is a\n"
-                                "display, headless otherwise (PNG frames, stats.csv, summary.json).");
-        declare(cl, o);
-        if (cl.parseOrThrow(argc, argv)) {
-            o.framesGiven = cl.app().count("--frames") > 0;
-            return o;
-        }
-        help = cl.help();
-    }
-    std::fputs(help.c_str(), stdout);
-    std::fflush(stdout);
-    std::exit(0);
+    support::CommandLine::parseOrExitOnHelp(
+        kName,
+        "The town-crowd example: builds the world a scene file declares (a town, walkers on its\n"
+        "navigation mesh, standing groups, a flock) and runs it: in a window when there is a\n"
+        "display, headless otherwise (PNG frames, stats.csv, summary.json).",
+        argc, argv, [&](support::CommandLine& cl) { declare(cl, o); },
+        [&](support::CommandLine& cl) { o.framesGiven = cl.app().count("--frames") > 0; });
+    return o;
 }
 
 }  // namespace throng::town

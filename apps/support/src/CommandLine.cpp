@@ -1,6 +1,7 @@
 #include "throng/support/CommandLine.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -90,6 +91,24 @@ std::optional<int> CommandLine::parse(int argc, char** argv) {
     }
     std::fputs(help().c_str(), stdout);
     return 0;
+}
+
+void CommandLine::parseOrExitOnHelp(const std::string& name, const std::string& description, int argc, char** argv,
+                                    const std::function<void(CommandLine&)>& declare,
+                                    const std::function<void(CommandLine&)>& parsed) {
+    std::string text;
+    {
+        CommandLine cl(name, description);
+        declare(cl);
+        if (cl.parseOrThrow(argc, argv)) {
+            if (parsed) parsed(cl);
+            return;
+        }
+        text = cl.help();
+    }
+    std::fputs(text.c_str(), stdout);
+    std::fflush(stdout);
+    std::exit(0);
 }
 
 std::string CommandLine::help() const { return app_.help(); }

@@ -103,6 +103,20 @@ CLI::Validator existingFile() {
         "");
 }
 
+CLI::Validator fileToWrite() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::error_code ec;
+            if (text.empty()) return "no file named";
+            const std::filesystem::path path(text);
+            if (std::filesystem::is_directory(path, ec)) return inQuotes(text) + " is a folder";
+            const std::filesystem::path folder = path.parent_path();
+            if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) return "no such folder: " + inQuotes(folder.string());
+            return {};
+        },
+        "");
+}
+
 CLI::Validator existingFileOr(std::string keyword) {
     const CLI::Validator file = existingFile();
     return CLI::Validator(

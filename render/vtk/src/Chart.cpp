@@ -1,4 +1,5 @@
 #include "throng/vtk/Chart.h"
+#include "throng/vtk/WindowPng.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,7 +12,6 @@
 #include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
@@ -19,7 +19,6 @@
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
-#include <vtkWindowToImageFilter.h>
 
 namespace throng::vtk {
 
@@ -95,16 +94,11 @@ void writeChartPng(const Chart& chart, const std::string& path) {
         tables.push_back(table);
     }
     view->GetRenderWindow()->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(view->GetRenderWindow());
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(path.c_str());
-    writer->SetInputConnection(grab->GetOutputPort());
-    writer->Write();
-    if (!std::filesystem::exists(path) || std::filesystem::file_size(path) == 0)
-        throw std::runtime_error("writeChartPng: could not write '" + path + "'");
+    try {
+        writeWindowPng(*view->GetRenderWindow(), path);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string("writeChartPng: ") + e.what());
+    }
 }
 
 }  // namespace throng::vtk

@@ -4,6 +4,7 @@
 // command line alike: one line "tool: problem naming the option", a pointer to --help, exit code 2,
 // before the tool has done anything.
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,14 @@ public:
     /// with the problem, naming the option, on a bad command line (for tools that report errors
     /// themselves; print it as "tool: problem" followed by hint()).
     bool parseOrThrow(int argc, char** argv);
+
+    /// For tools that parse in a function returning their options: makes the command line of `name`,
+    /// lets `declare` put the options on it, parses argv, then calls `parsed` (e.g. to ask which
+    /// options were given). On --help prints the help and exits with 0 (after destroying the command
+    /// line); throws std::invalid_argument naming the option on a bad command line.
+    static void parseOrExitOnHelp(const std::string& name, const std::string& description, int argc, char** argv,
+                                  const std::function<void(CommandLine&)>& declare,
+                                  const std::function<void(CommandLine&)>& parsed = {});
 
     /// The --help text: usage, every option with its allowed values and default, the footer.
     std::string help() const;

@@ -24,6 +24,9 @@ CLI::Validator nonNegativeNumber();
 CLI::Validator oneOf(std::vector<std::string> choices);
 /// The path of an existing regular file.
 CLI::Validator existingFile();
+/// A file to write: its folder exists (the current one when the path names none) and the path is not
+/// a folder.
+CLI::Validator fileToWrite();
 /// The path of an existing regular file, or `keyword` (e.g. "seed-humanoid").
 CLI::Validator existingFileOr(std::string keyword);
 /// Impostor views "AxE": 3 to 256 azimuths by 1 to 64 elevation rings (see ViewGrid).
