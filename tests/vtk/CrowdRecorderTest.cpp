@@ -8,6 +8,10 @@
 #include <fstream>
 #include <map>
 
+#include <vtkImageData.h>
+#include <vtkPNGReader.h>
+#include <vtkXMLImageDataReader.h>
+
 #include "VtkFiles.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorGroup.h"
@@ -202,6 +206,39 @@ TEST(CrowdRecorder, FilesReadBackWithEveryActorAndAttribute) {
             trajectories->GetPoint(line->GetPointId(vtkIdType(j++)), p);
             EXPECT_EQ(Vec3(p[0], p[1], p[2]), s.position[std::size_t(a)]) << "actor " << a << ", step " << step;
         }
+    }
+
+    // The crowd maps: every recorded actor-frame binned once, density in people per square metre.
+    auto maps = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    ASSERT_TRUE(maps->CanReadFile((dir / "crowd_maps.vti").c_str()));
+    maps->SetFileName((dir / "crowd_maps.vti").c_str());
+    maps->Update();
+    vtkImageData* image = maps->GetOutput();
+    vtkDataArray* visits = image->GetPointData()->GetArray("visits");
+    vtkDataArray* density = image->GetPointData()->GetArray("density");
+    vtkDataArray* speed = image->GetPointData()->GetArray("speed");
+    ASSERT_TRUE(visits && density && speed);
+    const double cell = image->GetSpacing()[0];
+    double visited = 0.0, people = 0.0, fastest = 0.0;
+    for (vtkIdType c = 0; c < visits->GetNumberOfTuples(); ++c) {
+        visited += visits->GetTuple1(c);
+        people += density->GetTuple1(c) * cell * cell;
+        fastest = std::max(fastest, speed->GetTuple1(c));
+    }
+    EXPECT_DOUBLE_EQ(visited, double(kActors * seen.size()));
+    EXPECT_NEAR(people, double(kActors), 1e-9) << "on average every actor is somewhere in every recorded frame";
+    EXPECT_GT(fastest, 0.5) << "the walkers move";
+    for (const char* picture : {"density.png", "speed.png"}) {  // a square of pixels per cell, as VTK reads it back
+        auto png = vtkSmartPointer<vtkPNGReader>::New();
+        ASSERT_TRUE(png->CanReadFile((dir / picture).c_str())) << picture;
+        png->SetFileName((dir / picture).c_str());
+        png->Update();
+        const int* size = png->GetOutput()->GetDimensions();
+        const int scale = size[0] / image->GetDimensions()[0];
+        EXPECT_GE(std::max(size[0], size[1]), 512) << picture;
+        EXPECT_EQ(size[0], scale * image->GetDimensions()[0]) << picture;
+        EXPECT_EQ(size[1], scale * image->GetDimensions()[1]) << picture;
+        EXPECT_EQ(png->GetOutput()->GetNumberOfScalarComponents(), 4) << picture;
     }
 
     // The scene: the moved box and the LOD's finest child, no actor.

@@ -25,6 +25,7 @@
 #include "throng/actors/Crowd.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Node.h"
+#include "throng/vtk/CrowdMaps.h"
 #include "throng/vtk/ScenePolyData.h"
 
 namespace throng::vtk {
@@ -332,6 +333,7 @@ void CrowdRecorder::finish() {
     finished_ = true;
     writeTrajectories();
     writeCollection();
+    writeCrowdMaps(directory_, samples_, sampleSpeed_, frames_.size());
 }
 
 }  // namespace throng::vtk

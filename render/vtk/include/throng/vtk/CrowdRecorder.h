@@ -25,6 +25,8 @@
 //                          recorded position: a line from it to itself); point data time and
 //                          speed, cell data id, group, template
 //   DIR/crowd.pvd          finish(): the actors files with their times
+//   DIR/crowd_maps.vti, density.png, speed.png
+//                          finish(): where the recorded actors went and how fast (CrowdMaps.h)
 
 #include <cstdint>
 #include <filesystem>
@@ -61,7 +63,7 @@ public:
     /// needs for speeds and trajectories and, on every `every`-th step (step 0 included), writes
     /// actors_NNNNNN.vtp. Throws std::runtime_error naming the file if it cannot be written.
     void record(const Crowd& crowd, const ActorProcessor& processor);
-    /// Writes trajectories.vtp and crowd.pvd (later records are refused). Throws std::runtime_error
+    /// Writes trajectories.vtp, crowd.pvd and the crowd maps (later records are refused). Throws std::runtime_error
     /// naming the file if one cannot be written.
     void finish();
 

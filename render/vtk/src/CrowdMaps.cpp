@@ -1,0 +1,115 @@
+#include "throng/vtk/CrowdMaps.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkImageData.h>
+#include <vtkLookupTable.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkXMLImageDataWriter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace throng::vtk {
+namespace {
+
+constexpr int kMaxCells = 2048;  // a side: the pictures stay a few MB at most
+
+// `values` (one per cell, row z = 0 first) as an RGBA picture coloured over [0, peak], each cell a
+// square of pixels so that a small town still makes a picture of at least 512 pixels a side.
+void writePicture(const std::filesystem::path& file, const std::vector<double>& values, int nx, int nz, double peak) {
+    auto colours = vtkSmartPointer<vtkLookupTable>::New();
+    colours->SetHueRange(0.667, 0.0);  // blue to red
+    colours->SetValueRange(0.35, 1.0);
+    colours->SetTableRange(0.0, peak > 0.0 ? peak : 1.0);
+    colours->Build();
+    const int k = std::max(1, (512 + std::max(nx, nz) - 1) / std::max(nx, nz));
+    auto rgba = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    rgba->SetNumberOfComponents(4);
+    rgba->SetNumberOfTuples(vtkIdType(values.size()) * k * k);
+    for (int y = 0; y < nz * k; ++y)
+        for (int x = 0; x < nx * k; ++x)
+            rgba->SetTypedTuple(vtkIdType(y) * nx * k + x, colours->MapValue(values[std::size_t(y / k) * std::size_t(nx) + std::size_t(x / k)]));
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(nx * k, nz * k, 1);
+    image->GetPointData()->SetScalars(rgba);
+    auto writer = vtkSmartPointer<vtkPNGWriter>::New();
+    writer->SetFileName(file.c_str());
+    writer->SetInputData(image);
+    writer->Write();
+    if (writer->GetErrorCode() != 0) throw std::runtime_error("writeCrowdMaps: cannot write " + file.string());
+}
+
+}  // namespace
+
+CrowdMapSummary writeCrowdMaps(const std::filesystem::path& directory, std::span<const double> positions,
+                               std::span<const double> speeds, std::size_t frames, double cellSize) {
+    if (!(cellSize > 0.0) || !std::isfinite(cellSize))
+        throw std::invalid_argument("writeCrowdMaps: the cell size must be positive, not " + std::to_string(cellSize));
+    if (positions.size() % 3 != 0 || positions.size() / 3 != speeds.size())
+        throw std::invalid_argument("writeCrowdMaps: " + std::to_string(positions.size()) + " coordinates for " +
+                                    std::to_string(speeds.size()) + " speeds (3 per actor-frame)");
+    CrowdMapSummary summary;
+    const std::size_t n = speeds.size();
+    if (n == 0 || frames == 0) return summary;
+    double x0 = std::numeric_limits<double>::infinity(), z0 = x0, x1 = -x0, z1 = -x0;
+    for (std::size_t i = 0; i < n; ++i) {
+        x0 = std::min(x0, positions[3 * i]), x1 = std::max(x1, positions[3 * i]);
+        z0 = std::min(z0, positions[3 * i + 2]), z1 = std::max(z1, positions[3 * i + 2]);
+    }
+    const double side = std::max(x1 - x0, z1 - z0);
+    cellSize = std::max(cellSize, side / (kMaxCells - 1));
+    x0 = std::floor(x0 / cellSize) * cellSize, z0 = std::floor(z0 / cellSize) * cellSize;
+    const int nx = int(std::floor((x1 - x0) / cellSize)) + 1, nz = int(std::floor((z1 - z0) / cellSize)) + 1;
+    std::vector<double> visits(std::size_t(nx) * std::size_t(nz), 0.0), speed(visits.size(), 0.0), density(visits.size(), 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const int cx = std::min(nx - 1, int((positions[3 * i] - x0) / cellSize));
+        const int cz = std::min(nz - 1, int((positions[3 * i + 2] - z0) / cellSize));
+        const std::size_t c = std::size_t(cz) * std::size_t(nx) + std::size_t(cx);
+        visits[c] += 1.0, speed[c] += speeds[i];
+    }
+    const double perVisit = 1.0 / (double(frames) * cellSize * cellSize);
+    for (std::size_t c = 0; c < visits.size(); ++c) {
+        density[c] = visits[c] * perVisit;
+        if (visits[c] > 0.0) speed[c] /= visits[c];
+        summary.peakDensity = std::max(summary.peakDensity, density[c]);
+        summary.peakSpeed = std::max(summary.peakSpeed, speed[c]);
+    }
+    summary.cellsX = nx, summary.cellsZ = nz, summary.cellSize = cellSize, summary.visits = n;
+
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(nx, nz, 1);
+    image->SetOrigin(x0 + cellSize / 2.0, z0 + cellSize / 2.0, 0.0);  // image y is the ground's z
+    image->SetSpacing(cellSize, cellSize, 1.0);
+    for (const auto& [name, values] : {std::pair{"density", &density}, std::pair{"speed", &speed}, std::pair{"visits", &visits}}) {
+        auto array = vtkSmartPointer<vtkDoubleArray>::New();
+        array->SetName(name);
+        array->SetNumberOfValues(vtkIdType(values->size()));
+        for (std::size_t c = 0; c < values->size(); ++c) array->SetValue(vtkIdType(c), (*values)[c]);
+        image->GetPointData()->AddArray(array);
+    }
+    const std::filesystem::path vti = directory / "crowd_maps.vti";
+    auto writer = vtkSmartPointer<vtkXMLImageDataWriter>::New();
+    writer->SetFileName(vti.c_str());
+    writer->SetInputData(image);
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    if (writer->Write() == 0) throw std::runtime_error("writeCrowdMaps: cannot write " + vti.string());
+    writePicture(directory / "density.png", density, nx, nz, summary.peakDensity);
+    // Speeds coloured up to the 95th percentile of the cells someone was in: a few fast movers (a
+    // flock overhead) would otherwise leave every walker's cell the same blue.
+    std::vector<double> seen;
+    for (std::size_t c = 0; c < visits.size(); ++c)
+        if (visits[c] > 0.0) seen.push_back(speed[c]);
+    std::nth_element(seen.begin(), seen.begin() + std::ptrdiff_t(seen.size() * 95 / 100), seen.end());
+    writePicture(directory / "speed.png", speed, nx, nz, seen[seen.size() * 95 / 100]);
+    return summary;
+}
+
+}  // namespace throng::vtk
