@@ -6,6 +6,7 @@
 // handover records with their bytes, and the walkers' state sent to rank 0.
 //
 //   bench_ranks [--actors N,N,...] [--region-blocks B] [--warmup N] [--steps N] [--threads N] [--csv FILE]
+//               [--avoidance-quality Q] [--avoidance-range R] [--far-every N] [--far-distance M]
 //
 // --csv appends (a header first when the file is new), so plain and mpirun runs collect in one file.
 
@@ -37,6 +38,10 @@ struct Options {
     int steps = 20;
     int threads = 1;
     int regionBlocks = 0;  // regions of B x B blocks instead of the scene's (0: the scene's)
+    int quality = -1;      // avoidance quality instead of the scene's (-1: the scene's)
+    double range = 0.0;    // avoidance range in radii instead of the scene's (0: the scene's)
+    int farEvery = 1;      // far regions step every N steps (1: the scene's setting)
+    double farDistance = 60.0;
     std::string csv;
 };
 
@@ -61,6 +66,9 @@ Row measure(const Options& o, std::int64_t actors, sim::Ranks& ranks) {
     sim::SceneDescription d = sim::parseSceneFile(o.scene);
     sim::scaleActors(d, actors);
     if (o.regionBlocks > 0 && d.town) d.town->regions.clear(), d.town->regionBlocks = {o.regionBlocks, o.regionBlocks};
+    if (o.quality >= 0) d.effects.avoidanceQuality = o.quality;
+    if (o.range > 0.0) d.effects.avoidanceRange = o.range;
+    if (o.farEvery > 1) d.effects.farUpdateEvery = o.farEvery, d.effects.farUpdateDistance = o.farDistance;
     const auto t0 = std::chrono::steady_clock::now();
     auto world = sim::Simulation::build(std::move(d));
     row.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -116,6 +124,14 @@ int main(int argc, char** argv) {
     app.add_option("--threads", o.threads, "threads of each rank's step")->type_name("N")->check(support::wholeNumber(1, 256))->capture_default_str();
     app.add_option("--region-blocks", o.regionBlocks, "regions of B x B city blocks instead of the scene's")
         ->type_name("B")->check(support::wholeNumber(1, 1000));
+    app.add_option("--avoidance-quality", o.quality, "avoidance quality instead of the scene's (0 coarsest to 3)")
+        ->type_name("Q")->check(support::wholeNumber(0, 3));
+    app.add_option("--avoidance-range", o.range, "avoidance range, agent radii, instead of the scene's")
+        ->type_name("R")->check(CLI::Range(1.0, 1000.0));
+    app.add_option("--far-every", o.farEvery, "regions far from the camera path step every N steps")
+        ->type_name("N")->check(support::wholeNumber(1, 1000));
+    app.add_option("--far-distance", o.farDistance, "with --far-every: regions beyond M metres are far")
+        ->type_name("M")->check(CLI::Range(1.0, 1e6))->capture_default_str();
     app.add_option("--csv", o.csv, "append the rows to this CSV")->type_name("FILE");
     try {
         if (!cl.parseOrThrow(argc, argv)) {
