@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -23,9 +24,12 @@
 #include "throng/actors/ActorFrameStatistics.h"
 
 class vtkActor;
+class vtkFloatArray;
 class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkProperty;
+class vtkTypeInt32Array;
+class vtkUnsignedCharArray;
 class vtkViewport;
 class vtkWindow;
 
@@ -33,6 +37,8 @@ namespace throng {
 class ActorProcessor;
 class Crowd;
 class Node;
+struct DrawItem;
+struct MeshData;
 }  // namespace throng
 
 namespace throng::vtk {
@@ -59,8 +65,11 @@ public:
     std::uint64_t GetLastSkippedItems() const { return skipped_; }
     /// Triangles the last render drew.
     std::uint64_t GetLastTriangles() const { return triangles_; }
+    /// Milliseconds the last render spent skinning the actors and filling the poly data (after the
+    /// cascade, before VTK's mapper).
+    double GetLastBuildMs() const { return buildMs_; }
     /// The actors' meshes drawn in the last render, in world coordinates (point data "colour").
-    vtkPolyData* GetLastMeshes() { return data_; }
+    vtkPolyData* GetLastMeshes();
     /// The look of the actors' meshes (lighting, shading); colours come from the meshes.
     vtkProperty* GetActorProperty();
 
@@ -88,9 +97,14 @@ private:
     std::unique_ptr<CameraCascade> cascade_;
     ActorFrameStatistics last_;
     std::uint64_t skipped_ = 0, triangles_ = 0;
+    double buildMs_ = 0;
     vtkNew<vtkActor> actor_;
     vtkNew<vtkPolyDataMapper> mapper_;
     vtkSmartPointer<vtkPolyData> data_;
+    vtkNew<vtkFloatArray> points_;          // the frame's vertices, world coordinates
+    vtkNew<vtkUnsignedCharArray> colours_;  // their colours
+    vtkNew<vtkTypeInt32Array> connectivity_;// three indices per triangle
+    std::vector<std::pair<const DrawItem*, const MeshData*>> parts_;  // the frame's meshes drawn
     std::vector<glm::vec3> scratch_;  // one mesh's skinned positions
 };
 

@@ -1,0 +1,163 @@
+// bench_vtk_crowd_prop: a crowd drawn inside VTK (throng::vtk::CrowdProp: the cascade for VTK's
+// camera, CPU skinning into one poly data, a VTK mapper) beside the same crowd drawn by Throng's own
+// renderer (ActorProcessor + CrowdRenderer: GPU skinning, instancing), on the same state and the same
+// camera, each frame back to back, the order alternating. Both paths draw through Mesa's llvmpipe
+// (VTK in an offscreen window of the X display, Throng in a GLFW window on the same display), both at
+// the same size, the actors only (no town).
+//
+// Reported per path and crowd size: APP+CULL (the cascade, the same in both), what the path adds
+// before GL (CrowdProp: skinning and filling the poly data), the render including the GL finishing
+// (vtkRenderWindow::Render with a glFinish; CrowdRenderer::drawFrame with its passes finished), the
+// whole frame, and the actors and triangles drawn (equal when both draw the same draw list).
+//
+// usage: bench_vtk_crowd_prop [--actors 1000,4000] [--frames 20] [--width 1280] [--height 720]
+// (needs an X display: run under xvfb-run -a)
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <vtkCamera.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+
+#include "throng/actors/ActorProcessor.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/GlContext.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenes/TownSpread.h"
+#include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
+#include "throng/vtk/CameraFromVtk.h"
+#include "throng/vtk/Chart.h"
+#include "throng/vtk/CrowdProp.h"
+
+using namespace throng;
+
+namespace {
+
+struct Options {
+    std::vector<std::int64_t> actors{1000, 4000};
+    int frames = 20;
+    int width = 1280, height = 720;
+};
+
+struct Totals {
+    double appCull = 0, build = 0, render = 0, frame = 0, drawn = 0, triangles = 0;
+};
+
+void run(std::int64_t count, const Options& o) {
+    Crowd crowd;
+    const auto actors = std::size_t(count);
+    const scenes::TownSpread town = scenes::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
+
+    vtkNew<vtkRenderWindow> window;
+    window->SetOffScreenRendering(1);
+    window->SetSize(o.width, o.height);
+    vtkNew<vtkRenderer> renderer;
+    renderer->SetBackground(0.55, 0.66, 0.80);
+    window->AddRenderer(renderer);
+    vtkCamera* camera = renderer->GetActiveCamera();  // a pedestrian in the spread, as bench_vtk_culler
+    camera->SetPosition(0, 1.7, 0);
+    camera->SetFocalPoint(100, 1.7, 20);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(1.0 * 180.0 / 3.14159265358979323846);
+    camera->SetClippingRange(0.1, 1500.0);
+    auto prop = vtkSmartPointer<throng::vtk::CrowdProp>::New();
+    prop->SetScene(&crowd, town.root.get());
+    renderer->AddViewProp(prop);
+
+    ContextOptions contextOptions;
+    contextOptions.width = o.width;
+    contextOptions.height = o.height;
+    contextOptions.window = true;  // GLX on the same display as VTK (OSMesa and GLX in one process crash Mesa)
+    std::string fallback;
+    auto context = createContext(contextOptions, &fallback);
+    if (!fallback.empty()) throw std::runtime_error("no GLFW window on the X display: " + fallback);
+    CrowdRendererOptions drawOptions;
+    drawOptions.finishPasses = true;
+    CrowdRenderer throngDraw(context, drawOptions);
+    ActorProcessor processor(crowd);
+
+    FrameContext now;
+    Totals inVtk, inThrong;
+    for (int f = -2; f < o.frames; ++f) {  // two unmeasured frames warm both GLs
+        now.time = double(now.frame) / 30.0;
+        crowd.step(now);
+        ++now.frame;
+        const Camera view = throng::vtk::cameraFromVtk(*camera, double(o.width) / double(o.height));
+        for (int turn = 0; turn < 2; ++turn) {
+            const bool vtkFirst = (f & 1) == 0;
+            if ((turn == 0) == vtkFirst) {
+                window->MakeCurrent();  // the OSMesa context may be current: GLX and OSMesa share the GL dispatch
+                Stopwatch watch;
+                window->Render();
+                window->WaitForCompletion();
+                const double ms = watch.elapsedMs();
+                if (f < 0) continue;
+                const ActorFrameStatistics& s = prop->GetLastStatistics();
+                inVtk.appCull += s.appCullMs();
+                inVtk.build += prop->GetLastBuildMs();
+                inVtk.render += ms - s.appCullMs() - prop->GetLastBuildMs();
+                inVtk.frame += ms;
+                inVtk.drawn += double(s.drawItems);
+                inVtk.triangles += double(prop->GetLastTriangles());
+            } else {
+                context->makeCurrent();
+                Stopwatch watch;
+                const ActorFrameStatistics s = processor.processFrame(*town.root, view, now.time);
+                const double appCull = watch.elapsedMs();
+                throngDraw.drawFrame(view, processor.drawList());
+                const double ms = watch.elapsedMs();
+                if (f < 0) continue;
+                inThrong.appCull += appCull;
+                inThrong.render += ms - appCull;
+                inThrong.frame += ms;
+                inThrong.drawn += double(s.drawItems);
+                inThrong.triangles += double(throngDraw.statistics().meshes.triangles);
+            }
+        }
+        if (f >= 0) std::fprintf(stderr, "\rbench_vtk_crowd_prop: %zu actors, frame %d of %d", actors, f + 1, o.frames);
+    }
+    std::fprintf(stderr, "\n");
+    const double n = double(o.frames);
+    const auto row = [&](const char* path, const Totals& t) {
+        std::printf("| %zu | %s | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f |\n", actors, path, t.appCull / n, t.build / n, t.render / n,
+                    t.frame / n, t.drawn / n, t.triangles / n);
+    };
+    row("CrowdProp (VTK mapper, CPU skinning)", inVtk);
+    row("Throng's renderer (GPU skinning, instancing)", inThrong);
+    std::printf("| | whole frame, VTK path / Throng's | | | | %.2fx | | |\n", inVtk.frame / std::max(inThrong.frame, 1e-9));
+    std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    support::CommandLine line("bench_vtk_crowd_prop", "A crowd drawn inside VTK (CrowdProp) beside Throng's own renderer, same state and camera");
+    CLI::App& app = line.app();
+    app.add_option("--actors", o.actors, "crowd sizes")->delimiter(',')->check(support::wholeNumber(1, 1000000));
+    app.add_option("--frames", o.frames, "measured frames per size")->check(support::wholeNumber(1, 100000));
+    app.add_option("--width", o.width, "image width")->check(support::wholeNumber(16, 8192));
+    app.add_option("--height", o.height, "image height")->check(support::wholeNumber(16, 8192));
+    if (const auto code = line.parse(argc, argv)) return *code;
+    if (!throng::vtk::displayAvailable()) {
+        std::fprintf(stderr, "bench_vtk_crowd_prop: no X display (Debian's VTK renders through X): run under xvfb-run -a\n");
+        return 2;
+    }
+    try {
+        std::printf("| actors | path | APP+CULL ms | skinning and poly data ms | render ms | frame ms | actors drawn | triangles |\n"
+                    "|---:|---|---:|---:|---:|---:|---:|---:|\n");
+        for (std::int64_t a : o.actors) run(a, o);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_vtk_crowd_prop: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
