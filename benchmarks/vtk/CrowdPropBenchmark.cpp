@@ -1,9 +1,10 @@
-// bench_vtk_crowd_prop: a crowd drawn inside VTK (throng::vtk::CrowdProp: the cascade for VTK's
-// camera, CPU skinning into one poly data, a VTK mapper) beside the same crowd drawn by Throng's own
-// renderer (ActorProcessor + CrowdRenderer: GPU skinning, instancing), on the same state and the same
-// camera, each frame back to back, the order alternating. Both paths draw through Mesa's llvmpipe
-// (VTK in an offscreen window of the X display, Throng in a GLFW window on the same display), both at
-// the same size, the actors only (no town).
+// bench_vtk_crowd_prop: a crowd drawn inside VTK by throng::vtk::CrowdProp, both ways (the cascade
+// for VTK's camera, then CPU skinning into one poly data and a VTK mapper, or Throng's renderer in
+// VTK's context), beside the same crowd drawn by Throng's renderer in its own window (ActorProcessor +
+// CrowdRenderer: GPU skinning, instancing), on the same state and the same camera, each frame back to
+// back, the paths taking turns going first. All draw through Mesa's llvmpipe (VTK in offscreen
+// windows of the X display, Throng alone in a GLFW window on the same display), at the same size, the
+// actors only (no town).
 //
 // Reported per path and crowd size: APP+CULL (the cascade, the same in both), what the path adds
 // before GL (CrowdProp: skinning and filling the poly data), the render including the GL finishing
@@ -51,26 +52,50 @@ struct Totals {
     double appCull = 0, build = 0, render = 0, frame = 0, drawn = 0, triangles = 0;
 };
 
+// One VTK window holding a CrowdProp, drawing through the mapper or with Throng's renderer.
+struct VtkPath {
+    vtkNew<vtkRenderWindow> window;
+    vtkNew<vtkRenderer> renderer;
+    vtkSmartPointer<throng::vtk::CrowdProp> prop = vtkSmartPointer<throng::vtk::CrowdProp>::New();
+    Totals totals;
+    VtkPath(Crowd& crowd, Node& root, bool throngDrawing, const Options& o) {
+        window->SetOffScreenRendering(1);
+        window->SetSize(o.width, o.height);
+        renderer->SetBackground(0.55, 0.66, 0.80);
+        window->AddRenderer(renderer);
+        vtkCamera* camera = renderer->GetActiveCamera();  // a pedestrian in the spread, as bench_vtk_culler
+        camera->SetPosition(0, 1.7, 0);
+        camera->SetFocalPoint(100, 1.7, 20);
+        camera->SetViewUp(0, 1, 0);
+        camera->SetViewAngle(1.0 * 180.0 / 3.14159265358979323846);
+        camera->SetClippingRange(0.1, 1500.0);
+        prop->SetScene(&crowd, &root);
+        prop->SetThrongDrawing(throngDrawing);
+        renderer->AddViewProp(prop);
+    }
+    void frame(bool measured) {
+        window->MakeCurrent();  // another path's context may be current
+        Stopwatch watch;
+        window->Render();
+        window->WaitForCompletion();
+        const double ms = watch.elapsedMs();
+        if (!measured) return;
+        const ActorFrameStatistics& s = prop->GetLastStatistics();
+        const bool throngDrawing = prop->GetThrongDrawing();
+        totals.appCull += s.appCullMs();
+        totals.build += throngDrawing ? 0.0 : prop->GetLastBuildMs();
+        totals.render += ms - s.appCullMs() - (throngDrawing ? 0.0 : prop->GetLastBuildMs());
+        totals.frame += ms;
+        totals.drawn += double(s.drawItems);
+        totals.triangles += double(prop->GetLastTriangles());
+    }
+};
+
 void run(std::int64_t count, const Options& o) {
     Crowd crowd;
     const auto actors = std::size_t(count);
     const scenes::TownSpread town = scenes::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
-
-    vtkNew<vtkRenderWindow> window;
-    window->SetOffScreenRendering(1);
-    window->SetSize(o.width, o.height);
-    vtkNew<vtkRenderer> renderer;
-    renderer->SetBackground(0.55, 0.66, 0.80);
-    window->AddRenderer(renderer);
-    vtkCamera* camera = renderer->GetActiveCamera();  // a pedestrian in the spread, as bench_vtk_culler
-    camera->SetPosition(0, 1.7, 0);
-    camera->SetFocalPoint(100, 1.7, 20);
-    camera->SetViewUp(0, 1, 0);
-    camera->SetViewAngle(1.0 * 180.0 / 3.14159265358979323846);
-    camera->SetClippingRange(0.1, 1500.0);
-    auto prop = vtkSmartPointer<throng::vtk::CrowdProp>::New();
-    prop->SetScene(&crowd, town.root.get());
-    renderer->AddViewProp(prop);
+    VtkPath mapper(crowd, *town.root, false, o), inVtk(crowd, *town.root, true, o);
 
     ContextOptions contextOptions;
     contextOptions.width = o.width;
@@ -83,56 +108,45 @@ void run(std::int64_t count, const Options& o) {
     drawOptions.finishPasses = true;
     CrowdRenderer throngDraw(context, drawOptions);
     ActorProcessor processor(crowd);
+    Totals alone;
+    const auto throngFrame = [&](bool measured) {
+        const Camera view = throng::vtk::cameraFromVtk(*mapper.renderer->GetActiveCamera(), double(o.width) / double(o.height));
+        context->makeCurrent();
+        Stopwatch watch;
+        const ActorFrameStatistics s = processor.processFrame(*town.root, view, crowd.time());
+        const double appCull = watch.elapsedMs();
+        throngDraw.drawFrame(view, processor.drawList());
+        const double ms = watch.elapsedMs();
+        if (!measured) return;
+        alone.appCull += appCull;
+        alone.render += ms - appCull;
+        alone.frame += ms;
+        alone.drawn += double(s.drawItems);
+        alone.triangles += double(throngDraw.statistics().meshes.triangles);
+    };
 
     FrameContext now;
-    Totals inVtk, inThrong;
-    for (int f = -2; f < o.frames; ++f) {  // two unmeasured frames warm both GLs
+    for (int f = -2; f < o.frames; ++f) {  // two unmeasured frames warm the GLs
         now.time = double(now.frame) / 30.0;
         crowd.step(now);
         ++now.frame;
-        const Camera view = throng::vtk::cameraFromVtk(*camera, double(o.width) / double(o.height));
-        for (int turn = 0; turn < 2; ++turn) {
-            const bool vtkFirst = (f & 1) == 0;
-            if ((turn == 0) == vtkFirst) {
-                window->MakeCurrent();  // the OSMesa context may be current: GLX and OSMesa share the GL dispatch
-                Stopwatch watch;
-                window->Render();
-                window->WaitForCompletion();
-                const double ms = watch.elapsedMs();
-                if (f < 0) continue;
-                const ActorFrameStatistics& s = prop->GetLastStatistics();
-                inVtk.appCull += s.appCullMs();
-                inVtk.build += prop->GetLastBuildMs();
-                inVtk.render += ms - s.appCullMs() - prop->GetLastBuildMs();
-                inVtk.frame += ms;
-                inVtk.drawn += double(s.drawItems);
-                inVtk.triangles += double(prop->GetLastTriangles());
-            } else {
-                context->makeCurrent();
-                Stopwatch watch;
-                const ActorFrameStatistics s = processor.processFrame(*town.root, view, now.time);
-                const double appCull = watch.elapsedMs();
-                throngDraw.drawFrame(view, processor.drawList());
-                const double ms = watch.elapsedMs();
-                if (f < 0) continue;
-                inThrong.appCull += appCull;
-                inThrong.render += ms - appCull;
-                inThrong.frame += ms;
-                inThrong.drawn += double(s.drawItems);
-                inThrong.triangles += double(throngDraw.statistics().meshes.triangles);
-            }
+        for (int turn = 0; turn < 3; ++turn) {  // the paths take turns going first
+            const int path = (turn + f + 2) % 3;
+            if (path == 0) mapper.frame(f >= 0);
+            else if (path == 1) inVtk.frame(f >= 0);
+            else throngFrame(f >= 0);
         }
         if (f >= 0) std::fprintf(stderr, "\rbench_vtk_crowd_prop: %zu actors, frame %d of %d", actors, f + 1, o.frames);
     }
     std::fprintf(stderr, "\n");
     const double n = double(o.frames);
     const auto row = [&](const char* path, const Totals& t) {
-        std::printf("| %zu | %s | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f |\n", actors, path, t.appCull / n, t.build / n, t.render / n,
-                    t.frame / n, t.drawn / n, t.triangles / n);
+        std::printf("| %zu | %s | %.2f | %.2f | %.2f | %.2f | %.2fx | %.0f | %.0f |\n", actors, path, t.appCull / n, t.build / n, t.render / n,
+                    t.frame / n, t.frame / std::max(alone.frame, 1e-9), t.drawn / n, t.triangles / n);
     };
-    row("CrowdProp (VTK mapper, CPU skinning)", inVtk);
-    row("Throng's renderer (GPU skinning, instancing)", inThrong);
-    std::printf("| | whole frame, VTK path / Throng's | | | | %.2fx | | |\n", inVtk.frame / std::max(inThrong.frame, 1e-9));
+    row("CrowdProp, VTK mapper (CPU skinning)", mapper.totals);
+    row("CrowdProp, Throng's renderer in VTK's context", inVtk.totals);
+    row("Throng's renderer in its own window", alone);
     std::fflush(stdout);
 }
 
@@ -152,8 +166,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        std::printf("| actors | path | APP+CULL ms | skinning and poly data ms | render ms | frame ms | actors drawn | triangles |\n"
-                    "|---:|---|---:|---:|---:|---:|---:|---:|\n");
+        std::printf("| actors | path | APP+CULL ms | skinning and poly data ms | render ms | frame ms | vs Throng alone | items drawn | triangles |\n"
+                    "|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
         for (std::int64_t a : o.actors) run(a, o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_vtk_crowd_prop: %s\n", e.what());

@@ -49,7 +49,7 @@ void CrowdRenderer::draw(const DrawList& list) {
             actorItems_.add(item, 0);
             ++stats_.keyPoseItems;
         } else if (item.actor == kNoActor) {
-            sceneItems_.add(item, 0);
+            if (options_.drawScene) sceneItems_.add(item, 0);
         } else {
             actorItems_.add(item, 0);
             stats_.skinnedItems += item.skinPaletteSize > 0;

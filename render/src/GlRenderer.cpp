@@ -580,7 +580,7 @@ void GlRenderer::beginFrame(const Camera& camera) {
     r.projection = glm::mat4(camera.projection());
 
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.context->framebuffer());
-    gl.Viewport(0, 0, r.context->width(), r.context->height());
+    gl.Viewport(r.context->originX(), r.context->originY(), r.context->width(), r.context->height());
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
@@ -592,10 +592,12 @@ void GlRenderer::beginFrame(const Camera& camera) {
     } else {
         gl.Disable(GL_CULL_FACE);
     }
-    const glm::vec4& c = r.options.clearColor;
-    gl.ClearColor(c.r, c.g, c.b, c.a);
-    gl.ClearDepth(1.0);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (r.options.clear) {
+        const glm::vec4& c = r.options.clearColor;
+        gl.ClearColor(c.r, c.g, c.b, c.a);
+        gl.ClearDepth(1.0);
+        gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
 }
 
 void GlRenderer::draw(const DrawList& list) {

@@ -469,7 +469,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     const glm::dmat3 inverse = glm::transpose(glm::dmat3(camera.view()));
     const glm::vec3 right(inverse[0]), up(inverse[1]);
     gl.BindFramebuffer(GL_FRAMEBUFFER, r.context->framebuffer());
-    gl.Viewport(0, 0, r.context->width(), r.context->height());
+    gl.Viewport(r.context->originX(), r.context->originY(), r.context->width(), r.context->height());
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthMask(GL_TRUE);
     gl.Disable(GL_CULL_FACE);

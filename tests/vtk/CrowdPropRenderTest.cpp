@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -28,6 +29,7 @@
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"
+#include "throng/render/CrowdRenderer.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/vtk/Chart.h"
@@ -89,8 +91,13 @@ bool green(const unsigned char* p) { return p[1] > 128 && p[0] < 64 && p[2] < 64
 
 }  // namespace
 
-TEST(CrowdPropRender, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
+// Drawn through the VTK mapper (false) and by Throng's own renderer in VTK's context (true).
+class CrowdPropDrawing : public ::testing::TestWithParam<bool> {};
+
+TEST_P(CrowdPropDrawing, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
     if (!throng::vtk::displayAvailable()) GTEST_SKIP() << "no X display (run under xvfb-run)";
+    const bool throngDrawing = GetParam();
+    const std::string prefix = throngDrawing ? "throng-" : "";
     Row seen, twin;
     FrameContext context;
     context.time = 0.5;
@@ -105,7 +112,8 @@ TEST(CrowdPropRender, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
     window->AddRenderer(renderer);
     auto crowdProp = vtkSmartPointer<throng::vtk::CrowdProp>::New();
     crowdProp->SetScene(&seen.crowd, seen.root.get());
-    crowdProp->GetActorProperty()->LightingOff();  // flat colours: red actors
+    crowdProp->GetActorProperty()->LightingOff();  // flat colours: red actors (Throng's light keeps them red)
+    crowdProp->SetThrongDrawing(throngDrawing);
     renderer->AddViewProp(crowdProp);
     vtkCamera* camera = renderer->GetActiveCamera();
     camera->SetPosition(0, 1, 0);
@@ -114,7 +122,7 @@ TEST(CrowdPropRender, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
     camera->SetViewAngle(60);
     camera->SetClippingRange(0.1, 100);
 
-    const Picture before = grab(*window, "crowd-prop.png");
+    const Picture before = grab(*window, prefix + "crowd-prop.png");
     // The same camera given to Throng directly, on the twin crowd: the same cascade.
     Camera throngCamera;
     throngCamera.setPerspective(60.0 * std::numbers::pi / 180.0, double(kWidth) / kHeight, 0.1, 100.0);
@@ -154,7 +162,7 @@ TEST(CrowdPropRender, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
     cone->GetProperty()->LightingOff();
     cone->SetPosition(0, 1, -5);
     renderer->AddActor(cone);
-    const Picture after = grab(*window, "crowd-prop-cone-in-front.png");
+    const Picture after = grab(*window, prefix + "crowd-prop-cone-in-front.png");
     EXPECT_TRUE(green(after.at(cx, cy))) << "the cone, nearer, hides the actor behind it";
     std::size_t redAfter = 0, greenAfter = 0;
     for (int y = 0; y < kHeight; ++y)
@@ -165,9 +173,21 @@ TEST(CrowdPropRender, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
 
     // Behind the actors the cone is hidden by them instead.
     cone->SetPosition(0, 1, -20);
-    const Picture behind = grab(*window, "crowd-prop-cone-behind.png");
+    const Picture behind = grab(*window, prefix + "crowd-prop-cone-behind.png");
     EXPECT_TRUE(red(behind.at(cx, cy))) << "the actor, nearer, hides the cone";
+    if (throngDrawing) {
+        ASSERT_NE(crowdProp->GetLastRenderStatistics(), nullptr);
+        EXPECT_EQ(crowdProp->GetLastRenderStatistics()->meshes.instances, got.drawItems) << "Throng's renderer drew every item";
+        // VTK's own props still draw right after the crowd (its GL state was given back): the cone
+        // moved in front again shows.
+        cone->SetPosition(0, 1, -5);
+        const Picture again = grab(*window, prefix + "crowd-prop-cone-again.png");
+        EXPECT_TRUE(green(again.at(cx, cy)));
+    }
 }
+
+INSTANTIATE_TEST_SUITE_P(CrowdPropRender, CrowdPropDrawing, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "ThrongRenderer" : "VtkMapper"; });
 
 TEST(CrowdPropRender, SkinnedMeshesAreBlendedByTheirPalette) {
     if (!throng::vtk::displayAvailable()) GTEST_SKIP() << "no X display (run under xvfb-run)";

@@ -19,8 +19,8 @@ CameraCascade::CameraCascade(Crowd* crowd, Node* root, const char* who) : crowd_
 CameraCascade::~CameraCascade() = default;
 
 const ActorFrameStatistics& CameraCascade::run(vtkRenderer& renderer) {
-    const Camera camera = cameraFromVtk(*renderer.GetActiveCamera(), renderer.GetTiledAspectRatio());
-    return processor_->processFrame(*root_, camera, crowd_->time());
+    camera_ = cameraFromVtk(*renderer.GetActiveCamera(), renderer.GetTiledAspectRatio());
+    return processor_->processFrame(*root_, camera_, crowd_->time());
 }
 
 }  // namespace throng::vtk

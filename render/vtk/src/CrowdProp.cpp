@@ -15,7 +15,11 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
 #include <vtkRenderer.h>
+#include <vtk_glew.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -23,7 +27,9 @@
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "throng/render/CrowdRenderer.h"
 #include "throng/vtk/CameraCascade.h"
+#include "VtkGlContext.h"
 
 namespace throng::vtk {
 
@@ -40,7 +46,7 @@ CrowdProp::CrowdProp() {
     actor_->SetMapper(mapper_);
 }
 
-CrowdProp::~CrowdProp() = default;
+CrowdProp::~CrowdProp() { releaseThrongRenderer(); }
 
 void CrowdProp::SetScene(Crowd* crowd, Node* root) {
     cascade_ = std::make_unique<CameraCascade>(crowd, root, "CrowdProp::SetScene");
@@ -124,10 +130,71 @@ void CrowdProp::buildMeshes() {
     data_->Modified();
 }
 
+void CrowdProp::SetThrongDrawing(bool on) {
+    if (on == throngDrawing_) return;
+    throngDrawing_ = on;
+    Modified();
+}
+
+const CrowdRenderStatistics* CrowdProp::GetLastRenderStatistics() const { return throngDraw_ ? &throngDraw_->statistics() : nullptr; }
+
+// Throng's renderer draws the draw list into the framebuffer VTK has bound for this renderer, over
+// what VTK drew so far (no clear) and against its depth. VTK caches GL state (vtkOpenGLState) and
+// which shader it bound last: both are recorded before and put back after, so VTK's next props see
+// the state they expect.
+int CrowdProp::renderWithThrong(vtkRenderer& renderer) {
+    auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer.GetRenderWindow());
+    if (!window) {
+        vtkErrorMacro("CrowdProp: Throng drawing needs an OpenGL render window");
+        return 0;
+    }
+    if (window_ && window_ != window) releaseThrongRenderer();
+    vtkOpenGLState* state = window->GetState();
+    state->Reset();
+    state->Push();
+    int framebuffer = 0;
+    state->vtkglGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    int x = 0, y = 0;
+    renderer.GetTiledSizeAndOrigin(&scratchSize_[0], &scratchSize_[1], &x, &y);
+    Stopwatch watch;
+    try {
+        if (!throngDraw_) {
+            glContext_ = std::make_shared<VtkGlContext>();
+            CrowdRendererOptions options;
+            options.meshes.clear = false;  // VTK's picture and depth stay under the crowd
+            options.drawScene = false;     // the application's scene is VTK's to draw
+            throngDraw_ = std::make_unique<CrowdRenderer>(glContext_, options);
+            window_ = window;
+        }
+        glContext_->setTarget(unsigned(framebuffer), x, y, scratchSize_[0], scratchSize_[1]);
+        throngDraw_->drawFrame(cascade_->camera(), cascade_->processor().drawList());
+    } catch (const std::exception& e) {
+        state->Pop();
+        vtkErrorMacro("CrowdProp: " << e.what());
+        return 0;
+    }
+    state->Pop();
+    window->GetShaderCache()->ReleaseCurrentShader();
+    buildMs_ = watch.elapsedMs();
+    const CrowdRenderStatistics& s = throngDraw_->statistics();
+    triangles_ = s.meshes.triangles;
+    skipped_ = s.meshes.skippedItems + s.quads.instances;
+    return 1;
+}
+
+void CrowdProp::releaseThrongRenderer() {
+    if (!throngDraw_) return;
+    if (window_) window_->MakeCurrent();  // its GL objects live in that window's context
+    throngDraw_.reset();
+    glContext_.reset();
+    window_ = nullptr;
+}
+
 int CrowdProp::RenderOpaqueGeometry(vtkViewport* viewport) {
     auto* renderer = vtkRenderer::SafeDownCast(viewport);
     if (!renderer || !cascade_ || !GetVisibility()) return 0;
     last_ = cascade_->run(*renderer);
+    if (throngDrawing_) return renderWithThrong(*renderer);
     Stopwatch watch;
     buildMeshes();
     buildMs_ = watch.elapsedMs();
@@ -136,6 +203,7 @@ int CrowdProp::RenderOpaqueGeometry(vtkViewport* viewport) {
 }
 
 void CrowdProp::ReleaseGraphicsResources(vtkWindow* window) {
+    if (window == window_.GetPointer()) releaseThrongRenderer();
     actor_->ReleaseGraphicsResources(window);
     vtkProp3D::ReleaseGraphicsResources(window);
 }

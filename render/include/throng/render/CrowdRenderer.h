@@ -51,6 +51,9 @@ struct CrowdRendererOptions {
     /// Waits for the GL after each pass, so each pass's time includes its rasterisation (for
     /// benchmarks: a software GL otherwise rasterises when the frame ends). Slightly slower.
     bool finishPasses = false;
+    /// Draws the items of the generic scene (no actor). Off when the host application draws its
+    /// own scene and Throng draws the crowd into it (CrowdProp in a VTK renderer).
+    bool drawScene = true;
 };
 
 /// What one frame of a CrowdRenderer cost and drew.

@@ -28,6 +28,11 @@ public:
     virtual int width() const = 0;
     /// Height of that framebuffer in pixels.
     virtual int height() const = 0;
+    /// Lower-left corner of the area drawn in that framebuffer (0, 0 unless the context draws into a
+    /// viewport of another program's window).
+    virtual int originX() const { return 0; }
+    /// See originX().
+    virtual int originY() const { return 0; }
     /// Resizes the framebuffer (headless) or the window. Throws std::invalid_argument unless both
     /// sizes are positive and within the implementation's limits.
     virtual void resize(int width, int height) = 0;

@@ -15,7 +15,10 @@ struct RendererOptions {
     bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
-    bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
+    bool flatTint = false;
+    /// beginFrame clears colour and depth. Off when drawing into a frame another renderer has begun
+    /// and will present (a VTK render window), so its picture and depth stay under ours.
+    bool clear = true;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
     /// Draws nearer items first (groups by their nearest instance, instances near to far), so the
     /// depth test rejects hidden fragments before they are shaded. Same picture, less shading.
     bool frontToBack = true;

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "throng/actors/ActorFrameStatistics.h"
+#include "throng/scenegraph/Camera.h"
 
 class vtkRenderer;
 
@@ -33,11 +34,14 @@ public:
     Crowd& crowd() const { return *crowd_; }
     /// The processor (its settings are the application's to choose).
     ActorProcessor& processor() const { return *processor_; }
+    /// The camera of the last run().
+    const Camera& camera() const { return camera_; }
 
 private:
     Crowd* crowd_;
     Node* root_;
     std::unique_ptr<ActorProcessor> processor_;
+    Camera camera_;
 };
 
 }  // namespace throng::vtk
