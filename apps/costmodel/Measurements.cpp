@@ -10,6 +10,7 @@
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/CostModel.h"
 #include "throng/actors/CostModelScene.h"
+#include "throng/actors/JointError.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/actors/Table3Template.h"
@@ -186,19 +187,13 @@ std::vector<AccuracyRow> measureAccuracy(const std::vector<double>& scales, cons
         row.nodesEvaluated = stats.skeletonNodesEvaluated;
         row.primitives = stats.primitives;
         const auto joints = jointPositions(scale);
-        double sum = 0.0;
-        std::size_t n = 0;
+        JointError error;
         for (const auto& [id, positions] : joints) {
             const auto ref = reference.find(id);
-            if (ref == reference.end()) continue;
-            for (std::size_t j = 0; j < positions.size(); ++j) {
-                const double e = glm::length(positions[j] - ref->second[j]) * 1000.0;
-                sum += e;
-                row.maxErrorMm = std::max(row.maxErrorMm, e);
-                ++n;
-            }
+            if (ref != reference.end()) error.add(positions, ref->second);
         }
-        row.meanErrorMm = n ? sum / double(n) : 0.0;
+        row.meanErrorMm = error.meanMm();
+        row.maxErrorMm = error.maxMm();
         const auto drawn = primitives();
         std::size_t same = 0;
         for (const Key& k : referencePrimitives) same += drawn.count(k);
