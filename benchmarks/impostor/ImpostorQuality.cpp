@@ -23,6 +23,7 @@
 //
 //   throng-impostor-quality [--out DIR] [--size 128] [--keyframes 16] [--views 16x4]
 //                           [--a A --b B --p P] [--asset NAME=SOURCE:CLIP ...] [--sections LIST]
+//                           [--sweep-knobs cell_size,views,keyframes_kept,features]
 // Exit codes: 0 done, 1 a measurement failed (the message says why), 2 a bad command line.
 
 #include <algorithm>
@@ -708,7 +709,7 @@ void sectionMemory(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTe
 // blend of three views; or warped through the proxy straight to that time and direction), against
 // the cell rendered at that very time and direction at twice the reference size, shrunk to it).
 void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl, int clip, const ImpostorBakeOptions& reference, Bake& base,
-                  const MorphParameters& p, std::vector<AccuracyRow>& rows) {
+                  const MorphParameters& p, const std::set<std::string>& knobs, std::vector<AccuracyRow>& rows) {
     const std::string scene = asset.name + "/" + base.full->clipName();
     struct Config {
         std::string knob, value;
@@ -839,6 +840,7 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
     };
     const Method classic = linesMethod("morph, all bones", all, p), proxy = proxyMethod("surface-proxy warp");
     for (const Config& c : configs) {
+        if (!knobs.count(c.knob)) continue;
         std::fprintf(stderr, "%s: [sweep] baking %s = %s...\n", asset.name.c_str(), c.knob.c_str(), c.value.c_str());
         const bool isBase = c.options.cellSize == reference.cellSize && c.options.azimuths == reference.azimuths &&
                             c.options.elevations == reference.elevations && c.options.keyframes == reference.keyframes;
@@ -849,13 +851,18 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
         measure(c.knob, c.value, bake, direct);
         measure(c.knob, c.value, bake, direct4);
     }
-    for (const auto& [value, m] : featureMethods) measure("features", value, base, m);
+    if (knobs.count("features"))
+        for (const auto& [value, m] : featureMethods) measure("features", value, base, m);
 }
 
 // The common accuracy CSV: the knob sweeps (one knob per sweep and method; the measure, dropped
 // cells at the baked views or cells shown at random eyes and times, as the camera), the view blends,
 // Table 2 and the equal-memory models. Time: milliseconds to make one cell (or image) on its path.
-void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& sweep, const std::vector<Row>& rows) {
+void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& sweep, const std::vector<Row>& rows,
+                      const ImpostorBakeOptions& reference) {
+    // The scene names the bake every knob is varied around.
+    const std::string bake = ", " + std::to_string(reference.cellSize) + " px, " + std::to_string(reference.azimuths) + "x" +
+                             std::to_string(reference.elevations) + " views, " + std::to_string(reference.keyframes) + " key-frames";
     support::AccuracyCsv csv(path);
     const auto record = [&](std::string knob, std::string value, std::string scene, std::string camera, double ncc, double nccWhole,
                             double psnr, double ssim, double msPerCell, double bytes) {
@@ -866,7 +873,7 @@ void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& s
         a.ms = msPerCell;
         a.msPhase = "per_cell";
         a.memoryBytes = bytes;
-        a.scene = std::move(scene);
+        a.scene = std::move(scene) + bake;
         a.camera = std::move(camera);
         a.actors = 1;
         csv.add(a);
@@ -952,7 +959,16 @@ int main(int argc, char** argv) {
         ->delimiter(',')
         ->check(support::oneOf(kSections))
         ->default_str("morph,features,abp,views,table2,memory,sweep");
+    const std::vector<std::string> kSweepKnobs = {"cell_size", "views", "keyframes_kept", "features"};
+    std::vector<std::string> sweepKnobTexts;
+    app.add_option("--sweep-knobs", sweepKnobTexts, "knobs the sweep section measures, comma-separated (fewer: a shorter run)")
+        ->type_name("LIST")
+        ->delimiter(',')
+        ->check(support::oneOf(kSweepKnobs))
+        ->default_str("cell_size,views,keyframes_kept,features");
     if (const auto code = cl.parse(argc, argv)) return *code;
+    const std::set<std::string> sweepKnobs = sweepKnobTexts.empty() ? std::set<std::string>(kSweepKnobs.begin(), kSweepKnobs.end())
+                                                                    : std::set<std::string>(sweepKnobTexts.begin(), sweepKnobTexts.end());
     out = outText;
     options.azimuths = views.azimuths;
     options.elevations = views.elevations;
@@ -988,7 +1004,7 @@ int main(int argc, char** argv) {
             if (wants("views")) sectionViews(a, *bake, parameters, rows);
             if (wants("table2")) sectionTable2(a, *bake, parameters, rows);
             if (wants("memory")) sectionMemory(a, *bake, tmpl, clip, parameters, rows);
-            if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, accuracy);
+            if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, sweepKnobs, accuracy);
         }
         const double minutes = ms(std::chrono::steady_clock::now() - started) / 60000.0;
 
@@ -999,7 +1015,7 @@ int main(int argc, char** argv) {
             csv << r.section << ',' << r.asset << ',' << r.clip << ",\"" << r.method << "\"," << r.features << ',' << r.ncc << ',' << r.nccStd << ','
                 << r.nccWhole << ',' << r.nccWholeStd << ',' << r.psnr << ',' << r.ssim << ',' << r.cells << ',' << r.msPerCell << ",\"" << r.path
                 << "\"," << r.bytes << ',' << r.extra << '\n';
-        writeAccuracyCsv((out / "impostor-accuracy.csv").string(), accuracy, rows);
+        writeAccuracyCsv((out / "impostor-accuracy.csv").string(), accuracy, rows, options);
 
         std::ostringstream md;
         char line[768];
