@@ -230,8 +230,8 @@ int run(const Options& o) {
         chart.xLabel = "time, " + phase + " (ms)";
         chart.yLabel = p.metric + " (" + p.unit + ", " + p.better + " is better)";
         chart.padding = 0.06;
-        // The legend where no setting is: slow and inaccurate settings are rare (they are what the
-        // front avoids), so it goes to the bottom right when higher is better, else the top right.
+        // The legend beside the slow and inaccurate corner (what the front avoids): the bottom when
+        // higher is better, else the top; the chart leaves room for it there.
         chart.legend = p.better == "higher" ? throng::vtk::Chart::Legend::Bottom : throng::vtk::Chart::Legend::Top;
         chart.width = 900;
         chart.height = 560;
@@ -262,7 +262,10 @@ int run(const Options& o) {
         }
         if (!off.x.empty()) chart.series.push_back(off);
         chart.logX = lo > 0 && hi / lo > 30.0;  // times from microseconds to seconds stay readable
-        p.file = "plots/" + std::to_string(k + 1) + "-" + slug(knob) + ".png";
+        // Named after the knob alone, so that a page embedding one plot keeps finding it.
+        p.file = "plots/" + slug(knob) + ".png";
+        for (int n = 2; std::any_of(plots.begin(), plots.end(), [&](const Plot& q) { return q.file == p.file; }); ++n)
+            p.file = "plots/" + slug(knob) + "-" + std::to_string(n) + ".png";
         std::fprintf(stderr, "throng-accuracy-report: plot %zu/%zu: %s\n", k + 1, knobs.size(), knob.c_str());
         throng::vtk::writeChartPng(chart, (out / p.file).string());
         plots.push_back(p);

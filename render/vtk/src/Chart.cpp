@@ -107,6 +107,12 @@ void writeChartPng(const Chart& chart, const std::string& path) {
             if (log) lo = std::log10(lo), hi = std::log10(hi);
             const double margin = hi > lo ? chart.padding * (hi - lo) : std::max(std::abs(lo), 1.0) * 0.1;
             lo -= margin, hi += margin;
+            if (!isX && chart.legend != Chart::Legend::Middle) {
+                // Room for the legend above or below the data, so that it hides no point.
+                const double share = std::min(0.6, (20.0 * double(chart.series.size()) + 16.0) / std::max(100.0, chart.height - 120.0));
+                const double room = (hi - lo) * share / (1.0 - share);
+                (chart.legend == Chart::Legend::Top ? hi : lo) += chart.legend == Chart::Legend::Top ? room : -room;
+            }
             if (log) lo = std::pow(10.0, lo), hi = std::pow(10.0, hi);
             axis->SetBehavior(vtkAxis::FIXED);
             axis->SetRange(lo, hi);
