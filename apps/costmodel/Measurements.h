@@ -47,6 +47,9 @@ struct WallClockRow {
     double publishedFactor = 0;       ///< Eq. 3 as published, same point
 };
 
+/// Actors of the accuracy sweep's town (walking seed humanoids over 400 m x 400 m).
+inline constexpr std::size_t kAccuracyActors = 3000;
+
 /// One LOD scale of the accuracy sweep.
 struct AccuracyRow {
     double lodScale = 0;                 ///< distance multiplier (1 = as authored)

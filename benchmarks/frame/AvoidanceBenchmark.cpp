@@ -27,6 +27,7 @@
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -238,14 +239,33 @@ int main(int argc, char** argv) {
         md << report.str();
     }
     if (!o.accuracyCsv.empty()) {
-        std::ofstream csv(o.accuracyCsv);
-        if (!csv) fail("cannot write " + o.accuracyCsv);
-        csv << "knob,value,contacts_per_agent_second,contact_share,overlaps_per_agent_second,progress_m_per_s,path_deviation_m,ms,ms_phase,memory_bytes,scene,camera,actors\n";
-        const std::string scene = o.scene.substr(o.scene.find_last_of('/') + 1);
-        for (const Result& r : rows)
-            csv << (r.setting.farEvery > 1 ? "avoidance quality and far update," : "avoidance quality,") << '"' << r.setting.quality
-                << " at range " << r.setting.range << (r.setting.farEvery > 1 ? ", far every " + std::to_string(r.setting.farEvery) : "") << "\"," << r.collisions << ',' << r.contact << ',' << r.overlaps << ',' << r.progress
-                << ',' << r.deviation << ',' << r.stepMs << ",step,0," << scene << ",none," << r.walkers << '\n';
+        // The common accuracy CSV: the finest setting (the first row, the reference) is "off"; path
+        // deviation from it comes first, the measure that is zero there by construction.
+        try {
+            support::AccuracyCsv csv(o.accuracyCsv);
+            for (const Result& r : rows) {
+                support::AccuracyRecord a;
+                a.knob = r.setting.farEvery > 1 ? "avoidance quality and far update" : "avoidance quality";
+                std::ostringstream value;
+                value << r.setting.quality << " at range " << r.setting.range;
+                if (r.setting.farEvery > 1) value << ", far every " << r.setting.farEvery;
+                a.value = value.str();
+                a.off = &r == &rows.front();
+                a.metrics = {{"path_deviation", r.deviation, "m", true},
+                             {"contacts", r.collisions, "1/(agent s)", true},
+                             {"contact_time", r.contact, "pair s/(agent s)", true},
+                             {"overlaps", r.overlaps, "1/(agent s)", true},
+                             {"progress", r.progress, "m/s", false}};
+                a.ms = r.stepMs;
+                a.msPhase = "step";
+                a.scene = support::sceneName(o.scene);
+                a.camera = "none";
+                a.actors = std::int64_t(r.walkers);
+                csv.add(a);
+            }
+        } catch (const std::exception& e) {
+            fail(e.what());
+        }
     }
     return 0;
 }

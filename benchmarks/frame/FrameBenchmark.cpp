@@ -53,6 +53,7 @@
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -737,7 +738,7 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(2, 1'000'000));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
-    app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section as CSV (one row per knob value)")->type_name("FILE");
+    app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section in the common accuracy CSV (one record per buffer resolution and camera)")->type_name("FILE");
     app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(wholeNumber(1, 10'000'000));
     app.add_option("--town-samples", o.townSamples, "cameras along the path in the town section")
         ->type_name("N")->check(wholeNumber(1, 10'000));
@@ -838,11 +839,10 @@ int main(int argc, char** argv) {
                    << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less):\n\n"
                    << "| camera | buffer | buffer ms | APP+CULL ms | hidden | hidden share | posed | tiles hidden |\n"
                    << "|---|---|---:|---:|---:|---:|---:|---:|\n";
-            std::ofstream csv;
-            if (!o.occlusionCsv.empty()) {
-                csv.open(o.occlusionCsv);
-                csv << "knob,value,camera,actors,scene,hidden_share,actors_hidden,actors_posed,tiles_hidden,occlusion_buffer_ms,app_cull_ms,memory_bytes\n";
-            }
+            // The common accuracy CSV. Occlusion is conservative (no visible actor is rejected at any
+            // resolution), so its measures are what it achieves: the share hidden, and the posing left.
+            std::unique_ptr<support::AccuracyCsv> csv;
+            if (!o.occlusionCsv.empty()) csv = std::make_unique<support::AccuracyCsv>(o.occlusionCsv);
             char line[512];
             for (const OcclusionRow& r : sweep) {
                 const std::string size = r.width ? std::to_string(r.width) + "x" + std::to_string(r.height) : "off";
@@ -851,9 +851,21 @@ int main(int argc, char** argv) {
                               r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles);
                 report << line;
                 // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
-                if (csv) csv << "occlusion_resolution," << size << ',' << r.camera << ',' << actors << ",town," << share << ',' << r.hidden
-                             << ',' << r.posed << ',' << r.tiles << ',' << r.bufferMs << ',' << r.appCullMs << ','
-                             << (std::int64_t(r.width) * r.height * 16 / 3) << '\n';
+                if (csv) {
+                    support::AccuracyRecord a;
+                    a.knob = "occlusion buffer resolution";
+                    a.value = size;
+                    a.off = r.width == 0;
+                    a.metrics = {{"hidden_share", share, "share", false}, {"actors_posed", r.posed, "actors", true},
+                                 {"tiles_hidden", r.tiles, "tiles", false}};
+                    a.ms = r.appCullMs;
+                    a.msPhase = "app_cull";
+                    a.memoryBytes = double(std::int64_t(r.width) * r.height * 16 / 3);
+                    a.scene = support::sceneName(o.scene);
+                    a.camera = r.camera;
+                    a.actors = actors;
+                    csv->add(a);
+                }
             }
         }
         if (o.has("visibility")) {

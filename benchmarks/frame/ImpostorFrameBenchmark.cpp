@@ -41,6 +41,7 @@
 #include "throng/render/ImageCompare.h"
 #include "throng/render/ImageSimilarity.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "throng/support/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -328,14 +329,24 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
     return t.str();
 }
 
+// The common accuracy CSV: one record per knob setting, its image error against all skinned and its
+// DRAW time. "none" (no impostors) and "unlimited" (no morph budget) switch their knob off.
 void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, const Options& o) {
-    std::ofstream csv(path);
-    if (!csv) fail("cannot write " + path);
-    csv << "knob,value,psnr_db,ssim,pixels_off_8_share,ms,ms_phase,memory_bytes,scene,camera,actors\n";
+    support::AccuracyCsv csv(path);
     for (const Row& r : rows) {
         if (r.images == 0 || r.knob.empty()) continue;
-        csv << r.knob << ",\"" << r.value << "\"," << r.psnr << ',' << r.ssim << ',' << r.off8 << ',' << r.draw << ",DRAW,"
-            << std::size_t(r.textureBytes) << ',' << o.scene.substr(o.scene.find_last_of('/') + 1) << ",path," << r.actors << '\n';
+        support::AccuracyRecord a;
+        a.knob = r.knob;
+        a.value = r.value;
+        a.off = (r.knob == "impostor distance" && r.value == "none") || (r.knob == "morph budget" && r.value == "unlimited");
+        a.metrics = {{"psnr", r.psnr, "dB", false}, {"ssim", r.ssim, "1", false}, {"pixels_off_8", r.off8, "share", true}};
+        a.ms = r.draw;
+        a.msPhase = "draw";
+        a.memoryBytes = r.textureBytes;
+        a.scene = support::sceneName(o.scene);
+        a.camera = "path";
+        a.actors = std::int64_t(r.actors);
+        csv.add(a);
     }
 }
 

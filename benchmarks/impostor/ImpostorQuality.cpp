@@ -18,11 +18,12 @@
 //   sweep     knobs (cell size, views, key-frames kept, features) against accuracy, morph time
 //             and texture memory, in the common accuracy CSV
 // Writes impostor-quality.md, impostor-quality.csv (one row per method and asset),
-// impostor-accuracy.csv (knob,value,... rows) and a plot (impostor-quality.png, through VTK: run
+// impostor-accuracy.csv (the common accuracy CSV, with the view blends timed) and a plot (impostor-quality.png, through VTK: run
 // under xvfb-run -a without a display).
 //
 //   throng-impostor-quality [--out DIR] [--size 128] [--keyframes 16] [--views 16x4]
 //                           [--a A --b B --p P] [--asset NAME=SOURCE:CLIP ...] [--sections LIST]
+//                           [--sweep-knobs cell_size,views,keyframes_kept,features]
 // Exit codes: 0 done, 1 a measurement failed (the message says why), 2 a bad command line.
 
 #include <algorithm>
@@ -53,6 +54,7 @@
 #include "throng/render/MorphFeatures.h"
 #include "throng/render/ProxyWarp.h"
 #include "throng/render/ViewWarp.h"
+#include "throng/support/AccuracyCsv.h"
 #include "throng/support/CharacterSource.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
@@ -490,10 +492,11 @@ Image showView(Bake& bake, int kind, const glm::vec3& eye, int k, std::span<cons
         lines.emplace_back(l.begin(), l.end());
         directions.push_back(full.views().direction(v));
     }
-    if (kind == 1) return blendCells(cells, weights);
     const auto t0 = std::chrono::steady_clock::now();
     Image out;
-    if (kind == 7) {
+    if (kind == 1) {
+        out = blendCells(cells, weights);
+    } else if (kind == 7) {
         std::vector<ProxySource> sources;
         for (std::size_t i = 0; i < views.size(); ++i) sources.push_back({&cells[i], directions[i], k, weights[i]});
         out = warpProxy(bake.proxy(0), sources, eye, k, ourProxyOptions());
@@ -535,7 +538,11 @@ void sectionViews(const Asset& asset, Bake& bake, const MorphParameters& p, std:
         for (const ViewShow& show : viewShows()) {
             Scores& s = scores[static_cast<std::size_t>(show.kind)];
             if (show.kind == 0) {
-                s.add(bake.full->cell(h.nearest(dir), k), truth);
+                const auto t0 = std::chrono::steady_clock::now();
+                const Image nearest = bake.full->cell(h.nearest(dir), k);
+                s.morphMs += ms(std::chrono::steady_clock::now() - t0);
+                ++s.morphs;
+                s.add(nearest, truth);
                 continue;
             }
             const ViewBlend& b = show.kind == 2 ? smooth : linear;
@@ -544,7 +551,7 @@ void sectionViews(const Asset& asset, Bake& bake, const MorphParameters& p, std:
     }
     for (const ViewShow& show : viewShows()) {
         Row r = makeRow("views", asset.name, bake.full->clipName(), show.name, scores[static_cast<std::size_t>(show.kind)]);
-        r.path = show.kind <= 2 ? "-" : show.kind == 7 ? "CPU, 1 thread" : "GPU";
+        r.path = show.kind <= 2 || show.kind == 7 ? "CPU, 1 thread" : "GPU";
         rows.push_back(r);
         std::fprintf(stderr, "%s: [views] %s: NCC %.4f PSNR %.2f SSIM %.4f\n", asset.name.c_str(), show.name.c_str(), r.ncc, r.psnr, r.ssim);
     }
@@ -702,7 +709,7 @@ void sectionMemory(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTe
 // blend of three views; or warped through the proxy straight to that time and direction), against
 // the cell rendered at that very time and direction at twice the reference size, shrunk to it).
 void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl, int clip, const ImpostorBakeOptions& reference, Bake& base,
-                  const MorphParameters& p, std::vector<AccuracyRow>& rows) {
+                  const MorphParameters& p, const std::set<std::string>& knobs, std::vector<AccuracyRow>& rows) {
     const std::string scene = asset.name + "/" + base.full->clipName();
     struct Config {
         std::string knob, value;
@@ -833,6 +840,7 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
     };
     const Method classic = linesMethod("morph, all bones", all, p), proxy = proxyMethod("surface-proxy warp");
     for (const Config& c : configs) {
+        if (!knobs.count(c.knob)) continue;
         std::fprintf(stderr, "%s: [sweep] baking %s = %s...\n", asset.name.c_str(), c.knob.c_str(), c.value.c_str());
         const bool isBase = c.options.cellSize == reference.cellSize && c.options.azimuths == reference.azimuths &&
                             c.options.elevations == reference.elevations && c.options.keyframes == reference.keyframes;
@@ -843,7 +851,47 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
         measure(c.knob, c.value, bake, direct);
         measure(c.knob, c.value, bake, direct4);
     }
-    for (const auto& [value, m] : featureMethods) measure("features", value, base, m);
+    if (knobs.count("features"))
+        for (const auto& [value, m] : featureMethods) measure("features", value, base, m);
+}
+
+// The common accuracy CSV: the knob sweeps (one knob per sweep and method; the measure, dropped
+// cells at the baked views or cells shown at random eyes and times, as the camera), the view blends,
+// Table 2 and the equal-memory models. Time: milliseconds to make one cell (or image) on its path.
+void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& sweep, const std::vector<Row>& rows,
+                      const ImpostorBakeOptions& reference) {
+    // The scene names the bake every knob is varied around.
+    const std::string bake = ", " + std::to_string(reference.cellSize) + " px, " + std::to_string(reference.azimuths) + "x" +
+                             std::to_string(reference.elevations) + " views, " + std::to_string(reference.keyframes) + " key-frames";
+    support::AccuracyCsv csv(path);
+    const auto record = [&](std::string knob, std::string value, std::string scene, std::string camera, double ncc, double nccWhole,
+                            double psnr, double ssim, double msPerCell, double bytes) {
+        support::AccuracyRecord a;
+        a.knob = std::move(knob);
+        a.value = std::move(value);
+        a.metrics = {{"ncc", ncc, "1", false}, {"ncc_whole_cell", nccWhole, "1", false}, {"psnr", psnr, "dB", false}, {"ssim", ssim, "1", false}};
+        a.ms = msPerCell;
+        a.msPhase = "per_cell";
+        a.memoryBytes = bytes;
+        a.scene = std::move(scene) + bake;
+        a.camera = std::move(camera);
+        a.actors = 1;
+        csv.add(a);
+    };
+    for (const AccuracyRow& r : sweep) {
+        std::string knob = r.knob;
+        std::replace(knob.begin(), knob.end(), '_', ' ');
+        record("impostor " + knob + (r.knob == "features" ? std::string() : ", " + r.method), r.knob == "features" ? r.value + " (" + r.method + ")" : r.value,
+               r.scene, r.measure == "dropped_cells" ? "baked views" : "random eyes", r.ncc, r.nccWhole, r.psnr, r.ssim, r.msPerCell,
+               static_cast<double>(r.bytes));
+    }
+    for (const Row& r : rows) {
+        const char* knob = r.section == "views" ? "impostor view blending" : r.section == "table2" ? "impostor seed 000 table 2"
+                         : r.section == "memory" ? "impostor equal memory model" : nullptr;
+        if (!knob) continue;
+        record(knob, r.method, r.asset + "/" + r.clip, r.section == "views" ? "random eyes" : "baked views", r.ncc, r.nccWhole, r.psnr, r.ssim,
+               r.msPerCell, static_cast<double>(r.bytes));
+    }
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -911,7 +959,16 @@ int main(int argc, char** argv) {
         ->delimiter(',')
         ->check(support::oneOf(kSections))
         ->default_str("morph,features,abp,views,table2,memory,sweep");
+    const std::vector<std::string> kSweepKnobs = {"cell_size", "views", "keyframes_kept", "features"};
+    std::vector<std::string> sweepKnobTexts;
+    app.add_option("--sweep-knobs", sweepKnobTexts, "knobs the sweep section measures, comma-separated (fewer: a shorter run)")
+        ->type_name("LIST")
+        ->delimiter(',')
+        ->check(support::oneOf(kSweepKnobs))
+        ->default_str("cell_size,views,keyframes_kept,features");
     if (const auto code = cl.parse(argc, argv)) return *code;
+    const std::set<std::string> sweepKnobs = sweepKnobTexts.empty() ? std::set<std::string>(kSweepKnobs.begin(), kSweepKnobs.end())
+                                                                    : std::set<std::string>(sweepKnobTexts.begin(), sweepKnobTexts.end());
     out = outText;
     options.azimuths = views.azimuths;
     options.elevations = views.elevations;
@@ -947,7 +1004,7 @@ int main(int argc, char** argv) {
             if (wants("views")) sectionViews(a, *bake, parameters, rows);
             if (wants("table2")) sectionTable2(a, *bake, parameters, rows);
             if (wants("memory")) sectionMemory(a, *bake, tmpl, clip, parameters, rows);
-            if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, accuracy);
+            if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, sweepKnobs, accuracy);
         }
         const double minutes = ms(std::chrono::steady_clock::now() - started) / 60000.0;
 
@@ -958,18 +1015,7 @@ int main(int argc, char** argv) {
             csv << r.section << ',' << r.asset << ',' << r.clip << ",\"" << r.method << "\"," << r.features << ',' << r.ncc << ',' << r.nccStd << ','
                 << r.nccWhole << ',' << r.nccWholeStd << ',' << r.psnr << ',' << r.ssim << ',' << r.cells << ',' << r.msPerCell << ",\"" << r.path
                 << "\"," << r.bytes << ',' << r.extra << '\n';
-        // The common accuracy CSV: knob sweeps, Table 2 and the equal-memory models.
-        std::ofstream acc(out / "impostor-accuracy.csv");
-        acc << "knob,value,method,scene,measure,ncc,ncc_std,ncc_whole_cell,psnr_db,ssim,samples,morph_ms_per_cell,memory_bytes\n";
-        for (const AccuracyRow& r : accuracy)
-            acc << r.knob << ',' << r.value << ",\"" << r.method << "\"," << r.scene << ',' << r.measure << ',' << r.ncc << ',' << r.nccStd << ','
-                << r.nccWhole << ',' << r.psnr << ',' << r.ssim << ',' << r.samples << ',' << r.msPerCell << ',' << r.bytes << '\n';
-        for (const Row& r : rows) {
-            if (r.section != "table2" && r.section != "memory") continue;
-            acc << (r.section == "table2" ? "seed000_table2" : "equal_memory_model") << ",\"" << r.method << "\",\"" << r.method << "\","
-                << r.asset << '/' << r.clip << ',' << (r.section == "table2" ? "baked_cells" : "all_keyframes") << ',' << r.ncc << ',' << r.nccStd
-                << ',' << r.nccWhole << ',' << r.psnr << ',' << r.ssim << ',' << r.cells << ',' << r.msPerCell << ',' << r.bytes << '\n';
-        }
+        writeAccuracyCsv((out / "impostor-accuracy.csv").string(), accuracy, rows, options);
 
         std::ostringstream md;
         char line[768];

@@ -1,7 +1,10 @@
 #include "throng/vtk/Chart.h"
 #include "throng/vtk/WindowPng.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <stdexcept>
 
@@ -92,6 +95,30 @@ void writeChartPng(const Chart& chart, const std::string& path) {
         }
         plot->SetLabel(s.name);
         tables.push_back(table);
+    }
+    if (chart.padding > 0) {
+        // The data's range on each axis, widened (in log space on a log axis).
+        const auto pad = [&](vtkAxis* axis, bool log, bool isX) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (const ChartSeries& s : chart.series)
+                for (double v : isX ? s.x : s.y)
+                    if (std::isfinite(v) && (!log || v > 0)) lo = std::min(lo, v), hi = std::max(hi, v);
+            if (!(lo <= hi)) return;
+            if (log) lo = std::log10(lo), hi = std::log10(hi);
+            const double margin = hi > lo ? chart.padding * (hi - lo) : std::max(std::abs(lo), 1.0) * 0.1;
+            lo -= margin, hi += margin;
+            if (!isX && chart.legend != Chart::Legend::Middle) {
+                // Room for the legend above or below the data, so that it hides no point.
+                const double share = std::min(0.6, (20.0 * double(chart.series.size()) + 16.0) / std::max(100.0, chart.height - 120.0));
+                const double room = (hi - lo) * share / (1.0 - share);
+                (chart.legend == Chart::Legend::Top ? hi : lo) += chart.legend == Chart::Legend::Top ? room : -room;
+            }
+            if (log) lo = std::pow(10.0, lo), hi = std::pow(10.0, hi);
+            axis->SetBehavior(vtkAxis::FIXED);
+            axis->SetRange(lo, hi);
+        };
+        pad(bottom, chart.logX, true);
+        pad(left, chart.logY, false);
     }
     view->GetRenderWindow()->Render();
     try {

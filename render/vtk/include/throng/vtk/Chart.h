@@ -28,6 +28,10 @@ struct Chart {
     bool logY = false;                 ///< logarithmic left axis
     /// Where the legend goes (inside the plot, on the right).
     enum class Legend { Top, Middle, Bottom } legend = Legend::Top;
+    /// Margin added on each side of both axes, as a share of the data's range (0: VTK's tight fit,
+    /// which draws points on the border half outside the plot); with a legend at the top or bottom,
+    /// the left axis also leaves room for it there.
+    double padding = 0.0;
     int width = 1000;                  ///< pixels
     int height = 650;                  ///< pixels
 };
