@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
         options.budgetMs = o.frameBudget;
         budget = std::make_unique<support::FrameBudgetAllocator>(support::readBudgetLadder(o.frameBudgetLadder), options);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "throng-town: --frame-budget-ladder: %s\n", e.what());
+        std::fprintf(stderr, "throng-town: --frame-budget-ladder: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
     // Started by mpirun, each rank steps its share of the walkers' regions (one rank alone too, so
