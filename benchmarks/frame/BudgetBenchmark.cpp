@@ -69,6 +69,7 @@ struct Options {
     int width = 1280, height = 720;
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::string ladder, markdown;
+    std::string fromLadder;  // measure no rung: run the allocators on this ladder
 };
 
 // One way of drawing the ticks: a fixed rung, the allocator at a budget, or the reference.
@@ -114,6 +115,8 @@ int main(int argc, char** argv) {
     app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192))->capture_default_str();
     app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192))->capture_default_str();
     app.add_option("--ladder", o.ladder, "write the ladder (Pareto front, most accurate first) as the common accuracy CSV")->type_name("FILE");
+    app.add_option("--from-ladder", o.fromLadder, "skip measuring the rungs: run the --budgets allocators on this ladder (and its rungs)")
+        ->type_name("FILE")->check(support::existingFile());
     app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
     if (const auto code = cl.parse(argc, argv)) return *code;
 
@@ -167,7 +170,8 @@ int main(int argc, char** argv) {
             return m;
         };
         std::vector<Method> methods;
-        for (const BudgetSettings& s : candidates) methods.push_back(makeMethod(support::budgetRungValue(s), s));
+        if (o.fromLadder.empty())
+            for (const BudgetSettings& s : candidates) methods.push_back(makeMethod(support::budgetRungValue(s), s));
         const std::size_t fixedCount = methods.size();
 
         // Runs `ms` on the next ticks (the allocator needs the ladder's times before its run, so the
@@ -230,7 +234,7 @@ int main(int argc, char** argv) {
             }
         };
         for (int f = 0; f < o.warmup; ++f) world->step();
-        runTicks(methods, true, "rungs");
+        if (!methods.empty()) runTicks(methods, true, "rungs");
 
         // The ladder: by error, then only rungs cheaper than every more accurate one.
         std::vector<std::size_t> order(fixedCount);
@@ -242,11 +246,12 @@ int main(int argc, char** argv) {
         std::vector<BudgetRung> ladder;
         for (std::size_t i : front)
             ladder.push_back({methods[i].settings, methods[i].off8, methods[i].psnr, methods[i].ssim, methods[i].ms});
+        if (!o.fromLadder.empty()) ladder = support::readBudgetLadder(o.fromLadder);
 
         char line[1024];
-        report << "### " << world->crowd().size() << " actors, " << o.frames << " frames from each of " << o.starts.size()
+        if (fixedCount > 0) report << "### " << world->crowd().size() << " actors, " << o.frames << " frames from each of " << o.starts.size()
                << " points of the camera path, " << o.width << "x" << o.height << "\n\n"
-               << "| rung | APP+CULL+DRAW ms | PSNR dB | SSIM | pixels off > 8 | on the ladder |\n|---|---:|---:|---:|---:|---|\n";
+                                   << "| rung | APP+CULL+DRAW ms | PSNR dB | SSIM | pixels off > 8 | on the ladder |\n|---|---:|---:|---:|---:|---|\n";
         for (std::size_t i = 0; i < fixedCount; ++i) {
             const Method& m = methods[i];
             const auto at = std::find(front.begin(), front.end(), i);
@@ -254,7 +259,7 @@ int main(int argc, char** argv) {
                           at == front.end() ? "no (dominated)" : ("rung " + std::to_string(at - front.begin())).c_str());
             report << line;
         }
-        if (!o.ladder.empty()) {
+        if (!o.ladder.empty() && o.fromLadder.empty()) {
             support::AccuracyCsv csv(o.ladder);
             for (const BudgetRung& r : ladder) {
                 support::AccuracyRecord rec;
