@@ -109,10 +109,13 @@ int FrameBudgetAllocator::observe(int frameRung, double ms) {
         rungs_[std::size_t(rung_)].upFrames = options_.upFrames;
         steppedUpTo_ = -1;
     }
-    // Up one rung only after enough comfortable frames.
+    // Up only after enough comfortable frames: to the most accurate rung predicted to fit under
+    // upShare of the budget (one rung per wait would take minutes to climb a long ladder).
     if (rung_ > 0 && predictedMs(rung_ - 1) <= options_.upShare * budget) {
-        if (++comfortable_ >= rungs_[std::size_t(rung_ - 1)].upFrames) {
-            moveTo(rung_ - 1);
+        int target = rung_ - 1;
+        while (target > 0 && predictedMs(target - 1) <= options_.upShare * budget) --target;
+        if (++comfortable_ >= rungs_[std::size_t(target)].upFrames) {
+            moveTo(target);
             steppedUpTo_ = rung_;
         }
     } else {

@@ -9,10 +9,10 @@
 // times the load ratio of the rung last measured (the larger of its average and its last frame, so
 // a rising load is believed at once). It steps down at once, to the most accurate rung predicted to
 // fit under `fitShare` of the budget, when a frame of the current rung goes over the budget or the
-// prediction for the current rung does. It steps up one rung only after `upFrames` frames in a
-// row in which that rung's prediction fits under `upShare` of the budget (hysteresis); a rung that
-// goes over soon after being stepped up to needs twice as many such frames next time (no
-// oscillation), and that penalty is forgiven after a long stay on the rung.
+// prediction for the current rung does. It steps up only after `upFrames` frames in a row in which
+// the rung above fits under `upShare` of the budget (hysteresis), then to the most accurate rung
+// predicted to fit there; a rung that goes over soon after being stepped up to needs twice as many
+// such frames next time (no oscillation), and that penalty is forgiven after a long stay on it.
 
 #include <cstdint>
 #include <vector>
@@ -26,7 +26,7 @@ struct FrameBudgetOptions {
     double budgetMs = 100.0;   ///< APP+CULL+DRAW a frame should stay under (> 0)
     double fitShare = 0.85;    ///< stepping down: to the most accurate rung predicted under this share of the budget
     double stayShare = 0.95;   ///< the current rung is left when its prediction exceeds this share of the budget
-    double upShare = 0.75;     ///< stepping up: the upper rung must be predicted under this share of the budget...
+    double upShare = 0.75;     ///< stepping up: the rung above must be predicted under this share of the budget...
     int upFrames = 20;         ///< ...in this many frames in a row
     int maxUpFrames = 640;     ///< the most frames a penalised rung waits
     double smoothing = 0.2;    ///< weight of a new frame in a rung's average load ratio (0..1]
