@@ -67,6 +67,19 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("proxy|lines")
         ->check(oneOf({"proxy", "lines"}))
         ->capture_default_str();
+    CLI::Option* budget = app.add_option("--frame-budget", o.frameBudget,
+                   "each frame, choose the LOD scale, impostor distance, key-pose distance and morph budget from the ladder "
+                   "to keep APP+CULL+DRAW under MS milliseconds with the least image error")
+        ->type_name("MS")
+        ->check(positiveNumber())
+        ->default_str("none");
+    app.add_option("--frame-budget-ladder", o.frameBudgetLadder,
+                   "--frame-budget's settings, most accurate first, with their measured error and time (bench_budget --ladder)")
+        ->type_name("FILE")
+        ->check(existingFile())
+        ->capture_default_str();
+    // The allocator sets these every frame: one or the other.
+    for (const char* fixed : {"--lod-scale", "--impostor-distance", "--morph-budget"}) budget->excludes(fixed);
     app.add_option("--rank-timeout", o.rankTimeout,
                    "under mpirun: seconds a rank waits for another in an exchange before the run stops, naming it")
         ->type_name("S")
@@ -89,9 +102,10 @@ void declare(support::CommandLine& cl, TownOptions& o) {
 
 std::string townUsage() { return support::CommandLine::hint(kName); }
 
-TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene) {
+TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene, const std::string& defaultLadder) {
     TownOptions o;
     o.scene = defaultScene;
+    o.frameBudgetLadder = defaultLadder;
     support::CommandLine::parseOrExitOnHelp(
         kName,
         "The town-crowd example: builds the world a scene file declares (a town, walkers on its\n"

@@ -29,14 +29,16 @@ struct TownOptions {
     std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
     std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
     double rankTimeout = 120.0;             ///< under mpirun: seconds a rank waits for another before the run stops
+    double frameBudget = 0.0;               ///< APP+CULL+DRAW a frame should stay under, ms (0: no allocator)
+    std::string frameBudgetLadder;          ///< the allocator's ladder (the common accuracy CSV)
     std::string vtk;                        ///< folder for crowd data for ParaView (VTK files), empty: none
     int vtkEvery = 10;                      ///< --vtk: an actors file every K steps
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the
-/// help and exits with 0 on --help; throws std::invalid_argument naming the option on a bad one,
+/// help and exits with 0 on --help; `defaultLadder` is --frame-budget-ladder's default; throws std::invalid_argument naming the option on a bad one,
 /// before anything is built or written.
-TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene);
+TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultScene, const std::string& defaultLadder);
 /// What follows the error message of a bad command line: where the options are listed (--help).
 std::string townUsage();
 

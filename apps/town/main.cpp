@@ -11,6 +11,14 @@
 // Under mpirun -np N every rank builds the same world and steps its share of the walkers' regions;
 // rank 0 gathers every walker after each step, then culls, draws and writes as one process would
 // (stats.csv adds each rank's share of the step). The files are the same with any number of ranks.
+//
+// With --frame-budget MS, a FrameBudgetAllocator picks each frame's rung of a ladder (LOD scale,
+// impostor distance, key-pose distance, morph budget) from the APP+CULL+DRAW measured so far: a
+// frame's cost is its APP+CULL (the processor's phases) plus its DRAW (beginFrame to endFrame), each
+// timed on the thread that runs it; with --pipeline on they overlap the neighbouring frames' work
+// (and share the cores with it), so a frame's cost is not the wall time between frames. The rung
+// chosen after frame N's DRAW applies from the next frame prepared (N+2 pipelined, N+1 otherwise);
+// a frame is processed and drawn with one rung, which stats.csv records.
 
 #include <GLFW/glfw3.h>
 
@@ -42,6 +50,8 @@
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/BudgetLadder.h"
+#include "throng/support/FrameBudgetAllocator.h"
 #include "throng/support/ProgressBar.h"
 #include "throng/vtk/CrowdRecorder.h"
 
@@ -63,6 +73,7 @@ struct PreparedFrame {
     const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
     Image occlusion;                   // its occlusion buffer as a picture, when the window shows it
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // each rank's share of the step, when distributed
+    int rung = -1;                     // --frame-budget: the ladder rung it was processed and drawn with
 };
 
 // The occlusion buffer as a picture: near occluders light, far ones dark, nothing drawn clear.
@@ -91,16 +102,22 @@ const char* kCsvHeader =
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
     "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred";
 
+// With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
+// keeps under budget_ms).
+const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_rung,lod_scale,impostor_distance,key_pose_distance,morph_budget";
+
 // Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
-std::string csvHeader(int ranks) {
+std::string csvHeader(int ranks, bool budget) {
     std::string header = kCsvHeader;
+    if (budget) header += kBudgetCsvHeader;
     for (int r = 0; r < ranks; ++r)
         for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "state_bytes", "work_ms", "wait_ms"})
             header += ",rank" + std::to_string(r) + "_" + column;
     return header + "\n";
 }
 
-std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r) {
+std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r,
+                   const support::FrameBudgetAllocator* budget) {
     const ActorFrameStatistics& s = f.stats;
     std::ostringstream o;
     o.precision(6);
@@ -116,6 +133,12 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
       << f.ghosts << ',' << f.handovers << ',' << f.deferred;
+    if (budget) {
+        const double cost = s.appCullMs() + drawMs;
+        const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
+        o << ',' << budget->options().budgetMs << ',' << cost << ',' << (cost > budget->options().budgetMs ? 1 : 0) << ',' << f.rung << ','
+          << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget;
+    }
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
           << share.borderBytes << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
@@ -247,7 +270,7 @@ int main(int argc, char** argv) {
     sim::SceneDescription scene;
     std::unique_ptr<throng::vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
     try {
-        o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE);
+        o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE, THRONG_TOWN_DEFAULT_LADDER);
         scene = sim::parseSceneFile(o.scene);
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
     } catch (const sim::SceneError& e) {
@@ -255,6 +278,16 @@ int main(int argc, char** argv) {
         return 2;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "throng-town: %s\n%s", e.what(), town::townUsage().c_str());
+        return 2;
+    }
+    // --frame-budget: the ladder is read (and refused) before anything is built.
+    std::unique_ptr<support::FrameBudgetAllocator> budget;
+    if (o.frameBudget > 0.0) try {
+        support::FrameBudgetOptions options;
+        options.budgetMs = o.frameBudget;
+        budget = std::make_unique<support::FrameBudgetAllocator>(support::readBudgetLadder(o.frameBudgetLadder), options);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-town: --frame-budget-ladder: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
     // Started by mpirun, each rank steps its share of the walkers' regions (one rank alone too, so
@@ -306,8 +339,13 @@ int main(int argc, char** argv) {
         for (auto& cache : world->makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
         processor.setKeyPoseDistance(k.distance, world->description().representation.hysteresis * k.distance);
     }
-    // Far actors as impostors when the scene asks for them (or --impostor-distance does).
-    const double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
+    // Far actors as impostors when the scene asks for them (or --impostor-distance does, or a rung
+    // of the --frame-budget ladder).
+    double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
+    if (budget) {
+        impostorDistance = 0.0;
+        for (const support::BudgetRung& r : budget->ladder()) impostorDistance = std::max(impostorDistance, r.settings.impostorDistance);
+    }
     std::unique_ptr<ImpostorSet> impostors;
     if (impostorDistance > 0.0) {
         support::ProgressBar bar("baking impostors", 1000);
@@ -323,7 +361,7 @@ int main(int argc, char** argv) {
         impostors->attach(processor, impostorDistance, world->description().representation.hysteresis * impostorDistance);
     }
     CrowdRendererOptions rendererOptions;
-    rendererOptions.impostors.morphBudget = o.morphBudget;
+    rendererOptions.impostors.morphBudget = budget ? budget->ladder()[std::size_t(budget->rung())].settings.morphBudget : o.morphBudget;
     rendererOptions.impostors.source = o.morph == "gl" ? MorphSource::Gpu : MorphSource::Cpu;
     rendererOptions.impostors.gridStep = o.morph == "grid" || o.morph == "background" ? 4 : 1;
     rendererOptions.impostors.backgroundMorph = o.morph == "background";
@@ -338,7 +376,7 @@ int main(int argc, char** argv) {
 
     fs::create_directories(o.out);
     std::ofstream csv(fs::path(o.out) / "stats.csv");
-    csv << csvHeader(distributed ? ranks.size() : 0);
+    csv << csvHeader(distributed ? ranks.size() : 0, budget != nullptr);
     Sums sums;
     const auto start = std::chrono::steady_clock::now();
     double firstFrame = 0.0;
@@ -348,8 +386,26 @@ int main(int argc, char** argv) {
     // for `camera`. draw: DRAW from the prepared frame's own data, then its statistics.
     PreparedFrame prepared[2];
     bool showOcclusion = false;  // the window's O key
+    // --frame-budget: the rung of the next frame prepared (set between frames, on the main thread),
+    // the rung the processor is set to, and the last frame drawn's rung and APP+CULL+DRAW.
+    int nextRung = budget ? budget->rung() : -1, appliedRung = -1, drawnRung = -1;
+    double drawnCost = 0.0;
+    std::vector<std::int64_t> rungFrames(budget ? budget->ladder().size() : 0);
+    std::int64_t framesWithin = 0;
+    const bool caches = !processor.keyPoseCaches().empty();
+    const double hysteresis = world->description().representation.hysteresis;
+    auto applyRung = [&](int rung) {
+        if (rung == appliedRung) return;
+        const support::BudgetSettings& b = budget->ladder()[std::size_t(rung)].settings;
+        processor.setLodScale(b.lodScale);
+        if (impostors) processor.setImpostorDistance(b.impostorDistance, hysteresis * b.impostorDistance);
+        if (caches) processor.setKeyPoseDistance(b.keyPoseDistance, hysteresis * b.keyPoseDistance);
+        appliedRung = rung;
+    };
     auto prepare = [&](PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
         f.number = number;
+        f.rung = nextRung;
+        if (budget) applyRung(f.rung);
         f.stepMs = 0.0;
         f.ghosts = f.handovers = f.deferred = 0;
         f.ranks.assign(distributed ? std::size_t(ranks.size()) : 0, {});
@@ -375,6 +431,7 @@ int main(int argc, char** argv) {
     };
     double lastFrameEnd = 0.0;
     auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
+        if (budget) renderer.setMorphBudget(budget->ladder()[std::size_t(f.rung)].settings.morphBudget);
         Stopwatch watch;
         renderer.beginFrame(f.camera);
         renderer.setOverlayImage(f.occlusion);
@@ -384,8 +441,19 @@ int main(int argc, char** argv) {
         const double drawMs = watch.elapsedMs();
         const double now = seconds();
         sums.add(f, drawMs);
-        csv << csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd), renderer.statistics());
+        csv << csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd), renderer.statistics(), budget.get());
+        if (budget) {
+            drawnRung = f.rung;
+            drawnCost = f.stats.appCullMs() + drawMs;
+            ++rungFrames[std::size_t(f.rung)];
+            if (drawnCost <= budget->options().budgetMs) ++framesWithin;
+        }
         lastFrameEnd = now;
+    };
+    // After a frame's DRAW (both stages of the pipeline joined): the allocator learns its cost and
+    // picks the rung of the next frame prepared.
+    auto allocate = [&] {
+        if (budget && drawnRung >= 0) nextRung = budget->observe(drawnRung, drawnCost);
     };
     FramePipeline pipeline(o.pipeline);
     // The other ranks wait for rank 0's set-up (impostors, GL) before the first step.
@@ -412,6 +480,7 @@ int main(int argc, char** argv) {
                                  }
                              });
                          });
+            allocate();
             if (f == 0) firstFrame = seconds();
             char detail[128];
             std::snprintf(detail, sizeof detail, "frame %lld/%lld, %.1f fps", (long long)f + 1, (long long)o.frames,
@@ -493,6 +562,7 @@ int main(int argc, char** argv) {
             const Camera camera = nextCamera(world->now().time + (advance ? step : 0.0));
             renderer.setOverlayText(statusText(*world, current.stats, fps, scale, paused, shrunk, freeCamera, o.pipeline));
             pipeline.run([&] { prepare(next, f + 1, camera, advance); }, [&] { draw(current, {}); });
+            allocate();
             const auto now = std::chrono::steady_clock::now();
             const double dt = std::chrono::duration<double>(now - last).count();
             last = now;
@@ -510,7 +580,24 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::fprintf(stderr, "throng-town: --vtk: %s\n", e.what());
     }
-    std::ofstream(fs::path(o.out) / "summary.json") << summaryJson(o, *world, sums, wall, firstFrame, ranks.size()).dump(2) << '\n';
+    nlohmann::json summary = summaryJson(o, *world, sums, wall, firstFrame, ranks.size());
+    if (budget) {
+        nlohmann::json& b = summary["frameBudget"];
+        b["budgetMs"] = o.frameBudget;
+        b["ladder"] = o.frameBudgetLadder;
+        b["measure"] = "app_cull_draw_ms: APP+CULL plus DRAW of the same frame, each timed on its own thread";
+        b["framesWithinBudget"] = framesWithin;
+        b["shareWithinBudget"] = double(framesWithin) / double(std::max<std::int64_t>(sums.frames, 1));
+        b["rungChanges"] = budget->changes();
+        for (std::size_t r = 0; r < rungFrames.size(); ++r) {
+            const support::BudgetRung& rung = budget->ladder()[r];
+            b["rungs"].push_back({{"rung", r}, {"settings", support::budgetRungValue(rung.settings)}, {"frames", rungFrames[r]},
+                                  {"ladderMs", rung.ms}, {"ladderPixelsOff8", rung.error}, {"measuredMs", budget->measuredMs(int(r))}});
+        }
+        std::fprintf(stderr, "throng-town: APP+CULL+DRAW within %.1f ms on %.1f %% of frames\n", o.frameBudget,
+                     100.0 * double(framesWithin) / double(std::max<std::int64_t>(sums.frames, 1)));
+    }
+    std::ofstream(fs::path(o.out) / "summary.json") << summary.dump(2) << '\n';
     std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums.frames, wall,
                  !window && o.every > 0 ? " and frames/" : "", o.out.c_str());
     return 0;

@@ -106,6 +106,12 @@ void CrowdRenderer::makeQuads() {
     quads_ = std::make_unique<ImpostorRenderer>(context_, o);
 }
 
+void CrowdRenderer::setMorphBudget(int budget) {
+    if (budget < -1) throw std::invalid_argument("CrowdRenderer: morph budget must be >= -1, not " + std::to_string(budget));
+    options_.impostors.morphBudget = budget;
+    if (quads_) quads_->setMorphBudget(budget);
+}
+
 void CrowdRenderer::preloadImpostors(std::span<const std::shared_ptr<const ImpostorDrawable>> drawables) {
     if (drawables.empty()) return;
     makeQuads();

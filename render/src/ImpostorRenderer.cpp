@@ -340,6 +340,11 @@ const ImpostorRenderStatistics& ImpostorRenderer::statistics() const { return im
 
 const ImpostorRendererOptions& ImpostorRenderer::options() const { return impl_->options; }
 
+void ImpostorRenderer::setMorphBudget(int budget) {
+    if (budget < -1) throw std::invalid_argument("ImpostorRenderer: morph budget must be >= -1, not " + std::to_string(budget));
+    impl_->options.morphBudget = budget;
+}
+
 std::size_t ImpostorRenderer::textureBytes() const {
     std::size_t bytes = 0;
     for (const auto& entry : impl_->atlases) {

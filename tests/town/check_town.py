@@ -11,6 +11,10 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                aside) and the same frames as the plain program, with walkers crossing between ranks
   mpiHang      under $THRONG_MPIEXEC with 2 ranks, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
+  budget       --frame-budget: stats.csv has the allocator's columns, every frame's settings are its
+               rung's, over_budget agrees with app_cull_draw_ms, summary.json counts them; a budget
+               nothing meets keeps the cheapest rung, one everything meets the most accurate, and the
+               cheapest rung really draws more impostors and evaluates fewer nodes
 """
 import csv
 import json
@@ -230,6 +234,68 @@ def effects(exe, scenes, work):
     print(json.dumps(summaries, indent=1))
 
 
+BUDGET_COLUMNS = ["budget_ms", "app_cull_draw_ms", "over_budget", "budget_rung", "lod_scale", "impostor_distance",
+                  "key_pose_distance", "morph_budget"]
+
+
+def budget(exe, scenes, work):
+    runs = {}
+    for name, ms in (("tiny", "0.001"), ("huge", "1000000")):
+        out = os.path.join(work, name)
+        run(exe, out, "--scene", os.path.join(scenes, "effects.json"), "--headless", "--frames", "40", "--every", "0",
+            "--width", "320", "--height", "180", "--frame-budget", ms)
+        rows = list(csv.DictReader(open(os.path.join(out, "stats.csv"))))
+        summary = json.load(open(os.path.join(out, "summary.json")))["frameBudget"]
+        if len(rows) != 40:
+            sys.exit(f"{name}: {len(rows)} rows instead of 40")
+        missing = [c for c in BUDGET_COLUMNS if c not in rows[0]]
+        if missing:
+            sys.exit(f"{name}: stats.csv lacks {missing}")
+        rungs = summary["rungs"]
+        within = 0
+        for r in rows:
+            rung = int(r["budget_rung"])
+            if not 0 <= rung < len(rungs):
+                sys.exit(f"{name}: frame {r['frame']}: rung {rung} is not in the ladder of {len(rungs)}")
+            settings = dict(kv.split("=") for kv in rungs[rung]["settings"].split())
+            for column, key in (("lod_scale", "lod-scale"), ("impostor_distance", "impostor-distance"),
+                                ("key_pose_distance", "key-pose-distance"), ("morph_budget", "morph-budget")):
+                if abs(float(r[column]) - float(settings[key])) > 1e-6 * max(1.0, float(settings[key])):
+                    sys.exit(f"{name}: frame {r['frame']}: {column} {r[column]} is not rung {rung}'s {settings[key]}")
+            if float(r["budget_ms"]) != float(ms):
+                sys.exit(f"{name}: frame {r['frame']}: budget_ms {r['budget_ms']} instead of {ms}")
+            cost = float(r["app_cull_draw_ms"])
+            app_cull = sum(float(r[c]) for c in ("app_ms", "refpoint_ms", "matrices_bounds_ms", "occlusion_buffer_ms", "cull_ms",
+                                                  "refpoint_occlusion_ms", "skeleton_root_ms", "cull2_ms", "pose_ms", "cull3_ms", "draw_list_ms"))
+            if abs(cost - (app_cull + float(r["draw_ms"]))) > 0.01 + 1e-4 * cost:
+                sys.exit(f"{name}: frame {r['frame']}: app_cull_draw_ms {cost} is not APP+CULL {app_cull} + DRAW {r['draw_ms']}")
+            over = int(r["over_budget"])
+            if over != (1 if cost > float(ms) else 0):
+                sys.exit(f"{name}: frame {r['frame']}: over_budget {over} for {cost} ms against {ms}")
+            within += 1 - over
+        if summary["framesWithinBudget"] != within or abs(summary["shareWithinBudget"] - within / 40) > 1e-9:
+            sys.exit(f"{name}: summary says {summary['framesWithinBudget']} frames within budget, stats.csv {within}")
+        counts = [sum(1 for r in rows if int(r["budget_rung"]) == i) for i in range(len(rungs))]
+        if counts != [g["frames"] for g in rungs]:
+            sys.exit(f"{name}: the summary's rung histogram {[g['frames'] for g in rungs]} is not stats.csv's {counts}")
+        runs[name] = rows
+    cheapest = len(rungs) - 1
+    # Nothing meets 0.001 ms: the cheapest rung from the start (the ladder says so) and never up.
+    late = [int(r["budget_rung"]) for r in runs["tiny"]]
+    if set(late) != {cheapest}:
+        sys.exit(f"a budget of 0.001 ms left the cheapest rung {cheapest}: rungs {sorted(set(late))}")
+    if {int(r["budget_rung"]) for r in runs["huge"]} != {0}:
+        sys.exit("a budget of 1000 s left the most accurate rung")
+    # The settings took effect: the cheapest rung draws more impostors and evaluates fewer nodes.
+    def total(rows, column):
+        return sum(float(r[column]) for r in rows[2:])
+    if not total(runs["tiny"], "impostors") > total(runs["huge"], "impostors"):
+        sys.exit(f"the cheapest rung drew {total(runs['tiny'], 'impostors')} impostors, the most accurate {total(runs['huge'], 'impostors')}")
+    if not total(runs["tiny"], "skeleton_nodes") < total(runs["huge"], "skeleton_nodes"):
+        sys.exit("the cheapest rung evaluated no fewer skeleton nodes than the most accurate")
+    print(f"budget: {total(runs['tiny'], 'impostors'):.0f} impostors on the cheapest rung, {total(runs['huge'], 'impostors'):.0f} on the most accurate")
+
+
 def window(exe, scenes, work):
     out = os.path.join(work, "window")
     p = run(exe, out, "--scene", os.path.join(scenes, "plain.json"), "--frames", "5", "--width", "320", "--height", "180")
@@ -246,4 +312,5 @@ if __name__ == "__main__":
         sys.exit(__doc__)
     exe, mode, scenes, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
-    {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang}[mode](exe, scenes, work)
+    {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang,
+     "budget": budget}[mode](exe, scenes, work)

@@ -96,6 +96,9 @@ public:
     void setOverlayText(std::string text) { overlayText_ = std::move(text); }
     /// An image drawn over the next frames in the bottom-right corner (empty: none).
     void setOverlayImage(Image image) { overlayImage_ = std::move(image); }
+    /// New morphed impostor cells per atlas and frame from the next frame on (-1: no limit; see
+    /// ImpostorRendererOptions::morphBudget). Throws std::invalid_argument below -1.
+    void setMorphBudget(int budget);
     /// Statistics of the last frame.
     const CrowdRenderStatistics& statistics() const { return stats_; }
     /// The mesh renderer (viewport, resources, options).

@@ -93,6 +93,9 @@ public:
     void preload(const ImpostorDrawable& drawable);
     /// Options.
     const ImpostorRendererOptions& options() const;
+    /// Changes the morph budget from the next draw() (a frame-budget allocator trades it for time).
+    /// Throws std::invalid_argument if it is below -1 (-1: no limit).
+    void setMorphBudget(int budget);
     /// Statistics of the last draw().
     const ImpostorRenderStatistics& statistics() const;
     /// Bytes of GPU texture held for impostors (all atlases uploaded so far: stored cells and pools).
