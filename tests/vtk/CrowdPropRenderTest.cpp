@@ -187,7 +187,7 @@ TEST_P(CrowdPropDrawing, CascadeCountsMatchAndTheConeHidesTheActorBehindIt) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CrowdPropRender, CrowdPropDrawing, ::testing::Values(false, true),
-                         [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "ThrongRenderer" : "VtkMapper"; });
+                         [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "ThrongRenderer" : "VtkMapper"; });
 
 TEST(CrowdPropRender, SkinnedMeshesAreBlendedByTheirPalette) {
     if (!throng::vtk::displayAvailable()) GTEST_SKIP() << "no X display (run under xvfb-run)";
