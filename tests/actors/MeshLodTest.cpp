@@ -7,8 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <vector>
 #include <tuple>
 
+#include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/gltf/MeshSimplifier.h"
 #include "throng/scenegraph/MeshDrawable.h"
@@ -144,7 +146,11 @@ TEST(GltfLod, SmallPartsSwitchOffNearerThanTheLimbsHoldingThem) {
             EXPECT_LE(d, nodes[std::size_t(nodes[i].parent)].deactivationDistance) << nodes[i].name;
         }
     }
-    EXPECT_EQ(finite, nodes.size());  // the robot has no rigid part: every joint may switch off
+    std::size_t roots = 0;
+    for (const auto& n : nodes) roots += n.parent < 0;
+    EXPECT_GE(roots, 1u);
+    // The robot has no rigid part: every joint but the roots may switch off.
+    EXPECT_EQ(finite, nodes.size() - roots);
     const int finger = robot->findNode("Index2.L"), arm = robot->findNode("UpperArm.L");
     ASSERT_GE(finger, 0);
     ASSERT_GE(arm, 0);
@@ -154,4 +160,24 @@ TEST(GltfLod, SmallPartsSwitchOffNearerThanTheLimbsHoldingThem) {
     // Off by default.
     const auto full = loadCharacter(kAssets + "/characters/robot.glb").primaryTemplate();
     for (const auto& n : full->nodes()) EXPECT_TRUE(std::isinf(n.deactivationDistance)) << n.name;
+}
+
+// With a wide angle, far away, every joint may switch off but the roots: the switched-off joints
+// then follow a root, which carries the template's scale (the Fox's 0.01). With no active joint at
+// all the skin fell back to its bind space, a hundred times too large.
+TEST(GltfLod, FarAwayTheRootsStayOnSoTheSkinKeepsItsScale) {
+    GltfLoadOptions options;
+    options.jointMinAngle = 0.016;
+    const auto fox = loadCharacter(kAssets + "/characters/Fox.glb", options).primaryTemplate();
+    std::vector<std::uint8_t> active(fox->nodeCount());
+    const double far = 10000.0;
+    computeActiveNodes(*fox, far * far, active);
+    std::size_t on = 0;
+    for (std::size_t i = 0; i < fox->nodeCount(); ++i) {
+        if (fox->nodes()[i].parent < 0) {
+            EXPECT_TRUE(active[i]) << fox->nodes()[i].name;
+        }
+        on += active[i];
+    }
+    EXPECT_LT(on, fox->nodeCount() / 2) << "most joints are off that far";
 }

@@ -18,7 +18,8 @@ namespace {
 
 // Skeletal LOD from the mesh: a node switches off at the distance where the part it moves (the
 // bind-pose vertices it and its descendants dominate) subtends less than `angle` radians. Nodes
-// holding rigid geometry, and their ancestors, stay on (vaLod validation would refuse otherwise).
+// holding rigid geometry, and their ancestors, stay on (vaLod validation would refuse otherwise),
+// and so do the roots.
 // A part holds its descendants' parts, so a child never outlives its parent.
 void deactivateSmallParts(std::vector<SkeletonNode>& nodes, std::vector<BoundingSphere> part, double angle) {
     constexpr double kNearest = 0.5;  // metres: a part with no vertex is off beyond this
@@ -30,6 +31,10 @@ void deactivateSmallParts(std::vector<SkeletonNode>& nodes, std::vector<Bounding
         if (part[i].valid()) part[static_cast<std::size_t>(p)].expandBy(part[i]);
         keep[static_cast<std::size_t>(p)] = keep[static_cast<std::size_t>(p)] || keep[i];
     }
+    // A root stays on: a joint switched off follows its nearest active ancestor, and with none the
+    // skin would fall back to its bind space, without the root's placement and scale (a 0.01-scaled
+    // Fox drawn a hundred times too large). Far actors get cheaper through vaLod and impostors.
+    for (std::size_t i = 0; i < nodes.size(); ++i) keep[i] = keep[i] || nodes[i].parent < 0;
     for (std::size_t i = 0; i < nodes.size(); ++i)
         nodes[i].deactivationDistance = keep[i] ? std::numeric_limits<double>::infinity()
                                                 : std::max(kNearest, part[i].valid() ? 2.0 * part[i].radius() / angle : 0.0);
