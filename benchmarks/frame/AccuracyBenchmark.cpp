@@ -534,10 +534,7 @@ private:
                 for (std::size_t i = 1; i < settings_.size(); ++i) {
                     Setting& m = settings_[i];
                     Figures& fig = m.figures[name];
-                    const ImageDifference d = compareImages(m.frame, ref.frame, 8);
-                    fig.psnr += std::min(d.psnr, 99.0);
-                    fig.ssim += structuralSimilarity(m.frame, ref.frame);
-                    fig.off8 += d.fractionOverThreshold;
+                    bench::addFrameError(m.frame, ref.frame, fig.psnr, fig.ssim, fig.off8);
                     if (m.poses) m.joints.compare(ref.joints, fig.joints);
                 }
                 std::fprintf(stderr, "%s: %s camera, tick %d of %d done\n", kProgram, name.c_str(), f + 1, o_.frames);

@@ -218,10 +218,7 @@ int main(int argc, char** argv) {
                         reference.draw->drawFrame(camera, reference.processor->drawList());
                         const Image ref = reference.draw->readFrame();
                         for (std::size_t m = 0; m < ms.size(); ++m) {
-                            const ImageDifference d = compareImages(frames[m], ref, 8);
-                            ms[m].psnr += std::min(d.psnr, 99.0);
-                            ms[m].ssim += structuralSimilarity(frames[m], ref);
-                            ms[m].off8 += d.fractionOverThreshold;
+                            bench::addFrameError(frames[m], ref, ms[m].psnr, ms[m].ssim, ms[m].off8);
                             ms[m].images += 1;
                         }
                     }

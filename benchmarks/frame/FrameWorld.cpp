@@ -1,8 +1,11 @@
 #include "FrameWorld.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
+#include "throng/render/ImageCompare.h"
+#include "throng/render/ImageSimilarity.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 
@@ -36,6 +39,13 @@ std::uint64_t stateDigest(const Crowd& crowd) {
     const auto* bytes = reinterpret_cast<const unsigned char*>(ref.data());
     for (std::size_t i = 0; i < ref.size() * sizeof(Mat4); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
     return h;
+}
+
+void addFrameError(const Image& frame, const Image& reference, double& psnr, double& ssim, double& off8) {
+    const ImageDifference d = compareImages(frame, reference, 8);
+    psnr += std::min(d.psnr, 99.0);
+    ssim += structuralSimilarity(frame, reference);
+    off8 += d.fractionOverThreshold;
 }
 
 void fail(const char* program, const std::string& why) {

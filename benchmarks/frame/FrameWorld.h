@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/Image.h"
 #include "throng/sim/Simulation.h"
 
 namespace throng::bench {
@@ -27,6 +28,11 @@ double cameraTime(const std::string& name);
 
 /// FNV-1a over every actor's Reference Point: the simulation state a processor sees.
 std::uint64_t stateDigest(const Crowd& crowd);
+
+/// Adds the image error of `frame` against `reference` (same size) to the sums the whole-frame
+/// benchmarks report: PSNR in dB (identical frames count as 99), SSIM, and the share of pixels off
+/// by more than 8/255.
+void addFrameError(const Image& frame, const Image& reference, double& psnr, double& ssim, double& off8);
 
 /// Prints "<program>: <why>" and exits with status 1.
 [[noreturn]] void fail(const char* program, const std::string& why);

@@ -115,11 +115,8 @@ struct Row {
 };
 
 void compare(const Image& a, const Image& b, double& psnr, double& ssim, double& off8, double& n, double* ncc = nullptr) {
-    const ImageDifference d = compareImages(a, b, 8);
     if (ncc) *ncc += normalizedCrossCorrelation(a, b, false);
-    psnr += std::min(d.psnr, 99.0);
-    ssim += structuralSimilarity(a, b);
-    off8 += d.fractionOverThreshold;
+    bench::addFrameError(a, b, psnr, ssim, off8);
     n += 1;
 }
 

@@ -262,10 +262,7 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             if (!measureError) continue;
             for (std::size_t m = 1; m < methods.size(); ++m) {
                 vertexError(methods[m].processor->drawList(), methods[0].processor->drawList(), o.errorSamples, rows[m]);
-                const ImageDifference diff = compareImages(frames[m], frames[0], 8);
-                rows[m].psnr += std::min(diff.psnr, 99.0);
-                rows[m].ssim += structuralSimilarity(frames[m], frames[0]);
-                rows[m].off8 += diff.fractionOverThreshold;
+                bench::addFrameError(frames[m], frames[0], rows[m].psnr, rows[m].ssim, rows[m].off8);
                 rows[m].images += 1;
             }
         }
