@@ -154,8 +154,8 @@ int CrowdProp::renderWithThrong(vtkRenderer& renderer) {
     state->Push();
     int framebuffer = 0;
     state->vtkglGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-    int x = 0, y = 0;
-    renderer.GetTiledSizeAndOrigin(&scratchSize_[0], &scratchSize_[1], &x, &y);
+    int width = 0, height = 0, x = 0, y = 0;
+    renderer.GetTiledSizeAndOrigin(&width, &height, &x, &y);
     Stopwatch watch;
     try {
         if (!throngDraw_) {
@@ -166,7 +166,7 @@ int CrowdProp::renderWithThrong(vtkRenderer& renderer) {
             throngDraw_ = std::make_unique<CrowdRenderer>(glContext_, options);
             window_ = window;
         }
-        glContext_->setTarget(unsigned(framebuffer), x, y, scratchSize_[0], scratchSize_[1]);
+        glContext_->setTarget(unsigned(framebuffer), x, y, width, height);
         throngDraw_->drawFrame(cascade_->camera(), cascade_->processor().drawList());
     } catch (const std::exception& e) {
         state->Pop();

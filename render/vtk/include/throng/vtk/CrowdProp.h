@@ -120,7 +120,6 @@ private:
     std::uint64_t skipped_ = 0, triangles_ = 0;
     double buildMs_ = 0;
     bool throngDrawing_ = false;
-    int scratchSize_[2] = {0, 0};
     std::shared_ptr<VtkGlContext> glContext_;   // VTK's context, as Throng's renderer sees it
     std::unique_ptr<CrowdRenderer> throngDraw_; // made in the first render of Throng drawing
     vtkWeakPointer<vtkRenderWindow> window_;    // whose context holds throngDraw_'s GL objects
