@@ -55,6 +55,11 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("N")
         ->check(wholeNumber(0, 100000))
         ->capture_default_str();
+    app.add_option("--render-scale", o.renderScale,
+                   "dynamic resolution: frames drawn at this fraction of --width and --height, scaled up")
+        ->type_name("S")
+        ->check(support::number(0.05, 1.0))
+        ->capture_default_str();
     app.add_option("--morph", o.morph,
                    "where impostor key-frames are morphed: background (CPU, 4 px warp grid, another thread, shown a frame later), "
                    "grid (the same on the drawing thread), cpu (every pixel), gl")
@@ -68,7 +73,7 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->check(oneOf({"proxy", "lines"}))
         ->capture_default_str();
     CLI::Option* budget = app.add_option("--frame-budget", o.frameBudget,
-                   "each frame, choose the LOD scale, impostor distance, key-pose distance and morph budget from the ladder "
+                   "each frame, choose the LOD scale, impostor distance, key-pose distance, morph budget and render scale from the ladder "
                    "to keep APP+CULL+DRAW under MS milliseconds with the least image error")
         ->type_name("MS")
         ->check(positiveNumber())
@@ -79,7 +84,7 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->check(existingFile())
         ->capture_default_str();
     // The allocator sets these every frame: one or the other.
-    for (const char* fixed : {"--lod-scale", "--impostor-distance", "--morph-budget"}) budget->excludes(fixed);
+    for (const char* fixed : {"--lod-scale", "--impostor-distance", "--morph-budget", "--render-scale"}) budget->excludes(fixed);
     app.add_option("--rank-timeout", o.rankTimeout,
                    "under mpirun: seconds a rank waits for another in an exchange before the run stops, naming it")
         ->type_name("S")

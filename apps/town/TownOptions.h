@@ -26,6 +26,7 @@ struct TownOptions {
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
     int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)
+    double renderScale = 1.0;               ///< frames drawn at this fraction of width and height, scaled up
     std::string morph = "background";       ///< where impostor cells are morphed: background, grid (CPU, 4 px warp grid), cpu, gl
     std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
     double rankTimeout = 120.0;             ///< under mpirun: seconds a rank waits for another before the run stops

@@ -104,7 +104,7 @@ const char* kCsvHeader =
 
 // With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
 // keeps under budget_ms).
-const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_rung,lod_scale,impostor_distance,key_pose_distance,morph_budget";
+const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_rung,lod_scale,impostor_distance,key_pose_distance,morph_budget,render_scale";
 
 // Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
 std::string csvHeader(int ranks, bool budget) {
@@ -137,7 +137,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
         const double cost = s.appCullMs() + drawMs;
         const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
         o << ',' << budget->options().budgetMs << ',' << cost << ',' << (cost > budget->options().budgetMs ? 1 : 0) << ',' << f.rung << ','
-          << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget;
+          << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget << ',' << b.renderScale;
     }
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
@@ -212,6 +212,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     j["pipeline"] = o.pipeline;
     j["width"] = o.width;
     j["height"] = o.height;
+    j["renderScale"] = o.renderScale;  // with --frame-budget, each rung's own (frameBudget.rungs)
     j["frames"] = sums.frames;
     j["step"] = world.description().step;
     j["actors"] = world.crowd().size();
@@ -362,6 +363,7 @@ int main(int argc, char** argv) {
     }
     CrowdRendererOptions rendererOptions;
     rendererOptions.impostors.morphBudget = budget ? budget->ladder()[std::size_t(budget->rung())].settings.morphBudget : o.morphBudget;
+    rendererOptions.renderScale = float(budget ? budget->ladder()[std::size_t(budget->rung())].settings.renderScale : o.renderScale);
     rendererOptions.impostors.source = o.morph == "gl" ? MorphSource::Gpu : MorphSource::Cpu;
     rendererOptions.impostors.gridStep = o.morph == "grid" || o.morph == "background" ? 4 : 1;
     rendererOptions.impostors.backgroundMorph = o.morph == "background";
@@ -431,7 +433,11 @@ int main(int argc, char** argv) {
     };
     double lastFrameEnd = 0.0;
     auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
-        if (budget) renderer.setMorphBudget(budget->ladder()[std::size_t(f.rung)].settings.morphBudget);
+        if (budget) {
+            const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
+            renderer.setMorphBudget(b.morphBudget);
+            renderer.setRenderScale(float(b.renderScale));
+        }
         Stopwatch watch;
         renderer.beginFrame(f.camera);
         renderer.setOverlayImage(f.occlusion);

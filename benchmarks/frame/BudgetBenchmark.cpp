@@ -64,6 +64,10 @@ struct Options {
         "lod-scale=2 impostor-distance=20 key-pose-distance=10 morph-budget=1",
         "lod-scale=3 impostor-distance=12 key-pose-distance=6 morph-budget=0",
         "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0",
+        "lod-scale=3 impostor-distance=12 key-pose-distance=6 morph-budget=0 render-scale=0.75",
+        "lod-scale=3 impostor-distance=12 key-pose-distance=6 morph-budget=0 render-scale=0.5",
+        "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.5",
+        "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.35",
     };
     std::vector<double> budgets;
     int width = 1280, height = 720;
@@ -90,6 +94,7 @@ void apply(ActorProcessor& p, CrowdRenderer& r, const BudgetSettings& s, double 
     p.setImpostorDistance(s.impostorDistance, hysteresisShare * s.impostorDistance);
     if (caches) p.setKeyPoseDistance(s.keyPoseDistance, hysteresisShare * s.keyPoseDistance);
     r.setMorphBudget(s.morphBudget);
+    r.setRenderScale(float(s.renderScale));
 }
 
 }  // namespace
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "measured ticks from each start")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
     app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000))->capture_default_str();
     app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
-    app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N')")
+    app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N [render-scale=S]')")
         ->delimiter(';')->type_name("RUNG;RUNG;...");
     app.add_option("--budgets", o.budgets, "also run the allocator at these budgets (ms) on the measured ladder")->delimiter(',')
         ->type_name("MS,MS,...")->check(CLI::PositiveNumber);

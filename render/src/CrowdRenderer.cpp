@@ -7,11 +7,13 @@
 #include <glad/gl.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "throng/render/GlContext.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/GpuMorpher.h"
 #include "throng/render/ImpostorDrawable.h"
+#include "throng/render/ScaledFrame.h"
 #include "throng/render/TextOverlay.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Stopwatch.h"
@@ -21,6 +23,7 @@ namespace throng {
 CrowdRenderer::CrowdRenderer(std::shared_ptr<GlContext> context, const CrowdRendererOptions& options)
     : context_(std::move(context)), options_(options) {
     if (!context_) throw std::invalid_argument("CrowdRenderer: argument 'context' is null");
+    setRenderScale(options_.renderScale);
     meshes_ = std::make_unique<GlRenderer>(context_, options_.meshes);
 }
 
@@ -29,6 +32,14 @@ CrowdRenderer::~CrowdRenderer() = default;
 void CrowdRenderer::beginFrame(const Camera& camera) {
     camera_ = camera;
     stats_ = CrowdRenderStatistics{};
+    if (scaledFrame_) scaled_->end();  // an earlier frame that threw before its end
+    scaledFrame_ = options_.renderScale < 1.0f;
+    if (scaledFrame_) {
+        if (!scaled_) scaled_ = std::make_unique<ScaledFrame>(*context_);
+        scaled_->begin(options_.renderScale);
+    }
+    const GlContext::DrawTarget target = context_->drawTarget();
+    stats_.renderWidth = target.width, stats_.renderHeight = target.height;
     meshes_->beginFrame(camera);
 }
 
@@ -120,8 +131,18 @@ void CrowdRenderer::preloadImpostors(std::span<const std::shared_ptr<const Impos
         if (d) quads_->preload(*d);
 }
 
+void CrowdRenderer::setRenderScale(float scale) {
+    if (!(scale > 0.0f && scale <= 1.0f))
+        throw std::invalid_argument("CrowdRenderer: render scale must be above 0 and at most 1, not " + std::to_string(scale));
+    options_.renderScale = scale;
+}
+
 void CrowdRenderer::endFrame() {
     Stopwatch watch;
+    if (scaledFrame_) {  // the overlays below are drawn at full resolution, over the scaled-up frame
+        scaled_->end();
+        scaledFrame_ = false;
+    }
     if (!overlayImage_.rgba.empty()) {
         if (!imageOverlay_) imageOverlay_ = std::make_unique<ImageOverlay>(*context_);
         // Bottom-right, a third of the frame's width, the image's own aspect.

@@ -10,6 +10,11 @@ GlContext::GlContext() : gl_(std::make_unique<GladGLContext>()) {}
 
 GlContext::~GlContext() = default;
 
+GlContext::DrawTarget GlContext::drawTarget() const {
+    if (redirect_) return *redirect_;
+    return {framebuffer(), originX(), originY(), width(), height()};
+}
+
 void GlContext::loadFunctions(ProcLoader loader, const std::string& kind) {
     *gl_ = GladGLContext{};
     const int version = gladLoadGLContext(gl_.get(), loader);

@@ -579,8 +579,9 @@ void GlRenderer::beginFrame(const Camera& camera) {
     r.viewRotation = glm::mat4(rotation);
     r.projection = glm::mat4(camera.projection());
 
-    gl.BindFramebuffer(GL_FRAMEBUFFER, r.context->framebuffer());
-    gl.Viewport(r.context->originX(), r.context->originY(), r.context->width(), r.context->height());
+    const GlContext::DrawTarget target = r.context->drawTarget();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    gl.Viewport(target.x, target.y, target.width, target.height);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);

@@ -288,7 +288,7 @@ Image GpuMorpher::morph(const Image& from, std::span<const FeatureLine> fromLine
     for (int y = 0; y < h; ++y)
         std::copy_n(flipped.data() + static_cast<std::size_t>(h - 1 - y) * row, row, out.rgba.data() + y * row);
     gl.UseProgram(0);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->drawTarget().framebuffer);
     return out;
 }
 
@@ -334,7 +334,7 @@ void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned 
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.CopyTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, targetLayer, 0, 0, size, size);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->framebuffer());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->drawTarget().framebuffer);
 }
 
 }  // namespace throng

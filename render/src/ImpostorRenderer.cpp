@@ -473,8 +473,9 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     const glm::mat4 vrp(camera.projection() * rotation);
     const glm::dmat3 inverse = glm::transpose(glm::dmat3(camera.view()));
     const glm::vec3 right(inverse[0]), up(inverse[1]);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, r.context->framebuffer());
-    gl.Viewport(r.context->originX(), r.context->originY(), r.context->width(), r.context->height());
+    const GlContext::DrawTarget target = r.context->drawTarget();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    gl.Viewport(target.x, target.y, target.width, target.height);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthMask(GL_TRUE);
     gl.Disable(GL_CULL_FACE);

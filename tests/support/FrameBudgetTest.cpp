@@ -186,6 +186,14 @@ TEST(FrameBudgetLadder, RungValueRoundTrips) {
     EXPECT_THROW(parseBudgetRungValue("lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2.5"), std::invalid_argument);
     EXPECT_THROW(parseBudgetRungValue("lod-scale=1 lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2"), std::invalid_argument);
     EXPECT_THROW(parseBudgetRungValue("lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2 speed=3"), std::invalid_argument);
+    // The render scale: 1 when left out (ladders written before it), else written and read back.
+    EXPECT_EQ(back.renderScale, 1.0);
+    EXPECT_EQ(budgetRungValue(s).find("render-scale"), std::string::npos);
+    s.renderScale = 0.5;
+    EXPECT_EQ(parseBudgetRungValue(budgetRungValue(s)).renderScale, 0.5);
+    for (const char* bad : {"0", "1.5", "-0.5", "nan"})
+        EXPECT_THROW(parseBudgetRungValue(std::string("lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2 render-scale=") + bad),
+                     std::invalid_argument) << bad;
 }
 
 TEST(FrameBudgetLadder, ReadsWhatBenchBudgetWrites) {

@@ -33,12 +33,14 @@ double parseNumber(const std::string& key, const std::string& text) {
 
 std::string budgetRungValue(const BudgetSettings& s) {
     return "lod-scale=" + number(s.lodScale) + " impostor-distance=" + number(s.impostorDistance) +
-           " key-pose-distance=" + number(s.keyPoseDistance) + " morph-budget=" + std::to_string(s.morphBudget);
+           " key-pose-distance=" + number(s.keyPoseDistance) + " morph-budget=" + std::to_string(s.morphBudget) +
+           (s.renderScale < 1.0 ? " render-scale=" + number(s.renderScale) : std::string());
 }
 
 BudgetSettings parseBudgetRungValue(const std::string& value) {
     BudgetSettings s;
-    std::map<std::string, bool> seen{{"lod-scale", false}, {"impostor-distance", false}, {"key-pose-distance", false}, {"morph-budget", false}};
+    std::map<std::string, bool> seen{{"lod-scale", false}, {"impostor-distance", false}, {"key-pose-distance", false}, {"morph-budget", false},
+                                     {"render-scale", false}};
     std::istringstream in(value);
     std::string item;
     while (in >> item) {
@@ -47,7 +49,7 @@ BudgetSettings parseBudgetRungValue(const std::string& value) {
         const std::string key = item.substr(0, eq), text = item.substr(eq + 1);
         const auto it = seen.find(key);
         if (it == seen.end())
-            throw std::invalid_argument("unknown key '" + key + "' (expected lod-scale, impostor-distance, key-pose-distance, morph-budget)");
+            throw std::invalid_argument("unknown key '" + key + "' (expected lod-scale, impostor-distance, key-pose-distance, morph-budget, render-scale)");
         if (it->second) throw std::invalid_argument("key '" + key + "' given twice");
         it->second = true;
         const double v = parseNumber(key, text);
@@ -57,13 +59,16 @@ BudgetSettings parseBudgetRungValue(const std::string& value) {
         } else if (key == "impostor-distance" || key == "key-pose-distance") {
             if (v < 0) throw std::invalid_argument(key + "=" + text + " must be >= 0");
             (key == "impostor-distance" ? s.impostorDistance : s.keyPoseDistance) = v;
+        } else if (key == "render-scale") {
+            if (v <= 0 || v > 1) throw std::invalid_argument("render-scale=" + text + " must be above 0 and at most 1");
+            s.renderScale = v;
         } else {
             if (v < 0 || v != std::floor(v) || v > 100000) throw std::invalid_argument("morph-budget=" + text + " must be a whole number 0..100000");
             s.morphBudget = int(v);
         }
     }
     for (const auto& [key, given] : seen)
-        if (!given) throw std::invalid_argument("key '" + key + "' missing");
+        if (!given && key != "render-scale") throw std::invalid_argument("key '" + key + "' missing");
     return s;
 }
 

@@ -27,6 +27,7 @@ class GlContext;
 class GlRenderer;
 class GpuMorpher;
 class ImageOverlay;
+class ScaledFrame;
 class TextOverlay;
 
 /// How a CrowdRenderer morphs the impostors' dropped key-frames.
@@ -54,6 +55,10 @@ struct CrowdRendererOptions {
     /// Draws the items of the generic scene (no actor). Off when the host application draws its
     /// own scene and Throng draws the crowd into it (CrowdProp in a VTK renderer).
     bool drawScene = true;
+    /// Dynamic resolution: frames are drawn at this fraction of the context's width and height and
+    /// scaled up (0 < scale <= 1; 1: full resolution). Not for a host's framebuffer whose depth the
+    /// crowd must meet (CrowdProp): the scaled frame's depth stays off screen.
+    float renderScale = 1.0f;
 };
 
 /// What one frame of a CrowdRenderer cost and drew.
@@ -71,7 +76,9 @@ struct CrowdRenderStatistics {
     double meshMs = 0;                   ///< the actors' meshes
     double impostorBatchMs = 0;          ///< impostor selection, batching and morphing
     double impostorDrawMs = 0;           ///< quad pass
-    double endFrameMs = 0;               ///< overlay, finishing and presenting the frame
+    double endFrameMs = 0;               ///< scaling up, overlay, finishing and presenting the frame
+    int renderWidth = 0;                 ///< width the frame was drawn at (below the context's when scaled)
+    int renderHeight = 0;                ///< see renderWidth
     // Without finishPasses the GL may rasterise a pass's triangles later, in endFrame.
 };
 
@@ -99,6 +106,9 @@ public:
     /// New morphed impostor cells per atlas and frame from the next frame on (-1: no limit; see
     /// ImpostorRendererOptions::morphBudget). Throws std::invalid_argument below -1.
     void setMorphBudget(int budget);
+    /// Draws the next frames at `scale` x the context's size, scaled up (CrowdRendererOptions::
+    /// renderScale). Throws std::invalid_argument unless 0 < scale <= 1.
+    void setRenderScale(float scale);
     /// Statistics of the last frame.
     const CrowdRenderStatistics& statistics() const { return stats_; }
     /// The mesh renderer (viewport, resources, options).
@@ -120,6 +130,8 @@ private:
     std::unique_ptr<ImpostorRenderer> quads_;
     std::unique_ptr<TextOverlay> overlay_;
     std::unique_ptr<ImageOverlay> imageOverlay_;
+    std::unique_ptr<ScaledFrame> scaled_;
+    bool scaledFrame_ = false;  // this frame is drawn into scaled_
     std::string overlayText_;
     Image overlayImage_;
     Camera camera_;

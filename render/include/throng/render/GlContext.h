@@ -3,6 +3,7 @@
 // against this interface; OsMesaContext (headless) and GlfwWindowContext (window) implement it.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 // The glad2 function table of one context (generated at build time, kept private to throng::render).
@@ -33,6 +34,20 @@ public:
     virtual int originX() const { return 0; }
     /// See originX().
     virtual int originY() const { return 0; }
+    /// Where a frame's passes draw: a framebuffer and the area drawn in it (lower-left corner, size).
+    struct DrawTarget {
+        unsigned framebuffer = 0;  ///< framebuffer object name (0: the window's default framebuffer)
+        int x = 0;                 ///< lower-left corner of the area drawn
+        int y = 0;                 ///< see x
+        int width = 0;             ///< size of the area drawn
+        int height = 0;            ///< see width
+    };
+    /// Where passes draw now: this context's framebuffer and area, unless redirectDrawing() sent
+    /// them to another target (a reduced-resolution frame, see ScaledFrame).
+    DrawTarget drawTarget() const;
+    /// Sends every pass to `target` until called with std::nullopt. Passes bind drawTarget() rather
+    /// than framebuffer(), so a renderer can draw a frame off screen without each pass knowing.
+    void redirectDrawing(std::optional<DrawTarget> target) { redirect_ = target; }
     /// Resizes the framebuffer (headless) or the window. Throws std::invalid_argument unless both
     /// sizes are positive and within the implementation's limits.
     virtual void resize(int width, int height) = 0;
@@ -59,6 +74,7 @@ protected:
 private:
     std::unique_ptr<GladGLContext> gl_;
     std::string description_;
+    std::optional<DrawTarget> redirect_;
 };
 
 }  // namespace throng

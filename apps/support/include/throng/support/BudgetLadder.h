@@ -1,6 +1,6 @@
 #pragma once
 // The ladder of a frame-budget allocator: settings of the knobs that trade image error for frame
-// time (LOD scale, impostor distance, key-pose distance, morph budget), ordered from the most
+// time (LOD scale, impostor distance, key-pose distance, morph budget, render scale), ordered from the most
 // accurate rung to the cheapest, each with the image error and the APP+CULL+DRAW time measured for
 // it (bench_budget). Stored as the common accuracy CSV (AccuracyCsv.h): knob "frame budget rung",
 // the settings in the value, one line per metric; the rung's error is its "pixels_off_8" line.
@@ -17,6 +17,9 @@ struct BudgetSettings {
     double impostorDistance = 0.0;  ///< metres beyond which actors are impostors (0: none)
     double keyPoseDistance = 0.0;   ///< metres beyond which actors come from key-pose caches (0: none)
     int morphBudget = 2;            ///< new morphed impostor cells per atlas and frame (0: none)
+    /// Dynamic resolution: the frame drawn at this fraction of the output's width and height, scaled
+    /// up (0 < scale <= 1). Optional in a rung's value ("render-scale=0.5"), 1 when absent.
+    double renderScale = 1.0;
 };
 
 /// One rung: its settings and what they were measured to cost and err.
@@ -31,10 +34,11 @@ struct BudgetRung {
 /// The knob name of ladder rows in the accuracy CSV.
 inline constexpr const char* kBudgetRungKnob = "frame budget rung";
 
-/// The value column of a rung: "lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2".
+/// The value column of a rung: "lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2",
+/// followed by " render-scale=S" when S is below 1.
 std::string budgetRungValue(const BudgetSettings& settings);
-/// Parses budgetRungValue's text (every key once, in any order). Throws std::invalid_argument
-/// naming the key or value at fault.
+/// Parses budgetRungValue's text (every key once, in any order; render-scale may be left out).
+/// Throws std::invalid_argument naming the key or value at fault.
 BudgetSettings parseBudgetRungValue(const std::string& value);
 
 /// Reads a ladder from an accuracy CSV: its "frame budget rung" rows in file order (the most
