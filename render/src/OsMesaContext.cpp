@@ -1,5 +1,7 @@
 #include "throng/render/OsMesaContext.h"
 
+#include "ColourDepthTarget.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -77,18 +79,9 @@ void OsMesaContext::createFramebuffer() {
         throw std::invalid_argument("OsMesaContext: size " + std::to_string(width_) + " x " + std::to_string(height_) +
                                     " exceeds the implementation's limit of " + std::to_string(limitW) + " x " +
                                     std::to_string(limitH));
-    g.GenFramebuffers(1, &fbo_);
-    g.GenRenderbuffers(1, &colour_);
-    g.GenRenderbuffers(1, &depth_);
-    g.BindRenderbuffer(GL_RENDERBUFFER, colour_);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
-    g.BindRenderbuffer(GL_RENDERBUFFER, depth_);
-    g.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width_, height_);
-    g.BindRenderbuffer(GL_RENDERBUFFER, 0);
-    g.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
-    g.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-    const GLenum status = g.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    detail::ColourDepthTarget target;
+    const GLenum status = detail::createColourDepthTarget(g, width_, height_, target);
+    fbo_ = target.fbo, colour_ = target.colour, depth_ = target.depth;
     if (status != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("OsMesaContext: the " + std::to_string(width_) + " x " + std::to_string(height_) +
                                  " framebuffer object is incomplete (status " + hex(status) + ")");
@@ -99,9 +92,8 @@ void OsMesaContext::createFramebuffer() {
 
 void OsMesaContext::destroyFramebuffer() {
     if (!gl().DeleteFramebuffers) return;  // functions never loaded
-    if (fbo_) gl().DeleteFramebuffers(1, &fbo_);
-    if (colour_) gl().DeleteRenderbuffers(1, &colour_);
-    if (depth_) gl().DeleteRenderbuffers(1, &depth_);
+    detail::ColourDepthTarget target{fbo_, colour_, depth_};
+    detail::deleteColourDepthTarget(gl(), target);
     fbo_ = colour_ = depth_ = 0;
 }
 

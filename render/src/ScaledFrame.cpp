@@ -2,6 +2,8 @@
 
 #include "throng/render/GlContext.h"
 
+#include "ColourDepthTarget.h"
+
 #include <glad/gl.h>
 
 #include <algorithm>
@@ -21,10 +23,8 @@ ScaledFrame::~ScaledFrame() {
 void ScaledFrame::release() {
     if (!fbo_) return;
     context_.makeCurrent();
-    const GladGLContext& gl = context_.gl();
-    gl.DeleteFramebuffers(1, &fbo_);
-    gl.DeleteRenderbuffers(1, &colour_);
-    gl.DeleteRenderbuffers(1, &depth_);
+    detail::ColourDepthTarget target{fbo_, colour_, depth_};
+    detail::deleteColourDepthTarget(context_.gl(), target);
     fbo_ = colour_ = depth_ = 0;
 }
 
@@ -39,18 +39,9 @@ void ScaledFrame::begin(float scale) {
     const GladGLContext& gl = context_.gl();
     if (w != width_ || h != height_ || !fbo_) {  // (re)allocated only when the size changes
         release();
-        gl.GenFramebuffers(1, &fbo_);
-        gl.GenRenderbuffers(1, &colour_);
-        gl.GenRenderbuffers(1, &depth_);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, colour_);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, depth_);
-        gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
-        gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
-        gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-        const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+        detail::ColourDepthTarget target;
+        const GLenum status = detail::createColourDepthTarget(gl, w, h, target);
+        fbo_ = target.fbo, colour_ = target.colour, depth_ = target.depth;
         gl.BindFramebuffer(GL_FRAMEBUFFER, full.framebuffer);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             release();
