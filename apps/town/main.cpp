@@ -104,7 +104,7 @@ const char* kCsvHeader =
 
 // With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
 // keeps under budget_ms).
-const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_rung,lod_scale,impostor_distance,key_pose_distance,morph_budget,render_scale";
+const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_rung,lod_scale,impostor_distance,key_pose_distance,morph_budget,render_scale,town_lod_scale";
 
 // Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
 std::string csvHeader(int ranks, bool budget) {
@@ -137,7 +137,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
         const double cost = s.appCullMs() + drawMs;
         const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
         o << ',' << budget->options().budgetMs << ',' << cost << ',' << (cost > budget->options().budgetMs ? 1 : 0) << ',' << f.rung << ','
-          << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget << ',' << b.renderScale;
+          << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget << ',' << b.renderScale << ','
+          << b.townLodScale;
     }
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
@@ -304,6 +305,13 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (o.seed) scene.seed = *o.seed;
+    if (budget && !(scene.town && !scene.town->lod.empty() && scene.town->lodScale > 0.0))
+        for (std::size_t r = 0; r < budget->ladder().size(); ++r)
+            if (budget->ladder()[r].settings.townLodScale > 0.0) {
+                std::fprintf(stderr, "throng-town: --frame-budget: rung %zu sets town-lod-scale, but the scene declares no town LOD "
+                                     "levels and scale ('town': {'lod': ..., 'lodScale': ...}): such rungs do not draw the town as measured\n", r);
+                break;
+            }
     const double lodScale = o.lodScale > 0.0 ? o.lodScale : scene.representation.lodScale;
 
     std::unique_ptr<sim::Simulation> world;
@@ -331,6 +339,7 @@ int main(int argc, char** argv) {
     processor.setProcessing(o.processing == "traditional" ? Processing::Traditional : Processing::Actor);
     processor.setThreads(unsigned(o.threads));
     processor.setLodScale(lodScale);
+    const double townLodScale = world->townLodScale();  // the scene's; rungs may set their own
     // Occlusion culling when the scene declares it (and --occlusion does not turn it off).
     if (o.occlusion && world->description().representation.occlusion) processor.setOcclusion(world->description().representation.occlusion);
     // Key-pose caches for the middle band when the scene declares them (and --key-pose-cache does
@@ -400,6 +409,7 @@ int main(int argc, char** argv) {
         if (rung == appliedRung) return;
         const support::BudgetSettings& b = budget->ladder()[std::size_t(rung)].settings;
         processor.setLodScale(b.lodScale);
+        world->setTownLodScale(b.townLodScale > 0.0 ? b.townLodScale : townLodScale);
         if (impostors) processor.setImpostorDistance(b.impostorDistance, hysteresis * b.impostorDistance);
         if (caches) processor.setKeyPoseDistance(b.keyPoseDistance, hysteresis * b.keyPoseDistance);
         appliedRung = rung;

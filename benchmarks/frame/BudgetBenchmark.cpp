@@ -68,6 +68,9 @@ struct Options {
         "lod-scale=3 impostor-distance=12 key-pose-distance=6 morph-budget=0 render-scale=0.5",
         "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.5",
         "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.35",
+        "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.5 town-lod-scale=1",
+        "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.35 town-lod-scale=1",
+        "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.35 town-lod-scale=3",
     };
     std::vector<double> budgets;
     int width = 1280, height = 720;
@@ -89,6 +92,8 @@ struct Method {
     std::vector<int> histogram;
 };
 
+// The town's LOD scale is the world's (scene data, shared by every method): set before each
+// method's APP and CULL, as throng-town sets it between frames.
 void apply(ActorProcessor& p, CrowdRenderer& r, const BudgetSettings& s, double hysteresisShare, bool caches) {
     p.setLodScale(s.lodScale);
     p.setImpostorDistance(s.impostorDistance, hysteresisShare * s.impostorDistance);
@@ -113,7 +118,7 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "measured ticks from each start")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
     app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000))->capture_default_str();
     app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
-    app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N [render-scale=S]')")
+    app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N [render-scale=S] [town-lod-scale=T]')")
         ->delimiter(';')->type_name("RUNG;RUNG;...");
     app.add_option("--budgets", o.budgets, "also run the allocator at these budgets (ms) on the measured ladder")->delimiter(',')
         ->type_name("MS,MS,...")->check(CLI::PositiveNumber);
@@ -143,6 +148,7 @@ int main(int argc, char** argv) {
         const auto& declared = world->description().representation;
         const double hysteresis = declared.hysteresis;
         const bool caches = declared.keyPoseCache.has_value();
+        const double townLodScale = world->townLodScale();
         std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
         for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
         CrowdRendererOptions town;  // throng-town's defaults
@@ -200,6 +206,7 @@ int main(int argc, char** argv) {
                             m.settings = m.allocator->ladder()[std::size_t(m.rung)].settings;
                             apply(*m.processor, *m.draw, m.settings, hysteresis, caches);
                         }
+                        world->setTownLodScale(m.settings.townLodScale > 0.0 ? m.settings.townLodScale : townLodScale);
                         const ActorFrameStatistics s = m.processor->processFrame(world->root(), camera, now.time);
                         const std::uint64_t d = bench::stateDigest(world->crowd());
                         if (i == 0) digest = d;
@@ -219,6 +226,7 @@ int main(int argc, char** argv) {
                         if (measureError) frames[std::size_t(&m - ms.data())] = m.draw->readFrame();
                     }
                     if (measureError) {
+                        world->setTownLodScale(townLodScale);
                         reference.processor->processFrame(world->root(), camera, now.time);
                         reference.draw->drawFrame(camera, reference.processor->drawList());
                         const Image ref = reference.draw->readFrame();

@@ -586,6 +586,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
     if (!scene.town) fail("--sections town: the scene declares no town");
     result.lodDeclared = !scene.town->lod.empty();
     if (!result.lodDeclared) scene.town->lod = kTownLod;
+    scene.town->lodScale = 0.0;  // the levels at their declared distances (a scene may keep them for a frame budget)
     sim::SceneDescription full = scene;
     full.town->lod.clear();
     std::unique_ptr<sim::Simulation> worlds[2] = {sim::Simulation::build(std::move(full)), sim::Simulation::build(std::move(scene))};

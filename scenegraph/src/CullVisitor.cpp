@@ -109,7 +109,7 @@ void CullVisitor::apply(LOD& lod) {
             counter_->countOperations(OpCategory::LodDistance);
             ops = counter_->tally(OpCategory::LodDistance);
         }
-        const double scaled2 = detail::lodDistanceSquared(*world_, lod.center(), eye_, lodScale2_, ops);
+        const double scaled2 = detail::lodDistanceSquared(*world_, lod.center(), eye_, lodScale2_ * lod.distanceScaleSquared(), ops);
         const int index = lod.selectChildSquared(scaled2, ops);
         ++stats_.lodDistances;
         if (index >= 0) {

@@ -26,6 +26,14 @@ void LOD::addChild(std::shared_ptr<Node> child, double maxDistance) {
     maxDistances2_.push_back(maxDistance * maxDistance);
 }
 
+void LOD::setDistanceScale(double scale) {
+    requireFinite(scale, "LOD::setDistanceScale", "scale", name());
+    if (scale <= 0.0)
+        throw std::invalid_argument(errorContext("LOD::setDistanceScale", name()) + ": argument 'scale' must be positive (" +
+                                    std::to_string(scale) + ")");
+    distanceScale_ = scale;
+}
+
 void LOD::setCenter(const Vec3& center) {
     requireFinite(center, "LOD::setCenter", "center", name());
     center_ = center;

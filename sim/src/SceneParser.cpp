@@ -177,7 +177,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 
     if (root.has("town")) {
         const Reader t = root.at("town");
-        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod", "regions"});
+        t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod", "lodScale", "regions"});
         TownDescription town;
         if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
         if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
@@ -186,6 +186,10 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
         if (t.has("occluders")) town.occluders = t.at("occluders").boolean();
         if (t.has("lod")) town.lod = geometricLevels(t.at("lod"));
+        if (t.has("lodScale")) {
+            if (!t.has("lod")) t.at("lodScale").fail("needs the town's 'lod' levels");
+            town.lodScale = t.at("lodScale").positive();
+        }
         if (t.has("regions")) {
             // {"size": [bx, bz]}: rectangles of so many blocks; or a list of {"from": [x, z], "to": [x, z]} (blocks, 'to' excluded).
             const Reader r = t.at("regions");

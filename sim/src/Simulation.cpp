@@ -6,6 +6,7 @@
 #include <map>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ProceduralBird.h"
@@ -146,6 +147,7 @@ std::unique_ptr<Simulation> Simulation::build(SceneDescription description, cons
     sim->root_->setName(sim->description_.name.empty() ? "scene" : sim->description_.name);
     const BuildProgress report = progress ? progress : [](const std::string&, double) {};
     sim->buildTown(report);
+    if (const auto& town = sim->description_.town; town && town->lodScale > 0.0) sim->setTownLodScale(town->lodScale);
     sim->buildActors(report);
     double extent = 100.0;
     if (sim->town_) extent = std::max(sim->town_->extent().x, sim->town_->extent().y);
@@ -154,6 +156,13 @@ std::unique_ptr<Simulation> Simulation::build(SceneDescription description, cons
     sim->team_ = std::make_unique<ThreadTeam>(1);
     report("ready", 1.0);
     return sim;
+}
+
+void Simulation::setTownLodScale(double scale) {
+    if (!(std::isfinite(scale) && scale > 0.0))
+        throw std::invalid_argument("Simulation::setTownLodScale: scale must be finite and > 0, not " + std::to_string(scale));
+    for (const auto& lod : townLods_) lod->setDistanceScale(scale);
+    townLodScale_ = scale;
 }
 
 void Simulation::buildTown(const BuildProgress& progress) {
@@ -214,7 +223,9 @@ void Simulation::buildTown(const BuildProgress& progress) {
         const Mat4 m = tileTransform(*town_, t);
         node->setMatrix(m);
         for (const auto& model : models[t.kind]) {
-            node->addChild(tileModelNode(model, d.town->lod, levels));
+            auto tile = tileModelNode(model, d.town->lod, levels);
+            if (auto lod = std::dynamic_pointer_cast<LOD>(tile)) townLods_.push_back(std::move(lod));
+            node->addChild(std::move(tile));
             navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
             townTriangles_ += model->primitiveCount();
         }

@@ -6,10 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Geometry.h"
+#include "throng/scenegraph/LOD.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/MeshShapes.h"
 #include "throng/scenegraph/OpCounter.h"
 
 using namespace throng;
@@ -252,4 +258,45 @@ TEST(SkeletalLod, OneEyeDistancePerActorThatPassesCull2) {
     const ActorFrameStatistics& t = p.processFrame(*scene->root, camera, 1.0);
     EXPECT_EQ(t.eyeDistances, 0u);
     EXPECT_GT(t.lodDistances, 10 * s.eyeDistances) << "one per LOD node, for every actor inside the frustum";
+}
+
+// An LOD node's own distance scale (a town's tiles, LOD::setDistanceScale) multiplies on top of the
+// processor's LOD scale and leaves the actors alone: a frame budget simplifies the town, or keeps
+// it whole, whatever LOD the actors are at.
+TEST(SceneLod, ANodesDistanceScaleMovesItsLevelsAndLeavesTheActorsAlone) {
+    const auto tmpl = makeTable3Template();  // the 20 distal nodes switch off beyond 50 m
+    auto b = std::make_shared<KeyframeBehaviour>();
+    KeyframeBehaviour::Actor a;
+    a.tmpl = tmpl;
+    auto scene = standingActor(tmpl, b, b->addActor(a));
+    const auto nearMesh = std::make_shared<MeshDrawable>(makeBox("near", glm::vec3(0.0f), glm::vec3(1.0f), glm::vec4(1.0f)));
+    const auto farMesh = std::make_shared<MeshDrawable>(makeBox("far", glm::vec3(0.0f), glm::vec3(1.0f), glm::vec4(1.0f)));
+    auto tile = std::make_shared<LOD>();
+    tile->addChild(std::make_shared<Geometry>(nearMesh), 30.0);
+    tile->addChild(std::make_shared<Geometry>(farMesh), 10000.0);
+    scene->root->addChild(tile);
+    ActorProcessor p(scene->crowd);
+    const auto tileShows = [&] {
+        for (const DrawItem& item : p.drawList().items())
+            if (item.actor == kNoActor) return item.drawable == nearMesh.get() ? std::string("near") : std::string("far");
+        return std::string("nothing");
+    };
+    // 20 m away at LOD scale 3: the actor's distal nodes off (60 m > 50 m), the tile at its far level.
+    p.setLodScale(3.0);
+    EXPECT_EQ(p.processFrame(*scene->root, cameraAt(20.0), 0.25).skeletonNodesEvaluated, 20u);
+    EXPECT_EQ(tileShows(), "far");
+    // The node's scale 0.01: the tile near again (0.6 m), the actor as before.
+    tile->setDistanceScale(0.01);
+    EXPECT_EQ(p.processFrame(*scene->root, cameraAt(20.0), 0.5).skeletonNodesEvaluated, 20u);
+    EXPECT_EQ(tileShows(), "near");
+    // And the reverse: the actors whole, the tile simplified (20 m x 1 x 2 = 40 m).
+    p.setLodScale(1.0);
+    tile->setDistanceScale(2.0);
+    EXPECT_EQ(p.processFrame(*scene->root, cameraAt(20.0), 0.75).skeletonNodesEvaluated, 40u);
+    EXPECT_EQ(tileShows(), "far");
+    tile->setDistanceScale(1.0);
+    p.processFrame(*scene->root, cameraAt(20.0), 1.0);
+    EXPECT_EQ(tileShows(), "near");
+    for (double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()})
+        EXPECT_THROW(tile->setDistanceScale(bad), std::invalid_argument) << bad;
 }

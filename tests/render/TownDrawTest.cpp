@@ -36,6 +36,7 @@ std::unique_ptr<sim::Simulation> defaultTown(bool townLod) {
     sim::SceneDescription scene = sim::parseSceneFile(THRONG_TOWN_DEFAULT_SCENE);
     sim::scaleActors(scene, 10);
     scene.town->lod.clear();
+    scene.town->lodScale = 0.0;  // the levels at their declared distances
     if (townLod) scene.town->lod = {{50.0, 1.0}, {100.0, 0.5}, {std::numeric_limits<double>::infinity(), 0.25}};
     auto world = sim::Simulation::build(std::move(scene));
     for (int i = 0; i < 30; ++i) world->step();  // walkers leave their spawn points

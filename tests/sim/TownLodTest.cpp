@@ -75,3 +75,19 @@ TEST(TownLod, DeclaredBuildsCoarserLevelsAndDrawsFewerTrianglesFarAway) {
     EXPECT_GT(a, 0u);
     EXPECT_LT(double(b), 0.5 * double(a)) << "every tile is beyond 100 m from this camera";
 }
+
+// The scene's town/lodScale keeps declared levels unused (the full town drawn, as without LOD) until
+// Simulation::setTownLodScale asks for them, whatever the actors' LOD scale.
+TEST(TownLod, ASmallTownLodScaleDrawsTheFullTownUntilABudgetAsks) {
+    auto full = smallTown("");
+    auto world = smallTown(R"(, "lod": [{"until": 50}, {"until": 100, "triangles": 0.5}, {"triangles": 0.25}], "lodScale": 0.01)");
+    EXPECT_TRUE(world->townHasLod());
+    EXPECT_FALSE(full->townHasLod());
+    EXPECT_EQ(world->townLodScale(), 0.01);
+    EXPECT_EQ(trianglesDrawn(*world), trianglesDrawn(*full)) << "the levels built, none used";
+    world->setTownLodScale(1.0);
+    EXPECT_LT(double(trianglesDrawn(*world)), 0.5 * double(trianglesDrawn(*full))) << "asked for: the far levels";
+    EXPECT_THROW(world->setTownLodScale(0.0), std::invalid_argument);
+    EXPECT_THROW(world->setTownLodScale(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+    EXPECT_EQ(world->townLodScale(), 1.0) << "a refused scale changes nothing";
+}

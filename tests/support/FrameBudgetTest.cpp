@@ -191,6 +191,11 @@ TEST(FrameBudgetLadder, RungValueRoundTrips) {
     EXPECT_EQ(budgetRungValue(s).find("render-scale"), std::string::npos);
     s.renderScale = 0.5;
     EXPECT_EQ(parseBudgetRungValue(budgetRungValue(s)).renderScale, 0.5);
+    EXPECT_EQ(back.townLodScale, 0.0);
+    s.townLodScale = 2.0;
+    EXPECT_EQ(parseBudgetRungValue(budgetRungValue(s)).townLodScale, 2.0);
+    EXPECT_THROW(parseBudgetRungValue("lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2 town-lod-scale=0"),
+                 std::invalid_argument);
     for (const char* bad : {"0", "1.5", "-0.5", "nan"})
         EXPECT_THROW(parseBudgetRungValue(std::string("lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2 render-scale=") + bad),
                      std::invalid_argument) << bad;

@@ -235,7 +235,7 @@ def effects(exe, scenes, work):
 
 
 BUDGET_COLUMNS = ["budget_ms", "app_cull_draw_ms", "over_budget", "budget_rung", "lod_scale", "impostor_distance",
-                  "key_pose_distance", "morph_budget", "render_scale"]
+                  "key_pose_distance", "morph_budget", "render_scale", "town_lod_scale"]
 
 
 def budget(exe, scenes, work):
@@ -257,10 +257,10 @@ def budget(exe, scenes, work):
             rung = int(r["budget_rung"])
             if not 0 <= rung < len(rungs):
                 sys.exit(f"{name}: frame {r['frame']}: rung {rung} is not in the ladder of {len(rungs)}")
-            settings = {"render-scale": "1", **dict(kv.split("=") for kv in rungs[rung]["settings"].split())}
+            settings = {"render-scale": "1", "town-lod-scale": "0", **dict(kv.split("=") for kv in rungs[rung]["settings"].split())}
             for column, key in (("lod_scale", "lod-scale"), ("impostor_distance", "impostor-distance"),
                                 ("key_pose_distance", "key-pose-distance"), ("morph_budget", "morph-budget"),
-                                ("render_scale", "render-scale")):
+                                ("render_scale", "render-scale"), ("town_lod_scale", "town-lod-scale")):
                 if abs(float(r[column]) - float(settings[key])) > 1e-6 * max(1.0, float(settings[key])):
                     sys.exit(f"{name}: frame {r['frame']}: {column} {r[column]} is not rung {rung}'s {settings[key]}")
             if float(r["budget_ms"]) != float(ms):

@@ -34,13 +34,14 @@ double parseNumber(const std::string& key, const std::string& text) {
 std::string budgetRungValue(const BudgetSettings& s) {
     return "lod-scale=" + number(s.lodScale) + " impostor-distance=" + number(s.impostorDistance) +
            " key-pose-distance=" + number(s.keyPoseDistance) + " morph-budget=" + std::to_string(s.morphBudget) +
-           (s.renderScale < 1.0 ? " render-scale=" + number(s.renderScale) : std::string());
+           (s.renderScale < 1.0 ? " render-scale=" + number(s.renderScale) : std::string()) +
+           (s.townLodScale > 0.0 ? " town-lod-scale=" + number(s.townLodScale) : std::string());
 }
 
 BudgetSettings parseBudgetRungValue(const std::string& value) {
     BudgetSettings s;
     std::map<std::string, bool> seen{{"lod-scale", false}, {"impostor-distance", false}, {"key-pose-distance", false}, {"morph-budget", false},
-                                     {"render-scale", false}};
+                                     {"render-scale", false}, {"town-lod-scale", false}};
     std::istringstream in(value);
     std::string item;
     while (in >> item) {
@@ -49,7 +50,7 @@ BudgetSettings parseBudgetRungValue(const std::string& value) {
         const std::string key = item.substr(0, eq), text = item.substr(eq + 1);
         const auto it = seen.find(key);
         if (it == seen.end())
-            throw std::invalid_argument("unknown key '" + key + "' (expected lod-scale, impostor-distance, key-pose-distance, morph-budget, render-scale)");
+            throw std::invalid_argument("unknown key '" + key + "' (expected lod-scale, impostor-distance, key-pose-distance, morph-budget, render-scale, town-lod-scale)");
         if (it->second) throw std::invalid_argument("key '" + key + "' given twice");
         it->second = true;
         const double v = parseNumber(key, text);
@@ -59,6 +60,9 @@ BudgetSettings parseBudgetRungValue(const std::string& value) {
         } else if (key == "impostor-distance" || key == "key-pose-distance") {
             if (v < 0) throw std::invalid_argument(key + "=" + text + " must be >= 0");
             (key == "impostor-distance" ? s.impostorDistance : s.keyPoseDistance) = v;
+        } else if (key == "town-lod-scale") {
+            if (v <= 0) throw std::invalid_argument("town-lod-scale=" + text + " must be > 0");
+            s.townLodScale = v;
         } else if (key == "render-scale") {
             if (v <= 0 || v > 1) throw std::invalid_argument("render-scale=" + text + " must be above 0 and at most 1");
             s.renderScale = v;
@@ -68,7 +72,7 @@ BudgetSettings parseBudgetRungValue(const std::string& value) {
         }
     }
     for (const auto& [key, given] : seen)
-        if (!given && key != "render-scale") throw std::invalid_argument("key '" + key + "' missing");
+        if (!given && key != "render-scale" && key != "town-lod-scale") throw std::invalid_argument("key '" + key + "' missing");
     return s;
 }
 

@@ -27,6 +27,15 @@ public:
     /// The centre in the node's frame (default: the origin).
     const Vec3& center() const { return center_; }
 
+    /// Multiplies this node's eye distance on top of any visitor's LOD scale (finite, > 0; default
+    /// 1). A scene keeps declared levels unused with a small scale until a frame budget asks for
+    /// them. Throws std::invalid_argument otherwise.
+    void setDistanceScale(double scale);
+    /// This node's own distance multiplier.
+    double distanceScale() const { return distanceScale_; }
+    /// Its square (what the squared-distance selection multiplies by).
+    double distanceScaleSquared() const { return distanceScale_ * distanceScale_; }
+
     /// Index of the child shown at `distance` (already multiplied by any LOD scale), or -1 if none.
     int selectChild(double distance) const;
     /// Index of the child shown when the squared distance is `distance2` (saves a sqrt), or -1.
@@ -38,6 +47,7 @@ private:
     std::vector<double> maxDistances_;
     std::vector<double> maxDistances2_;
     Vec3 center_{0.0};
+    double distanceScale_ = 1.0;
 };
 
 }  // namespace throng

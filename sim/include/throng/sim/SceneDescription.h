@@ -36,6 +36,10 @@ struct TownDescription {
     /// triangles}, nearest first, as for templates; the last may reach to any distance. Empty: no
     /// town LOD (the full tiles everywhere, nothing simplified).
     std::vector<glm::dvec2> lod;
+    /// Multiplies the town's LOD distances on top of the LOD scale (Simulation::setTownLodScale);
+    /// 0: not set (1). A small value keeps declared levels unused until a frame budget asks for
+    /// them: the town is built with its levels and drawn at full detail.
+    double lodScale = 0.0;
     /// Regions stepped apart: rectangles of `regionBlocks` blocks (the last row and column may be
     /// smaller), unless `regions` lists them; together they must cover every block once.
     glm::ivec2 regionBlocks{4, 4};

@@ -22,6 +22,10 @@
 #include "throng/sim/SimulationClock.h"
 #include "throng/sim/TownLayout.h"
 
+namespace throng {
+class LOD;
+}
+
 namespace throng::sim {
 
 class Locomotion;
@@ -102,6 +106,15 @@ public:
     /// fresh set, since a cache serves one processor. Throws SceneError naming the template if it
     /// cannot be cached (no skinned mesh, rigid parts).
     std::vector<std::shared_ptr<KeyPoseCache>> makeKeyPoseCaches();
+    /// Multiplies the distances of the town's LOD levels on top of any LOD scale (LOD::
+    /// setDistanceScale on every tile's LOD node; the scene's town/lodScale at build, else 1).
+    /// No effect on a town built without levels. Call between frames. Throws std::invalid_argument
+    /// unless finite and > 0.
+    void setTownLodScale(double scale);
+    /// The town's LOD distance multiplier (1 unless set).
+    double townLodScale() const { return townLodScale_; }
+    /// Whether the town was built with LOD levels.
+    bool townHasLod() const { return !townLods_.empty(); }
     /// Triangles of the town's tiles.
     std::uint64_t townTriangles() const { return townTriangles_; }
 
@@ -129,6 +142,8 @@ private:
     bool walkersOnly_ = false;     // distributed, on a rank other than 0: steps its walkers only
     double walkersOnlyMs_ = 0.0;
     std::uint64_t townTriangles_ = 0;
+    std::vector<std::shared_ptr<LOD>> townLods_;  // every tile's LOD node (town LOD declared)
+    double townLodScale_ = 1.0;
 };
 
 }  // namespace throng::sim

@@ -1,6 +1,6 @@
 #pragma once
 // The ladder of a frame-budget allocator: settings of the knobs that trade image error for frame
-// time (LOD scale, impostor distance, key-pose distance, morph budget, render scale), ordered from the most
+// time (LOD scale, impostor distance, key-pose distance, morph budget, render scale, town LOD scale), ordered from the most
 // accurate rung to the cheapest, each with the image error and the APP+CULL+DRAW time measured for
 // it (bench_budget). Stored as the common accuracy CSV (AccuracyCsv.h): knob "frame budget rung",
 // the settings in the value, one line per metric; the rung's error is its "pixels_off_8" line.
@@ -20,6 +20,9 @@ struct BudgetSettings {
     /// Dynamic resolution: the frame drawn at this fraction of the output's width and height, scaled
     /// up (0 < scale <= 1). Optional in a rung's value ("render-scale=0.5"), 1 when absent.
     double renderScale = 1.0;
+    /// The town's LOD scale apart from the actors' (ActorProcessor::setSceneLodScale), used where
+    /// the scene built the town's levels. Optional ("town-lod-scale=2"); 0 when absent: the scene's.
+    double townLodScale = 0.0;
 };
 
 /// One rung: its settings and what they were measured to cost and err.
@@ -35,9 +38,9 @@ struct BudgetRung {
 inline constexpr const char* kBudgetRungKnob = "frame budget rung";
 
 /// The value column of a rung: "lod-scale=1 impostor-distance=40 key-pose-distance=20 morph-budget=2",
-/// followed by " render-scale=S" when S is below 1.
+/// followed by " render-scale=S" when S is below 1 and " town-lod-scale=T" when T is set.
 std::string budgetRungValue(const BudgetSettings& settings);
-/// Parses budgetRungValue's text (every key once, in any order; render-scale may be left out).
+/// Parses budgetRungValue's text (every key once, in any order; render-scale and town-lod-scale may be left out).
 /// Throws std::invalid_argument naming the key or value at fault.
 BudgetSettings parseBudgetRungValue(const std::string& value);
 
