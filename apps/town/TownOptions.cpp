@@ -73,7 +73,7 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->check(oneOf({"proxy", "lines"}))
         ->capture_default_str();
     CLI::Option* budget = app.add_option("--frame-budget", o.frameBudget,
-                   "each frame, choose the LOD scale, impostor distance, key-pose distance, morph budget and render scale from the ladder "
+                   "each frame, choose the LOD scale, impostor distance, key-pose distance, morph budget, render scale and town LOD scale from the ladder "
                    "to keep APP+CULL+DRAW under MS milliseconds with the least image error")
         ->type_name("MS")
         ->check(positiveNumber())
