@@ -76,7 +76,7 @@ constexpr double kFullDetail = 1e-6;  // LOD scale of the reference: every scale
 const std::vector<std::string> kKnobs{"lod-scale",         "skeletal-lod",        "behavioural-lod",  "impostor-distance",
                                       "impostor-hysteresis", "impostor-features", "impostor-morph-budget",
                                       "impostor-resolution", "impostor-views",    "impostor-keyframes", "key-pose-rows",
-                                      "key-pose-mode",       "occlusion-resolution"};
+                                      "key-pose-mode",       "occlusion-resolution", "render-scale",     "town-lod"};
 
 struct Options {
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
@@ -97,6 +97,8 @@ struct Options {
     std::vector<std::int64_t> keyframes{8, 16};
     std::vector<std::int64_t> cacheRows{8, 32, 128};
     std::vector<std::string> occlusion{"64x36", "256x144", "1024x576"};
+    std::vector<double> renderScales{0.75, 0.5, 0.35};
+    std::vector<double> townLodScales{1.0, 3.0};
     std::string markdown, accuracyCsv;
     bool has(const std::string& k) const { return std::find(knobs.begin(), knobs.end(), k) != knobs.end(); }
 };
@@ -132,6 +134,7 @@ struct Setting {
     std::optional<KeyPoseCacheSettings> cache;
     double cacheDistance = 0, cacheHysteresis = 0;
     std::optional<OcclusionSettings> occlusion;
+    double townLodScale = 0;  // the town's levels at this LOD scale (0: the scene's, levels unused)
     CrowdRendererOptions renderer;
     std::unique_ptr<ActorProcessor> processor;
     std::unique_ptr<CrowdRenderer> draw;
@@ -228,6 +231,7 @@ private:
     std::size_t allBands_ = 0;                  // the world with every behaviour's bands live
     std::map<double, std::size_t> angleWorld_;  // joint angle -> world
     std::vector<std::pair<std::string, std::size_t>> behaviourWorlds_;
+    double sceneTownLodScale_ = 1.0;  // the scene's town LOD scale (every world is built from it)
 
     std::size_t addWorld(std::string name, sim::SceneDescription d) {
         std::fprintf(stderr, "%s: building world '%s'\n", kProgram, name.c_str());
@@ -237,6 +241,7 @@ private:
 
     void buildWorlds() {
         addWorld("scene", scaledScene(o_));
+        sceneTownLodScale_ = worlds_[0].sim->townLodScale();
         if (o_.has("skeletal-lod"))
             for (double angle : o_.jointAngles) angleWorld_[angle] = addWorld("joint angle " + number(angle), skeletalScene(o_, angle));
         if (!o_.has("behavioural-lod")) return;
@@ -348,6 +353,26 @@ private:
                 Setting& m = add({{"occlusion resolution", r}});
                 m.occlusion = OcclusionSettings{w2, h2, occluders};
                 m.renderer = finished();
+            }
+        }
+        if (o_.has("render-scale")) {  // dynamic resolution: the frame drawn smaller and scaled up
+            add({{"render scale", "off", true}}).renderer = finished();
+            for (double r : o_.renderScales) {
+                Setting& m = add({{"render scale", number(r)}});
+                m.renderer = finished();
+                m.renderer.renderScale = float(r);
+            }
+        }
+        if (o_.has("town-lod")) {
+            if (worlds_[0].sim->townHasLod()) {
+                add({{"town lod scale", "off", true}}).renderer = finished();
+                for (double t : o_.townLodScales) {
+                    Setting& m = add({{"town lod scale", number(t)}});
+                    m.townLodScale = t;
+                    m.renderer = finished();
+                }
+            } else {
+                std::fprintf(stderr, "%s: the scene builds no town LOD levels: its knob is left out\n", kProgram);
             }
         }
     }
@@ -514,6 +539,8 @@ private:
                 for (std::size_t i = 0; i < settings_.size(); ++i) {
                     Setting& m = settings_[(i + std::size_t(f + 1)) % settings_.size()];  // settings take turns going first
                     sim::Simulation& w = *worlds_[m.world].sim;
+                    // The town's levels at the setting's own scale (on top of its LOD scale), else the scene's.
+                    w.setTownLodScale(m.townLodScale > 0 ? m.townLodScale / m.lodScale : sceneTownLodScale_);
                     const ActorFrameStatistics s = m.processor->processFrame(w.root(), camera, w.now().time);
                     const std::uint64_t d = bench::stateDigest(w.crowd());
                     if (i == 0) digest = d;
@@ -670,6 +697,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Validator([](std::string& v) { return resolution(v) ? std::string() : "'" + v + "' is not WxH with sides in [8, 4096]"; },
                                ""))
         ->capture_default_str();
+    app.add_option("--render-scales", o.renderScales, "render scales (dynamic resolution; off: 1)")->delimiter(',')->type_name("S,...")
+        ->check(support::number(0.05, 0.99))->capture_default_str();
+    app.add_option("--town-lod-scales", o.townLodScales, "LOD scales of the town's levels (off: the scene's)")->delimiter(',')
+        ->type_name("S,...")->check(support::positiveNumber())->capture_default_str();
     app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
     app.add_option("--accuracy-csv", o.accuracyCsv, "write every row in the common accuracy CSV")->type_name("FILE");
     if (const auto code = cl.parse(argc, argv)) return *code;

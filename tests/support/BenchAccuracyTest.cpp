@@ -18,7 +18,7 @@ using namespace throng::support;
 
 namespace {
 
-const std::vector<std::string> kApproximating{"lod scale", "impostor distance", "key-pose cache rows"};
+const std::vector<std::string> kApproximating{"lod scale", "impostor distance", "key-pose cache rows", "render scale", "town lod scale"};
 
 bool atFloor(const AccuracyRow& r) {
     const std::string& m = r.metric.name;
@@ -34,12 +34,14 @@ TEST(BenchAccuracy, OffAtTheFloorAndEveryApproximationErrs) {
     const std::filesystem::path csv = dir / "accuracy.csv", log = dir / "bench_accuracy.log";
     std::filesystem::remove(csv);
     const std::string command = std::string("\"") + THRONG_BENCH_ACCURACY + "\" --actors 120 --frames 1 --warmup 5 --width 320 "
-                                "--height 180 --knobs lod-scale,impostor-distance,key-pose-rows,occlusion-resolution "
+                                "--height 180 --knobs lod-scale,impostor-distance,key-pose-rows,occlusion-resolution,render-scale,town-lod "
                                 "--lod-scales 1,4 --impostor-distances 10,40 --cache-rows 4,32 --occlusion 64x36,256x144 "
+                                "--render-scales 0.5 --town-lod-scales 3 "
                                 "--accuracy-csv \"" + csv.string() + "\" > \"" + log.string() + "\" 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << "bench_accuracy failed; see " << log;
     const std::vector<AccuracyRow> rows = readAccuracyCsv(csv.string());
-    const std::vector<std::string> knobs{"lod scale", "impostor distance", "key-pose cache rows", "occlusion resolution"};
+    const std::vector<std::string> knobs{"lod scale", "impostor distance", "key-pose cache rows", "occlusion resolution", "render scale",
+                                         "town lod scale"};
 
     // Every row says what it measured.
     std::set<std::string> seenKnobs, cameras;
