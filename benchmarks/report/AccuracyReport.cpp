@@ -3,7 +3,8 @@
 // disk: per knob a VTK chart of its primary error metric against the time of the phase it changes,
 // one series per scene, camera and actor count, each series' Pareto front (least time for a given
 // error) and the setting that switches the approximation off marked; a combined table of every
-// line; the schema; the crowd's density and speed maps when a run wrote them; links to other
+// line; the schema; the crowd's density and speed maps and its fundamental diagram (speed against
+// local density, speed_density.csv) when a run wrote them; links to other
 // reports. Charts need an X display (xvfb-run -a without one).
 //
 //   throng-accuracy-report --csv DIR [--out DIR] [--maps DIR] [--link LABEL=PATH ...] [--title TEXT]
@@ -28,6 +29,7 @@
 #include "throng/support/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/vtk/Chart.h"
+#include "throng/vtk/CrowdMaps.h"
 
 namespace fs = std::filesystem;
 using throng::support::AccuracyRow;
@@ -37,7 +39,7 @@ namespace {
 struct Options {
     std::string csv;                 // folder of common accuracy CSVs
     std::string out = "report";      // where index.html and its pictures go
-    std::string maps;                // folder holding density.png and speed.png (empty: none)
+    std::string maps;                // folder holding density.png, speed.png, speed_density.csv (empty: none)
     std::vector<std::string> links;  // LABEL=PATH, relative to the page
     std::string title = "What accuracy costs in time";
 };
@@ -142,6 +144,64 @@ std::string pictureFrom(const fs::path& dir, const std::string& name, const fs::
     fs::create_directories(out / "maps");
     fs::copy_file(source, out / "maps" / name, fs::copy_options::overwrite_existing);
     return "maps/" + name;
+}
+
+// The crowd's fundamental diagram (speed_density.csv of throng-town --vtk) as two charts on the
+// page: walking speed against the local density at that moment, and how much of the crowd's time
+// was spent at each density or less. Rows with fewer than 1 in 10,000 actor-frames are left out
+// of the speed chart (a mean of a handful of walkers says little).
+void writeSpeedDensityCharts(std::ostream& page, const std::vector<throng::vtk::SpeedDensityRow>& rows, const fs::path& out) {
+    if (rows.empty()) {
+        page << "<p>Nobody on the ground was recorded: no speed-density charts.</p>\n";
+        return;
+    }
+    fs::create_directories(out / "plots");
+    throng::vtk::Chart speed;
+    speed.title = "Walking speed against local density";
+    speed.xLabel = "people per square metre in the walker's cell at that moment";
+    speed.yLabel = "mean speed (m/s)";
+    speed.padding = 0.06;
+    speed.width = 900, speed.height = 560;
+    throng::vtk::ChartSeries mean;
+    mean.name = "mean speed";
+    mean.style = throng::vtk::ChartSeries::Style::LineAndPoints;
+    throng::vtk::Chart share;
+    share.title = "Share of the crowd's time at each local density or less";
+    share.xLabel = speed.xLabel;
+    share.yLabel = "share of actor-frames on the ground (%)";
+    share.padding = 0.06;
+    share.legend = throng::vtk::Chart::Legend::Bottom;
+    share.width = 900, share.height = 560;
+    throng::vtk::ChartSeries cumulative;
+    cumulative.name = "at this density or less";
+    cumulative.style = throng::vtk::ChartSeries::Style::LineAndPoints;
+    throng::vtk::paletteColour(1, cumulative.rgb);
+    double sum = 0.0;
+    std::size_t kept = 0;
+    for (const auto& r : rows) {
+        sum += r.share;
+        cumulative.x.push_back(r.density);
+        cumulative.y.push_back(100.0 * std::min(sum, 1.0));
+        if (r.share >= 1e-4) {
+            mean.x.push_back(r.density);
+            mean.y.push_back(r.meanSpeed);
+            ++kept;
+        }
+    }
+    speed.series.push_back(mean);
+    share.series.push_back(cumulative);
+    throng::vtk::writeChartPng(speed, (out / "plots" / "crowd-speed-density.png").string());
+    throng::vtk::writeChartPng(share, (out / "plots" / "crowd-density-share.png").string());
+    const double cell = std::sqrt(double(rows.front().people) / rows.front().density);
+    page << "<figure><img src=\"plots/crowd-speed-density.png\" alt=\"walking speed against local density\"><figcaption>The crowd's "
+            "fundamental diagram: the mean speed of people on the ground (a Reference Point within a metre of the lowest) against the "
+            "people sharing their "
+         << number(cell) << " m cell at that moment, over every recorded frame (" << kept << " of " << rows.size()
+         << " densities, those with at least 1 in 10,000 actor-frames). Drawn with VTK from <code>speed_density.csv</code>."
+            "</figcaption></figure>\n"
+         << "<figure><img src=\"plots/crowd-density-share.png\" alt=\"share of the crowd's time at each density\"><figcaption>How "
+            "crowded it was for the people in it: the share of their time spent at each local density or less (the densest: "
+         << number(rows.back().density) << " people per square metre).</figcaption></figure>\n";
 }
 
 const char* kSchema = R"(<p>Every sweep writes the <em>common accuracy CSV</em> (<code>throng::support::AccuracyCsv</code>):
@@ -328,6 +388,13 @@ int run(const Options& o) {
                              : "Speed: mean m/s of those seen in each cell, dark blue (still or nobody) to red (the 95th percentile and faster).")
                  << " Drawn with VTK by <code>throng-town --vtk</code>.</figcaption></figure>\n";
         }
+        const fs::path speedDensity = fs::path(o.maps) / "speed_density.csv";
+        if (fs::exists(speedDensity)) {
+            any = true;
+            writeSpeedDensityCharts(page, throng::vtk::readSpeedDensity(speedDensity), out);
+        } else {
+            std::fprintf(stderr, "throng-accuracy-report: no speed_density.csv in %s\n", o.maps.c_str());
+        }
         if (!any) page << "<p>This run wrote no crowd maps.</p>\n";
     }
     if (!o.links.empty()) {
@@ -361,7 +428,7 @@ int main(int argc, char** argv) {
     app.add_option("--csv", o.csv, "folder of common accuracy CSV files (every *.csv in it is read)")->type_name("DIR")->required()
         ->check(CLI::ExistingDirectory);
     app.add_option("--out", o.out, "where index.html and plots/ go")->type_name("DIR")->capture_default_str();
-    app.add_option("--maps", o.maps, "folder holding density.png and speed.png (throng-town --vtk DIR)")->type_name("DIR")
+    app.add_option("--maps", o.maps, "folder holding density.png, speed.png and speed_density.csv (throng-town --vtk DIR)")->type_name("DIR")
         ->check(CLI::ExistingDirectory);
     app.add_option("--link", o.links, "another report linked from the page, its path relative to the page (repeatable)")
         ->type_name("LABEL=PATH")->check(CLI::Validator(

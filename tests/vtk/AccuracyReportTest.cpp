@@ -146,6 +146,8 @@ protected:
         std::ofstream(kOut / "csv" / "notes.txt") << "not a CSV: ignored\n";
         writeGradientPng(kOut / "maps" / "density.png");
         writeGradientPng(kOut / "maps" / "speed.png");
+        std::ofstream(kOut / "maps" / "speed_density.csv") << "people,density_per_m2,actor_frames,share,mean_speed_m_s\n"
+                                                              "1,0.0625,600,0.6,1.3\n2,0.125,300,0.3,1.1\n4,0.25,100,0.1,0.7\n";
         status_ = runTool("--csv " + (kOut / "csv").string() + " --out " + (kOut / "page").string() + " --maps " + (kOut / "maps").string() +
                               " --link 'Cost model=costmodel/report.md'",
                           err_);
@@ -161,7 +163,7 @@ TEST_F(AccuracyReport, PageReferencesValidNonBlankCharts) {
     const std::regex img("<img src=\"([^\"]+)\"");
     std::vector<std::string> sources;
     for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it) sources.push_back((*it)[1]);
-    ASSERT_EQ(sources.size(), 4u) << "two charts and two maps";
+    ASSERT_EQ(sources.size(), 6u) << "two knob charts, two maps and two speed-density charts";
     int charts = 0;
     for (const std::string& s : sources) {
         EXPECT_FALSE(fs::path(s).is_absolute()) << s << ": the page must open from anywhere";
@@ -179,7 +181,9 @@ TEST_F(AccuracyReport, PageReferencesValidNonBlankCharts) {
             EXPECT_GT(png.colours.size(), 100u) << s;
         }
     }
-    EXPECT_EQ(charts, 2);
+    EXPECT_EQ(charts, 4);
+    EXPECT_NE(page.find("plots/crowd-speed-density.png"), std::string::npos);
+    EXPECT_NE(page.find("the densest: 0.25 people per square metre"), std::string::npos);
     EXPECT_NE(page.find("href=\"costmodel/report.md\""), std::string::npos);
     EXPECT_NE(page.find(AccuracyCsv::header()), std::string::npos) << "the schema";
 }
@@ -219,6 +223,13 @@ TEST_F(AccuracyReport, BadCsvNamesFileAndLine) {
     std::ofstream(kOut / "bad" / "broken.csv") << "knob,value,psnr\nx,1,3\n";
     EXPECT_EQ(runTool("--csv " + (kOut / "bad").string() + " --out " + (kOut / "bad-page").string(), err), 1);
     EXPECT_NE(err.find("broken.csv:1"), std::string::npos) << err;
+
+    // A broken speed_density.csv beside the maps stops the page too, naming its line.
+    fs::create_directories(kOut / "bad-maps");
+    std::ofstream(kOut / "bad-maps" / "speed_density.csv") << "people,density_per_m2,actor_frames,share,mean_speed_m_s\n1,0.0625,many,1,1\n";
+    EXPECT_EQ(runTool("--csv " + (kOut / "csv").string() + " --out " + (kOut / "bad-page").string() + " --maps " + (kOut / "bad-maps").string(), err), 1);
+    EXPECT_NE(err.find("speed_density.csv:2: field 3 ('many')"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(kOut / "bad-page" / "index.html"));
 
     fs::create_directories(kOut / "empty");
     EXPECT_EQ(runTool("--csv " + (kOut / "empty").string() + " --out " + (kOut / "bad-page").string(), err), 1);

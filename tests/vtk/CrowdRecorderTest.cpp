@@ -26,6 +26,7 @@
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
 #include "throng/scenegraph/Transform.h"
+#include "throng/vtk/CrowdMaps.h"
 #include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
@@ -228,6 +229,17 @@ TEST(CrowdRecorder, FilesReadBackWithEveryActorAndAttribute) {
     EXPECT_DOUBLE_EQ(visited, double(kActors * seen.size()));
     EXPECT_NEAR(people, double(kActors), 1e-9) << "on average every actor is somewhere in every recorded frame";
     EXPECT_GT(fastest, 0.5) << "the walkers move";
+    // The fundamental diagram: every actor-frame (all on the ground here) in one row, by the people
+    // sharing its cell then; its speeds sum to every recorded speed.
+    const auto rows = throng::vtk::readSpeedDensity(dir / "speed_density.csv");
+    ASSERT_FALSE(rows.empty());
+    double actorFrames = 0.0, share = 0.0, speedSum = 0.0, recordedSpeeds = 0.0;
+    for (const auto& r : rows) actorFrames += double(r.actorFrames), share += r.share, speedSum += r.meanSpeed * double(r.actorFrames);
+    for (vtkIdType c = 0; c < visits->GetNumberOfTuples(); ++c) recordedSpeeds += speed->GetTuple1(c) * visits->GetTuple1(c);
+    EXPECT_DOUBLE_EQ(actorFrames, double(kActors * seen.size()));
+    EXPECT_NEAR(share, 1.0, 1e-6);
+    EXPECT_NEAR(speedSum, recordedSpeeds, 1e-6 * recordedSpeeds);
+    EXPECT_NEAR(rows.back().density, double(rows.back().people) / (cell * cell), 1e-9);
     for (const char* picture : {"density.png", "speed.png"}) {  // a square of pixels per cell, as VTK reads it back
         auto png = vtkSmartPointer<vtkPNGReader>::New();
         ASSERT_TRUE(png->CanReadFile((dir / picture).c_str())) << picture;

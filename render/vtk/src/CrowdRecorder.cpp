@@ -333,7 +333,9 @@ void CrowdRecorder::finish() {
     finished_ = true;
     writeTrajectories();
     writeCollection();
-    writeCrowdMaps(directory_, samples_, sampleSpeed_, frames_.size());
+    std::vector<std::size_t> frameSizes;
+    for (const WrittenFrame& f : frames_) frameSizes.push_back(f.actors);
+    writeCrowdMaps(directory_, samples_, sampleSpeed_, frameSizes);
 }
 
 }  // namespace throng::vtk

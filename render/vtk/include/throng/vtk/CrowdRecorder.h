@@ -25,8 +25,9 @@
 //                          recorded position: a line from it to itself); point data time and
 //                          speed, cell data id, group, template
 //   DIR/crowd.pvd          finish(): the actors files with their times
-//   DIR/crowd_maps.vti, density.png, speed.png
-//                          finish(): where the recorded actors went and how fast (CrowdMaps.h)
+//   DIR/crowd_maps.vti, density.png, speed.png, speed_density.csv
+//                          finish(): where the recorded actors went, how fast, and how fast at
+//                          each local density (CrowdMaps.h)
 
 #include <cstdint>
 #include <filesystem>
