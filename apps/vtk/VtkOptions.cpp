@@ -24,6 +24,12 @@ void declare(support::CommandLine& cl, VtkOptions& o) {
         ->capture_default_str();
     app.add_option("--width", o.width, "window or picture width in pixels")->type_name("W")->check(wholeNumber(16, 8192))->capture_default_str();
     app.add_option("--height", o.height, "window or picture height in pixels")->type_name("H")->check(wholeNumber(16, 8192))->capture_default_str();
+    app.add_option("--draw", o.draw,
+                   "who draws the crowd: vtk (a VTK mapper, meshes skinned on the CPU; no impostors or key-pose caches) "
+                   "or throng (Throng's renderer in VTK's context: GPU skinning, textures, the scene's key-pose caches and impostors)")
+        ->type_name("vtk|throng")
+        ->check(oneOf({"vtk", "throng"}))
+        ->capture_default_str();
     app.footer(
         "In the window: the simulation steps on a timer; VTK's trackball camera (left drag rotates, middle\n"
         "drag or Shift+left pans, wheel or right drag zooms, R frames the town), Q or E quits.\n"

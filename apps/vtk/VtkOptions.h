@@ -16,6 +16,9 @@ struct VtkOptions {
     std::int64_t frames = 60;             ///< --screenshot: simulation steps before the picture
     bool framesGiven = false;             ///< --frames was given: a window also closes after them
     int width = 1280, height = 720;       ///< pixels
+    /// Who draws the crowd: "vtk" (a VTK mapper, meshes only) or "throng" (Throng's renderer in
+    /// VTK's context: textures, and the scene's key-pose caches and impostors).
+    std::string draw = "vtk";
 };
 
 /// Parses argv (the shared command line of the tools, throng/support/CommandLine.h). Prints the

@@ -1,8 +1,11 @@
 // throng-vtk: a Throng crowd inside an ordinary VTK application. Builds the world a scene file
 // declares (as throng-town does), then shows it with VTK: the town's tiles as VTK polydata in a
 // vtkActor, the crowd as a throng::vtk::CrowdProp (each render runs the actor cascade for VTK's
-// camera and draws the visible actors through a VTK mapper, sharing the depth buffer with the
-// tiles), VTK's trackball camera, and a vtkTextActor with the cascade's statistics.
+// camera and draws the visible actors, sharing the depth buffer with the tiles), VTK's trackball
+// camera, and a vtkTextActor with the cascade's statistics. --draw vtk (the default) draws the
+// actors' meshes through a VTK mapper; --draw throng draws them with Throng's renderer in VTK's
+// context, with the key-pose caches and impostors the scene declares (baked at start in an
+// offscreen OSMesa context: the atlases are CPU images the renderer uploads into VTK's).
 //
 // In a window the simulation steps on a repeating timer of the interactor. With --screenshot FILE
 // nothing is shown: the world steps --frames times, the view of the scene's camera path at that
@@ -40,6 +43,10 @@
 
 #include "VtkOptions.h"
 #include "throng/actors/ActorProcessor.h"
+#include "throng/render/ContextFactory.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
@@ -74,21 +81,32 @@ std::unique_ptr<sim::Simulation> buildWorld(const sim::SceneDescription& scene) 
     return world;
 }
 
+// Actors drawn in the last render, by how (distinct actors of the draw list's items; the list also
+// holds the scene's own items, and an actor may have several).
+struct DrawnActors {
+    std::uint64_t meshes = 0, keyPoses = 0, impostors = 0;
+    std::uint64_t total() const { return meshes + keyPoses + impostors; }
+};
+
 // The cascade's statistics of the last render, as the overlay shows them: where actors left it
 // (seed 002 Table 2; occluded when the scene declares occlusion), the actors drawn, and the
 // cascade's time (APP and CULL; building the meshes and drawing them are not in it).
-std::string statisticsText(throng::vtk::CrowdProp& crowd, std::uint64_t actorsDrawn) {
+std::string statisticsText(throng::vtk::CrowdProp& crowd, const DrawnActors& drawn) {
     const ActorFrameStatistics& s = crowd.GetLastStatistics();
-    char text[512];
+    char how[160] = "";
+    if (drawn.keyPoses + drawn.impostors > 0)
+        std::snprintf(how, sizeof how, ": %llu meshes, %llu key-poses, %llu impostors", (unsigned long long)drawn.meshes,
+                      (unsigned long long)drawn.keyPoses, (unsigned long long)drawn.impostors);
+    char text[640];
     std::snprintf(text, sizeof text,
                   "actors %llu   culled with group %llu   occluded %llu\n"
                   "A %llu   B %llu   C1 %llu   C2 %llu   C3 %llu (C3.1 %llu, C3.2 %llu)\n"
-                  "drawn %llu actors (%llu triangles)   APP+CULL %.2f ms",
+                  "drawn %llu actors%s (%llu triangles)   APP+CULL %.2f ms",
                   (unsigned long long)s.actorsInScene, (unsigned long long)s.culledWithGroup,
                   (unsigned long long)(s.occludedWithGroup + s.occludedRefpoint + s.occludedSklsroot), (unsigned long long)s.a,
                   (unsigned long long)s.b, (unsigned long long)s.c1, (unsigned long long)s.c2,
                   (unsigned long long)(s.c3_1 + s.c3_2), (unsigned long long)s.c3_1, (unsigned long long)s.c3_2,
-                  (unsigned long long)actorsDrawn, (unsigned long long)crowd.GetLastTriangles(), s.appCullMs());
+                  (unsigned long long)drawn.total(), how, (unsigned long long)crowd.GetLastTriangles(), s.appCullMs());
     return text;
 }
 
@@ -110,9 +128,13 @@ void placeCamera(vtkCamera& to, const Camera& from) {
 // statistics overlay, in a render window of the asked size.
 class TownView {
 public:
-    TownView(sim::Simulation& world, int width, int height, bool offscreen) : world_(world) {
+    // `throngDrawing`: Throng's renderer draws the crowd (with the scene's key-pose caches and
+    // impostors), else a VTK mapper (meshes only). Throws std::runtime_error if impostors cannot be
+    // baked.
+    TownView(sim::Simulation& world, int width, int height, bool offscreen, bool throngDrawing) : world_(world) {
         crowd_->SetScene(&world.crowd(), &world.root());
-        configureCascade(*crowd_->GetProcessor());
+        crowd_->SetThrongDrawing(throngDrawing);
+        configureCascade(*crowd_->GetProcessor(), throngDrawing);
 
         throng::vtk::ScenePolyDataStatistics tileStats;
         tilesMapper_->SetInputData(throng::vtk::scenePolyData(world.root(), &tileStats));
@@ -161,32 +183,63 @@ public:
         const int* size = window_->GetSize();
         placeCamera(*renderer_->GetActiveCamera(), world_.camera().at(world_.now().time, double(size[0]) / double(size[1])));
         render();
+        Stopwatch watch;  // the second render: the crowd's GL objects exist by then
         render();
+        const double renderMs = watch.elapsedMs();
         throng::vtk::writeWindowPng(*window_, path);
+        const DrawnActors drawn = actorsDrawn();
+        std::fprintf(stderr, "throng-vtk: drew %llu actors: %llu meshes, %llu key-poses, %llu impostors (%llu triangles) in a %.1f ms render\n",
+                     (unsigned long long)drawn.total(), (unsigned long long)drawn.meshes, (unsigned long long)drawn.keyPoses,
+                     (unsigned long long)drawn.impostors, (unsigned long long)crowd_->GetLastTriangles(), renderMs);
+        if (const CrowdRenderStatistics* r = crowd_->GetLastRenderStatistics())  // what Throng's renderer drew of them
+            std::fprintf(stderr, "throng-vtk: Throng's renderer: %llu key-pose items, %llu impostor quads\n",
+                         (unsigned long long)r->keyPoseItems, (unsigned long long)r->quads.instances);
     }
 
 private:
-    // Actors the last render drew as meshes (the prop draws nothing else): distinct actors of the
-    // draw list's mesh items; the list also holds the scene's own items and an actor may have several.
-    std::uint64_t actorsDrawn() {
+    // Actors the last render drew, by representation.
+    DrawnActors actorsDrawn() {
         drawnStamp_.resize(world_.crowd().size(), 0);
         ++stamp_;
-        std::uint64_t drawn = 0;
-        for (const DrawItem& item : crowd_->GetProcessor()->drawList().items())
-            if (item.actor != kNoActor && item.representation == Representation::Mesh && item.actor < drawnStamp_.size() &&
-                drawnStamp_[item.actor] != stamp_) {
-                drawnStamp_[item.actor] = stamp_;
-                ++drawn;
+        DrawnActors drawn;
+        for (const DrawItem& item : crowd_->GetProcessor()->drawList().items()) {
+            if (item.actor == kNoActor || item.actor >= drawnStamp_.size() || drawnStamp_[item.actor] == stamp_) continue;
+            if (item.representation != Representation::Mesh && !crowd_->GetThrongDrawing()) continue;  // the mapper skips them
+            drawnStamp_[item.actor] = stamp_;
+            switch (item.representation) {
+                case Representation::Mesh: ++drawn.meshes; break;
+                case Representation::KeyPose: ++drawn.keyPoses; break;
+                case Representation::Impostor: ++drawn.impostors; break;
             }
+        }
         return drawn;
     }
 
-    // The cascade as throng-town runs it for this scene (LOD scale, occlusion when declared). Not
-    // impostors nor key-pose caches: this CrowdProp draws meshes only.
-    void configureCascade(ActorProcessor& processor) const {
+    // The cascade as throng-town runs it for this scene (LOD scale, occlusion when declared) and,
+    // when Throng's renderer draws, the key-pose caches and impostors the scene declares; the VTK
+    // mapper draws meshes only, so then every actor stays a mesh.
+    void configureCascade(ActorProcessor& processor, bool throngDrawing) {
         const sim::RepresentationDescription& r = world_.description().representation;
         processor.setLodScale(r.lodScale);
         if (r.occlusion) processor.setOcclusion(r.occlusion);
+        if (!throngDrawing) return;
+        if (r.keyPoseCache) {
+            for (auto& cache : world_.makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
+            processor.setKeyPoseDistance(r.keyPoseCache->distance, r.hysteresis * r.keyPoseCache->distance);
+        }
+        if (r.impostorDistance > 0.0) {
+            // Baked offscreen: the atlases are CPU images, uploaded by the renderer into VTK's context.
+            auto context = createContext({.width = 64, .height = 64});
+            support::ProgressBar bar("baking impostors", 1000);
+            std::vector<ImpostorSet::Source> sources;
+            for (const auto& t : world_.templates()) sources.push_back({t.tmpl, t.clip});
+            ImpostorBakeOptions bake;
+            bake.cellSize = 64;  // as throng-town
+            bake.progress = [&](int done, int total) { bar.update(std::size_t(1000.0 * done / std::max(total, 1))); };
+            impostors_ = std::make_unique<ImpostorSet>(context, sources, bake);
+            bar.finish(std::to_string(impostors_->size()) + " templates");
+            impostors_->attach(processor, r.impostorDistance, r.hysteresis * r.impostorDistance);
+        }
     }
 
     sim::Simulation& world_;
@@ -195,6 +248,7 @@ private:
     vtkNew<vtkPolyDataMapper> tilesMapper_;
     vtkNew<vtkActor> tiles_;
     vtkNew<throng::vtk::CrowdProp> crowd_;
+    std::unique_ptr<ImpostorSet> impostors_;  // the atlases the processor's impostor items show
     vtkNew<vtkTextActor> overlay_;
     std::vector<std::uint64_t> drawnStamp_;  // per actor: the last count that saw it drawn
     std::uint64_t stamp_ = 0;
@@ -290,7 +344,7 @@ int main(int argc, char** argv) {
         return kBadInput;
     }
     try {
-        TownView view(*world, o.width, o.height, !o.screenshot.empty());
+        TownView view(*world, o.width, o.height, !o.screenshot.empty(), o.draw == "throng");
         if (!o.screenshot.empty()) {
             stepWorld(*world, o.frames);
             view.screenshot(o.screenshot);

@@ -4,8 +4,10 @@ is not one flat colour (the town and its crowd were drawn). Standard library onl
 decoded here (8-bit RGB or RGBA, non-interlaced, as vtkPNGWriter writes a render window).
 Then, with --window, runs the window (its interactor's timer stepping the world) for the same
 FRAMES and checks that it closed by itself at the simulation time the screenshot was taken at.
+With --draw throng, Throng's renderer draws the crowd inside VTK, and the scene must declare
+impostors and key-pose caches: the actors drawn must include both (the VTK mapper's never do).
 
-usage: check_screenshot.py THRONG_VTK SCENE OUT.png WIDTH HEIGHT FRAMES [--window]"""
+usage: check_screenshot.py THRONG_VTK SCENE OUT.png WIDTH HEIGHT FRAMES [--window | --draw throng]"""
 import os
 import re
 import struct
@@ -56,12 +58,30 @@ def read_png(path):
 def main():
     exe, scene, out, width, height, frames = sys.argv[1:7]
     window = sys.argv[7:] == ["--window"]
+    throng_drawing = sys.argv[7:] == ["--draw", "throng"]
     if os.path.exists(out):
         os.remove(out)
-    run = subprocess.run([exe, "--scene", scene, "--screenshot", out, "--frames", frames, "--width", width, "--height", height],
-                         capture_output=True, text=True)
+    run = subprocess.run([exe, "--scene", scene, "--screenshot", out, "--frames", frames, "--width", width, "--height", height]
+                         + (["--draw", "throng"] if throng_drawing else []), capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"throng-vtk exited with {run.returncode}:\n{run.stderr}")
+    drew = re.search(r"drew (\d+) actors: (\d+) meshes, (\d+) key-poses, (\d+) impostors", run.stderr)
+    if not drew:
+        sys.exit(f"throng-vtk did not say what it drew:\n{run.stderr}")
+    total, meshes, key_poses, impostors = (int(g) for g in drew.groups())
+    if total != meshes + key_poses + impostors or total == 0:
+        sys.exit(f"bad drawing statistics: {drew.group(0)}")
+    if throng_drawing and (key_poses == 0 or impostors == 0):
+        sys.exit(f"Throng's renderer should draw the scene's key-pose caches and impostors: {drew.group(0)}")
+    rendered = re.search(r"Throng's renderer: (\d+) key-pose items, (\d+) impostor quads", run.stderr)
+    if throng_drawing and (not rendered or int(rendered.group(1)) < key_poses or int(rendered.group(2)) != impostors):
+        sys.exit(f"Throng's renderer did not draw what the cascade chose: {drew.group(0)}; "
+                 f"{rendered.group(0) if rendered else 'no renderer statistics'}")
+    if not throng_drawing and rendered:
+        sys.exit(f"the VTK mapper was asked for, yet Throng's renderer drew: {rendered.group(0)}")
+    if not throng_drawing and meshes != total:
+        sys.exit(f"the VTK mapper draws meshes only: {drew.group(0)}")
+    print(drew.group(0))
     if not os.path.isfile(out):
         sys.exit(f"throng-vtk wrote no {out}")
     w, h, channels, rows = read_png(out)
