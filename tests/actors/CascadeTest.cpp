@@ -335,3 +335,54 @@ TEST(Cascade, AHeldObjectEnlargesBothSpheresAndIsDrawnWithTheActor) {
             }
     }
 }
+
+// Nodes destroyed in any order (a scene torn down or edited): the crowd forgets exactly those, their
+// actors are held by no node and leave the frame, and the cascade still matches traditional
+// processing on the nodes that remain.
+TEST(Cascade, DestroyedNodesLeaveTheCrowdAndTheOthersStillDrawAsTraditionalProcessing) {
+    auto scene = makeRandomCrowd(7, 600, 80.0);
+    std::vector<std::shared_ptr<Node>> kept, removed;
+    int i = 0;
+    for (const auto& child : scene->root->children())
+        if (child != scene->vehicle) (i++ % 3 == 1 ? removed : kept).push_back(child);
+    ASSERT_GT(removed.size(), 20u);
+    std::vector<ActorId> orphaned;
+    for (const auto& node : removed) {
+        for (ActorId id : scene->ids)
+            if (scene->crowd.state().owner[id] == node.get()) orphaned.push_back(id);
+        ASSERT_TRUE(scene->root->removeChild(node.get()));
+    }
+    // Destroy them middle first, then alternately from both ends.
+    std::vector<std::shared_ptr<Node>> order;
+    for (std::size_t lo = removed.size() / 2, hi = lo + 1; order.size() < removed.size();) {
+        if (lo < removed.size()) order.push_back(removed[lo]);
+        if (hi < removed.size()) order.push_back(removed[hi]);
+        if (lo == 0) lo = removed.size(); else --lo;
+        ++hi;
+    }
+    removed.clear();
+    for (auto& node : order) node.reset();
+
+    std::vector<const Node*> listed(scene->crowd.nodes().begin(), scene->crowd.nodes().end());
+    std::vector<const Node*> expected;  // the actor and group nodes left under the root and on the vehicle
+    for (const auto& node : kept) expected.push_back(node.get());
+    for (const auto& child : scene->vehicle->children()) expected.push_back(child.get());
+    std::sort(listed.begin(), listed.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(listed, expected) << "the crowd lists exactly the actor nodes left";
+    for (ActorId id : orphaned) EXPECT_EQ(scene->crowd.state().owner[id], nullptr) << "actor " << id;
+
+    Camera camera;
+    camera.setPerspective(0.9, 1.6, 0.1, 500.0);
+    camera.setLookAt(Vec3(0, 20, 120), Vec3(0, 0, 0));
+    ActorProcessor cascade(scene->crowd);
+    cascade.setBehaviouralLod(false);  // both methods then pose actors identically
+    cascade.processFrame(*scene->root, camera, 1.0);
+    for (const DrawItem& item : cascade.drawList().items())
+        EXPECT_EQ(std::find(orphaned.begin(), orphaned.end(), item.actor), orphaned.end()) << "actor " << item.actor << " has no node";
+    ActorProcessor traditional(scene->crowd);
+    traditional.setProcessing(Processing::Traditional);
+    traditional.processFrame(*scene->root, camera, 1.0);
+    EXPECT_GT(cascade.drawList().items().size(), 0u);
+    EXPECT_TRUE(primitives(cascade.drawList()) == primitives(traditional.drawList()));
+}

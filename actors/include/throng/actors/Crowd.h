@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -173,7 +174,8 @@ public:
     std::uint64_t steps() const { return steps_; }
     /// Simulation time of the last step (0 before the first).
     double time() const { return time_; }
-    /// The nodes standing for this crowd's actors (Actor and ActorGroup), in creation order.
+    /// The nodes standing for this crowd's actors (Actor and ActorGroup): in creation order until a
+    /// node is destroyed, which moves the last one into its place.
     std::span<Node* const> nodes() const { return nodes_; }
     /// Called by a node being destroyed: its actors stay in the crowd, held by no node.
     void release(Node* node, std::span<const ActorId> ids);
@@ -187,6 +189,7 @@ private:
     std::vector<std::shared_ptr<const ActorTemplate>> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     std::vector<Node*> nodes_;
+    std::unordered_map<const Node*, std::size_t> nodeSlot_;  // where each node is in nodes_ (release in O(1))
     double time_ = 0.0;
     double lastStepMs_ = 0.0;
     std::uint64_t steps_ = 0;
