@@ -39,6 +39,21 @@ int convexHull(Point2* p, int n, Point2* hull) {
     return std::max(k - 1, 0);
 }
 
+// Writes one row span of a box: per pixel the nearest reciprocal depth its `Faces` front faces
+// allow (capped at the near plane), kept where it is nearer than what the row holds. One pass with
+// the face count known to the compiler, so the loop vectorises; the same operations in the same
+// order as the general loop in drawBox, so the same bits.
+template <int Faces>
+void writeSpan(float* row, int x0, int x1, float nearR, const float* slope, const float* offset) {
+    float s[Faces], o[Faces];
+    for (int f = 0; f < Faces; ++f) s[f] = slope[f], o[f] = offset[f];
+    for (int x = x0; x <= x1; ++x) {
+        float m = nearR;
+        for (int f = 0; f < Faces; ++f) m = std::min(m, s[f] * static_cast<float>(x) + o[f]);
+        row[x] = std::max(row[x], m * kWriteScale);
+    }
+}
+
 void checkSize(int value, const char* name) {
     if (value < 8 || value > 4096)
         throw std::invalid_argument(std::string("OcclusionBuffer: argument '") + name + "' must be in [8, 4096], not " +
@@ -177,14 +192,21 @@ bool OcclusionBuffer::drawBox(const std::array<Vec3, 8>& corners) {
         const int x0 = static_cast<int>(lo), x1 = static_cast<int>(hi);
         for (int f = 0; f < front; ++f)
             offset[f] = static_cast<float>(planes[f].b * y + planes[f].c + std::min(planes[f].a, 0.0) + std::min(planes[f].b, 0.0));
-        float* rowMin = rowMin_.data();
-        for (int x = x0; x <= x1; ++x) rowMin[x] = nearR;
-        for (int f = 0; f < front; ++f) {
-            const float s = slope[f], o = offset[f];
-            for (int x = x0; x <= x1; ++x) rowMin[x] = std::min(rowMin[x], s * static_cast<float>(x) + o);
-        }
         float* row = r.data() + std::size_t(y) * std::size_t(width_);
-        for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], rowMin[x] * kWriteScale);
+        switch (front) {  // a box shows at most three faces; the others take the general loop
+            case 1: writeSpan<1>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            case 2: writeSpan<2>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            case 3: writeSpan<3>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            default: {
+                float* rowMin = rowMin_.data();
+                for (int x = x0; x <= x1; ++x) rowMin[x] = nearR;
+                for (int f = 0; f < front; ++f) {
+                    const float s = slope[f], o = offset[f];
+                    for (int x = x0; x <= x1; ++x) rowMin[x] = std::min(rowMin[x], s * static_cast<float>(x) + o);
+                }
+                for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], rowMin[x] * kWriteScale);
+            }
+        }
         pixelsWritten_ += std::uint64_t(x1 - x0 + 1);
         drew = true;
     }
