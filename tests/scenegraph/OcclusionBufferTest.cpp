@@ -207,6 +207,44 @@ TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
     EXPECT_EQ(c.cull.nodesOccluded, 0u);
 }
 
+// Gathering skips subtrees without Occluder nodes; one added later below such a subtree, deep down,
+// is found again in the next frame, and so is one removed no longer.
+TEST(OcclusionCulling, AnOccluderAddedBelowAnOccluderFreeSubtreeIsFound) {
+    auto root = std::make_shared<Group>();
+    auto outer = std::make_shared<Group>();
+    auto inner = std::make_shared<Transform>();
+    inner->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -10)));
+    const auto cube = std::make_shared<MeshDrawable>(makeBox("cube", glm::vec3(0), glm::vec3(0.5f), glm::vec4(1)));
+    inner->addChild(std::make_shared<Geometry>(cube));
+    outer->addChild(inner);
+    root->addChild(outer);
+    auto behind = std::make_shared<Transform>();
+    behind->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -30)));
+    behind->addChild(std::make_shared<Geometry>(cube));
+    root->addChild(behind);
+    const Camera camera = lookingDownMinusZ();
+    TraditionalProcessor occluding;
+    occluding.setOcclusion(OcclusionSettings{});
+    const FrameStatistics a = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(a.occlusion.occludersInView, 0u);
+    EXPECT_FALSE(outer->mayHoldOccluders());  // merged: nothing below to gather
+    EXPECT_FALSE(root->mayHoldOccluders());
+
+    const auto wall = std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-3, -3, -0.5f), glm::vec3(3, 3, 0.5f)}},
+                                                 AxisBox{glm::vec3(-3.5f, -3.5f, -1), glm::vec3(3.5f, 3.5f, 1)});
+    inner->addChild(wall);
+    const FrameStatistics b = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(b.occlusion.occludersDrawn, 1u);
+    EXPECT_EQ(b.cull.nodesOccluded, 1u);  // the cube behind the wall
+    EXPECT_TRUE(outer->mayHoldOccluders());
+
+    inner->removeChild(wall.get());
+    const FrameStatistics c = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(c.occlusion.occludersInView, 0u);
+    EXPECT_EQ(c.cull.nodesOccluded, 0u);
+    EXPECT_FALSE(outer->mayHoldOccluders());
+}
+
 TEST(OcclusionCulling, OccluderNodesRejectBadBoxes) {
     const AxisBox shell{glm::vec3(-1), glm::vec3(1)};
     EXPECT_THROW(Occluder({AxisBox{glm::vec3(0), glm::vec3(0)}}, shell), std::invalid_argument);
