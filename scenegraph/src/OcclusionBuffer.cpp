@@ -17,6 +17,9 @@ constexpr float kWriteScale = 1.0f - 1e-4f;
 constexpr double kTestScale = 1.0 + 1e-4;
 // Silhouette edges are moved inwards by this share of a pixel.
 constexpr double kEdgeInset = 1e-3;
+// Pixels a sphere's centre must lie inside its screen rectangle for the centre's pixel to be taken
+// as one of the rectangle's (rounding moves either by some 1e-12 pixel).
+constexpr double kCentreMargin = 1e-3;
 
 struct Point2 {
     double x, y;
@@ -230,11 +233,29 @@ void OcclusionBuffer::finish() {
     }
 }
 
-bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const {
+bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const { return test(sphere, true); }
+
+bool OcclusionBuffer::occludedOverRectangle(const BoundingSphere& sphere) const { return test(sphere, false); }
+
+bool OcclusionBuffer::test(const BoundingSphere& sphere, bool shortcut) const {
     if (!sphere.valid()) return false;
     const Vec3 c(view_ * Vec4(sphere.center(), 1.0));
     const double d = -c.z, rho = sphere.radius();
     if (!std::isfinite(d) || !(d - rho > near_)) return false;
+    const float need = static_cast<float>(kTestScale / (d - rho));
+    if (shortcut) {
+        // Most spheres tested are visible, and the pixel under the centre already shows it: one
+        // pixel no nearer than the sphere inside its rectangle is enough (the pyramid's texels
+        // are minima, so the full test below would meet it and answer the same). The centre's
+        // pixel lies inside that rectangle when its distance to the rectangle's edges, at least
+        // the half-angle the sphere subtends in pixels, dwarfs any rounding.
+        const double px = (sx_ * (c.x / d) - ox_ + 1.0) * 0.5 * width_, py = (sy_ * (c.y / d) - oy_ + 1.0) * 0.5 * height_;
+        const double mx = sx_ * 0.5 * width_ * rho / (std::abs(c.x) + d), my = sy_ * 0.5 * height_ * rho / (std::abs(c.y) + d);
+        if (px >= 0.0 && px < width_ && py >= 0.0 && py < height_ && mx > kCentreMargin && my > kCentreMargin) {
+            const float r = levels_[0].r[std::size_t(py) * std::size_t(width_) + std::size_t(px)];
+            if (!(r > need)) return false;
+        }
+    }
     // The exact screen extent: the tangents from the eye to the sphere, axis by axis.
     const auto extent = [&](double x, double scale, double offset, double size, int& i0, int& i1) {
         const double t = std::sqrt(x * x + d * d - rho * rho);
@@ -247,7 +268,6 @@ bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const {
     };
     int x0, x1, y0, y1;
     if (!extent(c.x, sx_, ox_, width_, x0, x1) || !extent(c.y, sy_, oy_, height_, y0, y1)) return false;
-    const float need = static_cast<float>(kTestScale / (d - rho));
     std::size_t l = 0;
     while (l + 1 < levels_.size() && ((x1 >> l) - (x0 >> l) > 3 || (y1 >> l) - (y0 >> l) > 3)) ++l;
     const Level& level = levels_[l];

@@ -167,6 +167,37 @@ TEST(OcclusionBuffer, NeverHidesASphereThatARayFromTheEyeReaches) {
     EXPECT_GT(hiddenChecked, 2000) << "too few hidden spheres to mean anything";
 }
 
+// occluded() looks at the pixel under a sphere's centre first; it must answer exactly as the test
+// over the sphere's whole screen rectangle, for spheres of every size, near the screen's edges, off
+// centre in off-axis projections, and from tiny (the shortcut is not taken) to near-plane sized.
+TEST(OcclusionBuffer, TheCentrePixelShortcutAnswersAsTheWholeRectangle) {
+    std::mt19937 rng(404);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int hidden = 0, visible = 0;
+    for (int scene = 0; scene < 200; ++scene) {
+        Camera camera;
+        camera.setPerspective(glm::radians(30.0 + 50.0 * (u(rng) + 1.0)), 1.0 + 0.8 * (u(rng) + 1.0), 0.1 + 0.4 * (u(rng) + 1.0), 800.0);
+        camera.setLookAt(Vec3(4.0 * u(rng), 2.0 * u(rng), 4.0 * u(rng)), Vec3(u(rng), 0.5 * u(rng), -1.0));
+        OcclusionBuffer buffer(16 + int(200 * (u(rng) + 1.0)), 16 + int(100 * (u(rng) + 1.0)));
+        buffer.begin(camera);
+        for (int b = 0; b < 12; ++b) {
+            const Vec3 c(12.0 * u(rng), 4.0 * u(rng), -5.0 - 15.0 * (u(rng) + 1.0));
+            const Vec3 h(0.1 + 3.0 * (u(rng) + 1.0), 0.1 + 2.0 * (u(rng) + 1.0), 0.1 + 1.0 * (u(rng) + 1.0));
+            buffer.drawBox(corners(c - h, c + h));
+        }
+        buffer.finish();
+        for (int s = 0; s < 500; ++s) {
+            const double size = std::pow(10.0, -4.0 + 5.0 * (u(rng) + 1.0) / 2.0);  // 0.1 mm to 10 m
+            const BoundingSphere sphere(Vec3(40.0 * u(rng), 15.0 * u(rng), -0.5 - 40.0 * (u(rng) + 1.0)), size);
+            const bool full = buffer.occludedOverRectangle(sphere);
+            ASSERT_EQ(buffer.occluded(sphere), full) << "scene " << scene << ", sphere " << s;
+            (full ? hidden : visible) += 1;
+        }
+    }
+    EXPECT_GT(hidden, 5000);
+    EXPECT_GT(visible, 5000);
+}
+
 // An Occluder node in a scene: CULL rejects the geometry behind it, and only that.
 TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
     auto root = std::make_shared<Group>();
