@@ -26,8 +26,13 @@ void MatrixBoundsVisitor::apply(Node& node) {
 void MatrixBoundsVisitor::mergeChildren(Group& group) {
     OpTally* ops = counter_ ? counter_->tally(OpCategory::BsphereRecompute) : nullptr;
     BoundingSphere bound;
-    for (const auto& child : group.children()) bound.expandBy(child->worldBound(), ops);
+    bool occluders = false;
+    for (const auto& child : group.children()) {
+        bound.expandBy(child->worldBound(), ops);
+        occluders = occluders || child->mayHoldOccluders_;
+    }
     group.worldBound_ = bound;
+    group.mayHoldOccluders_ = occluders;
     group.boundDirty_ = false;
     ++stats_.spheresRecomputed;
     if (counter_) counter_->countOperations(OpCategory::BsphereRecompute);

@@ -20,6 +20,7 @@ bool inside(const AxisBox& box, const AxisBox& shell) {
 }  // namespace
 
 Occluder::Occluder(std::vector<AxisBox> boxes, const AxisBox& shell) : boxes_(std::move(boxes)), shell_(shell) {
+    mayHoldOccluders_ = true;
     if (!finite(shell.min) || !finite(shell.max) || !(shell.volume() > 0.0))
         throw std::invalid_argument("Occluder: the shell is empty or not finite");
     for (std::size_t i = 0; i < boxes_.size(); ++i) {

@@ -17,6 +17,9 @@ constexpr float kWriteScale = 1.0f - 1e-4f;
 constexpr double kTestScale = 1.0 + 1e-4;
 // Silhouette edges are moved inwards by this share of a pixel.
 constexpr double kEdgeInset = 1e-3;
+// Pixels a sphere's centre must lie inside its screen rectangle for the centre's pixel to be taken
+// as one of the rectangle's (rounding moves either by some 1e-12 pixel).
+constexpr double kCentreMargin = 1e-3;
 
 struct Point2 {
     double x, y;
@@ -37,6 +40,21 @@ int convexHull(Point2* p, int n, Point2* hull) {
         hull[k++] = p[i];
     }
     return std::max(k - 1, 0);
+}
+
+// Writes one row span of a box: per pixel the nearest reciprocal depth its `Faces` front faces
+// allow (capped at the near plane), kept where it is nearer than what the row holds. One pass with
+// the face count known to the compiler, so the loop vectorises; the same operations in the same
+// order as the general loop in drawBox, so the same bits.
+template <int Faces>
+void writeSpan(float* row, int x0, int x1, float nearR, const float* slope, const float* offset) {
+    float s[Faces], o[Faces];
+    for (int f = 0; f < Faces; ++f) s[f] = slope[f], o[f] = offset[f];
+    for (int x = x0; x <= x1; ++x) {
+        float m = nearR;
+        for (int f = 0; f < Faces; ++f) m = std::min(m, s[f] * static_cast<float>(x) + o[f]);
+        row[x] = std::max(row[x], m * kWriteScale);
+    }
 }
 
 void checkSize(int value, const char* name) {
@@ -177,14 +195,21 @@ bool OcclusionBuffer::drawBox(const std::array<Vec3, 8>& corners) {
         const int x0 = static_cast<int>(lo), x1 = static_cast<int>(hi);
         for (int f = 0; f < front; ++f)
             offset[f] = static_cast<float>(planes[f].b * y + planes[f].c + std::min(planes[f].a, 0.0) + std::min(planes[f].b, 0.0));
-        float* rowMin = rowMin_.data();
-        for (int x = x0; x <= x1; ++x) rowMin[x] = nearR;
-        for (int f = 0; f < front; ++f) {
-            const float s = slope[f], o = offset[f];
-            for (int x = x0; x <= x1; ++x) rowMin[x] = std::min(rowMin[x], s * static_cast<float>(x) + o);
-        }
         float* row = r.data() + std::size_t(y) * std::size_t(width_);
-        for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], rowMin[x] * kWriteScale);
+        switch (front) {  // a box shows at most three faces; the others take the general loop
+            case 1: writeSpan<1>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            case 2: writeSpan<2>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            case 3: writeSpan<3>(row, x0, x1, nearR, slope.data(), offset.data()); break;
+            default: {
+                float* rowMin = rowMin_.data();
+                for (int x = x0; x <= x1; ++x) rowMin[x] = nearR;
+                for (int f = 0; f < front; ++f) {
+                    const float s = slope[f], o = offset[f];
+                    for (int x = x0; x <= x1; ++x) rowMin[x] = std::min(rowMin[x], s * static_cast<float>(x) + o);
+                }
+                for (int x = x0; x <= x1; ++x) row[x] = std::max(row[x], rowMin[x] * kWriteScale);
+            }
+        }
         pixelsWritten_ += std::uint64_t(x1 - x0 + 1);
         drew = true;
     }
@@ -208,11 +233,29 @@ void OcclusionBuffer::finish() {
     }
 }
 
-bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const {
+bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const { return test(sphere, true); }
+
+bool OcclusionBuffer::occludedOverRectangle(const BoundingSphere& sphere) const { return test(sphere, false); }
+
+bool OcclusionBuffer::test(const BoundingSphere& sphere, bool shortcut) const {
     if (!sphere.valid()) return false;
     const Vec3 c(view_ * Vec4(sphere.center(), 1.0));
     const double d = -c.z, rho = sphere.radius();
     if (!std::isfinite(d) || !(d - rho > near_)) return false;
+    const float need = static_cast<float>(kTestScale / (d - rho));
+    if (shortcut) {
+        // Most spheres tested are visible, and the pixel under the centre already shows it: one
+        // pixel no nearer than the sphere inside its rectangle is enough (the pyramid's texels
+        // are minima, so the full test below would meet it and answer the same). The centre's
+        // pixel lies inside that rectangle when its distance to the rectangle's edges, at least
+        // the half-angle the sphere subtends in pixels, dwarfs any rounding.
+        const double px = (sx_ * (c.x / d) - ox_ + 1.0) * 0.5 * width_, py = (sy_ * (c.y / d) - oy_ + 1.0) * 0.5 * height_;
+        const double mx = sx_ * 0.5 * width_ * rho / (std::abs(c.x) + d), my = sy_ * 0.5 * height_ * rho / (std::abs(c.y) + d);
+        if (px >= 0.0 && px < width_ && py >= 0.0 && py < height_ && mx > kCentreMargin && my > kCentreMargin) {
+            const float r = levels_[0].r[std::size_t(py) * std::size_t(width_) + std::size_t(px)];
+            if (!(r > need)) return false;
+        }
+    }
     // The exact screen extent: the tangents from the eye to the sphere, axis by axis.
     const auto extent = [&](double x, double scale, double offset, double size, int& i0, int& i1) {
         const double t = std::sqrt(x * x + d * d - rho * rho);
@@ -225,7 +268,6 @@ bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const {
     };
     int x0, x1, y0, y1;
     if (!extent(c.x, sx_, ox_, width_, x0, x1) || !extent(c.y, sy_, oy_, height_, y0, y1)) return false;
-    const float need = static_cast<float>(kTestScale / (d - rho));
     std::size_t l = 0;
     while (l + 1 < levels_.size() && ((x1 >> l) - (x0 >> l) > 3 || (y1 >> l) - (y0 >> l) > 3)) ++l;
     const Level& level = levels_[l];

@@ -25,6 +25,9 @@ class Gatherer : public NodeVisitor {
 public:
     Gatherer(const Frustum& frustum, std::vector<const Occluder*>& found) : frustum_(frustum), found_(found) {}
     void apply(Group& group) override {
+        // A merged subtree without occluders (the tiles' meshes, their LOD levels) is not walked;
+        // one changed since its bound was merged is, as before.
+        if (!group.mayHoldOccluders() && !group.boundDirty()) return;
         const BoundingSphere& b = group.worldBound();
         if (b.valid() && frustum_.classify(b) == Containment::Outside) return;
         traverse(group);

@@ -136,6 +136,36 @@ TEST(BoundingSphere, MergeIsMinimalForTwoSpheresAndAlwaysContainsBoth) {
     }
 }
 
+// clearlyContains is a shortcut for expandBy: wherever it says yes, expandBy changes no bit. Spheres
+// are drawn right at the edge of containment (and far from the origin), where rounding decides.
+TEST(BoundingSphere, ClearlyContainsOnlyWhereExpandByChangesNothing) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(-1, 1), share(0, 1);
+    int yes = 0, no = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double scale = std::pow(10.0, 6.0 * share(rng) - 1.0);  // 0.1 m to 100 km
+        const Vec3 offset = Vec3(unit(rng), unit(rng), unit(rng)) * (1e6 * share(rng));
+        const BoundingSphere bound(offset, scale);
+        const double r = scale * (i % 2 ? 0.5 : share(rng));
+        const Vec3 dir = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)) + Vec3(1e-9));
+        const double room = (scale - r) * (1.0 + 1e-6 * unit(rng));  // at the edge, either side
+        const BoundingSphere inner(offset + dir * std::max(room, 0.0), r);
+        BoundingSphere grown = bound;
+        grown.expandBy(inner);
+        if (bound.clearlyContains(inner)) {
+            ++yes;
+            ASSERT_EQ(grown, bound) << i;
+        } else {
+            ++no;
+        }
+    }
+    EXPECT_GT(yes, 1000);  // the shortcut is taken, and it is not always taken
+    EXPECT_GT(no, 1000);
+    EXPECT_FALSE(BoundingSphere().clearlyContains(BoundingSphere(Vec3(0), 1)));
+    EXPECT_FALSE(BoundingSphere(Vec3(0), 1).clearlyContains(BoundingSphere()));
+    EXPECT_FALSE(BoundingSphere(Vec3(0), 1).clearlyContains(BoundingSphere(Vec3(0), 0.6)));  // radius over half
+}
+
 TEST(BoundingSphere, TransformRotationKeepsRadius) {
     const BoundingSphere s(Vec3(1, 2, 3), 2.0);
     Mat4 t = glm::mat4_cast(glm::angleAxis(0.7, glm::normalize(Vec3(1, 2, 3))));

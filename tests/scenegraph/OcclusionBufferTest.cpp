@@ -167,6 +167,37 @@ TEST(OcclusionBuffer, NeverHidesASphereThatARayFromTheEyeReaches) {
     EXPECT_GT(hiddenChecked, 2000) << "too few hidden spheres to mean anything";
 }
 
+// occluded() looks at the pixel under a sphere's centre first; it must answer exactly as the test
+// over the sphere's whole screen rectangle, for spheres of every size, near the screen's edges, off
+// centre in off-axis projections, and from tiny (the shortcut is not taken) to near-plane sized.
+TEST(OcclusionBuffer, TheCentrePixelShortcutAnswersAsTheWholeRectangle) {
+    std::mt19937 rng(404);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int hidden = 0, visible = 0;
+    for (int scene = 0; scene < 200; ++scene) {
+        Camera camera;
+        camera.setPerspective(glm::radians(30.0 + 50.0 * (u(rng) + 1.0)), 1.0 + 0.8 * (u(rng) + 1.0), 0.1 + 0.4 * (u(rng) + 1.0), 800.0);
+        camera.setLookAt(Vec3(4.0 * u(rng), 2.0 * u(rng), 4.0 * u(rng)), Vec3(u(rng), 0.5 * u(rng), -1.0));
+        OcclusionBuffer buffer(16 + int(200 * (u(rng) + 1.0)), 16 + int(100 * (u(rng) + 1.0)));
+        buffer.begin(camera);
+        for (int b = 0; b < 12; ++b) {
+            const Vec3 c(12.0 * u(rng), 4.0 * u(rng), -5.0 - 15.0 * (u(rng) + 1.0));
+            const Vec3 h(0.1 + 3.0 * (u(rng) + 1.0), 0.1 + 2.0 * (u(rng) + 1.0), 0.1 + 1.0 * (u(rng) + 1.0));
+            buffer.drawBox(corners(c - h, c + h));
+        }
+        buffer.finish();
+        for (int s = 0; s < 500; ++s) {
+            const double size = std::pow(10.0, -4.0 + 5.0 * (u(rng) + 1.0) / 2.0);  // 0.1 mm to 10 m
+            const BoundingSphere sphere(Vec3(40.0 * u(rng), 15.0 * u(rng), -0.5 - 40.0 * (u(rng) + 1.0)), size);
+            const bool full = buffer.occludedOverRectangle(sphere);
+            ASSERT_EQ(buffer.occluded(sphere), full) << "scene " << scene << ", sphere " << s;
+            (full ? hidden : visible) += 1;
+        }
+    }
+    EXPECT_GT(hidden, 5000);
+    EXPECT_GT(visible, 5000);
+}
+
 // An Occluder node in a scene: CULL rejects the geometry behind it, and only that.
 TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
     auto root = std::make_shared<Group>();
@@ -205,6 +236,44 @@ TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
     const FrameStatistics c = occluding.processFrame(*root, inside, 0.0);
     EXPECT_EQ(c.occlusion.occludersInsideShell, 1u);
     EXPECT_EQ(c.cull.nodesOccluded, 0u);
+}
+
+// Gathering skips subtrees without Occluder nodes; one added later below such a subtree, deep down,
+// is found again in the next frame, and so is one removed no longer.
+TEST(OcclusionCulling, AnOccluderAddedBelowAnOccluderFreeSubtreeIsFound) {
+    auto root = std::make_shared<Group>();
+    auto outer = std::make_shared<Group>();
+    auto inner = std::make_shared<Transform>();
+    inner->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -10)));
+    const auto cube = std::make_shared<MeshDrawable>(makeBox("cube", glm::vec3(0), glm::vec3(0.5f), glm::vec4(1)));
+    inner->addChild(std::make_shared<Geometry>(cube));
+    outer->addChild(inner);
+    root->addChild(outer);
+    auto behind = std::make_shared<Transform>();
+    behind->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -30)));
+    behind->addChild(std::make_shared<Geometry>(cube));
+    root->addChild(behind);
+    const Camera camera = lookingDownMinusZ();
+    TraditionalProcessor occluding;
+    occluding.setOcclusion(OcclusionSettings{});
+    const FrameStatistics a = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(a.occlusion.occludersInView, 0u);
+    EXPECT_FALSE(outer->mayHoldOccluders());  // merged: nothing below to gather
+    EXPECT_FALSE(root->mayHoldOccluders());
+
+    const auto wall = std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-3, -3, -0.5f), glm::vec3(3, 3, 0.5f)}},
+                                                 AxisBox{glm::vec3(-3.5f, -3.5f, -1), glm::vec3(3.5f, 3.5f, 1)});
+    inner->addChild(wall);
+    const FrameStatistics b = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(b.occlusion.occludersDrawn, 1u);
+    EXPECT_EQ(b.cull.nodesOccluded, 1u);  // the cube behind the wall
+    EXPECT_TRUE(outer->mayHoldOccluders());
+
+    inner->removeChild(wall.get());
+    const FrameStatistics c = occluding.processFrame(*root, camera, 0.0);
+    EXPECT_EQ(c.occlusion.occludersInView, 0u);
+    EXPECT_EQ(c.cull.nodesOccluded, 0u);
+    EXPECT_FALSE(outer->mayHoldOccluders());
 }
 
 TEST(OcclusionCulling, OccluderNodesRejectBadBoxes) {

@@ -38,7 +38,10 @@ BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> id
             const ActorId id = ids[k];
             s.refWorld[id] = parentIsIdentity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
             s.refSphereWorld[id] = s.refSphereLocal[id].transformed(s.refWorld[id], sphereOps);
-            out.bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
+            // Most members lie well inside the bound grown so far: no square root for them (when
+            // counting operations, every member goes through expandBy as the model prices it).
+            if (sphereOps || !out.bound.clearlyContains(s.refSphereWorld[id]))
+                out.bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
         }
         countOperations(c, OpCategory::RefpointMatrix, end - begin);
         countOperations(c, OpCategory::BsphereRecompute, end - begin);

@@ -51,6 +51,16 @@ public:
     bool contains(const Vec& point) const;
     /// Whether `sphere` lies entirely inside this one (an empty sphere is inside anything).
     bool contains(const BasicBoundingSphere& sphere) const;
+    /// A cheap sufficient test (no square root) that expandBy(`sphere`) would leave this sphere
+    /// unchanged: `sphere` lies inside with a margin that rounding cannot eat. False when unsure.
+    bool clearlyContains(const BasicBoundingSphere& sphere) const {
+        // The margin (r <= R / 2, squared distance a millionth short of (R - r)^2) is far beyond
+        // the few ulps by which expandBy's own sum dist + r may round up: it returns early too.
+        if (!sphere.valid() || !valid() || !(sphere.radius_ <= S(0.5) * radius_)) return false;
+        const Vec d = sphere.center_ - center_;
+        const S room = radius_ - sphere.radius_;
+        return glm::dot(d, d) <= room * room * S(0.999999);
+    }
 
     /// Exact equality of centre and radius, for tests.
     bool operator==(const BasicBoundingSphere&) const = default;

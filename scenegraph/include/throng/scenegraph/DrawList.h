@@ -74,18 +74,22 @@ public:
     }
     /// Appends `item` with copies of `world` and `palette` kept by the list (the item's pointers
     /// are set to the copies), so the list stays valid whatever happens to the scene.
-    void add(DrawItem item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
+    void add(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
         const std::span<glm::mat4> room = addSkinned(item, primitives, world, palette.size());
         std::copy(palette.begin(), palette.end(), room.begin());
     }
     /// Appends `item` with a copy of `world` and room for a skin palette of `paletteSize` matrices,
     /// both kept by the list; returns the room, for the caller to fill before the list is drawn.
-    std::span<glm::mat4> addSkinned(DrawItem item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
+    std::span<glm::mat4> addSkinned(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
         glm::mat4* palette = paletteSize ? own_.palettes.allocate(paletteSize) : nullptr;
-        item.worldMatrix = own_.matrices.push(world);
-        item.skinPalette = palette;
-        item.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
-        add(item, primitives);
+        const Mat4* matrix = own_.matrices.push(world);
+        // The item is copied once, into the list, and its pointers set there: crowds add thousands
+        // of items a frame, and each extra copy of a just-built item stalls on its stores.
+        DrawItem& added = items_.emplace_back(item);
+        added.worldMatrix = matrix;
+        added.skinPalette = palette;
+        added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
+        primitives_ += primitives;
         return {palette, paletteSize};
     }
     /// Appends every item of `other` in order, with copies of their matrices and palettes.

@@ -11,6 +11,9 @@ namespace throng {
 /// A node holding an ordered list of children it owns (shared ownership with the caller).
 class Group : public Node {
 public:
+    /// An empty group (it may hold occluders until its bound is first merged).
+    Group() { mayHoldOccluders_ = true; }
+
     void accept(NodeVisitor& visitor) override;
 
     /// Appends `child`. Throws std::invalid_argument if it is null, already has a parent, or is

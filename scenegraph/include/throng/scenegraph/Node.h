@@ -53,6 +53,9 @@ public:
     bool worldStale() const { return worldStale_; }
     /// Marks this node and its ancestors as needing their bounds recomputed.
     void dirtyBound();
+    /// Whether this subtree may hold an Occluder node: exact for a group once the matrices-and-bounds
+    /// pass merged its bound (true before), so occlusion gathering skips subtrees without any.
+    bool mayHoldOccluders() const { return mayHoldOccluders_; }
 
     // Hooks for node types defined outside this library (actors, ...). The standard traversals call
     // them for every node they have no overload for, so such nodes take part in traditional
@@ -80,6 +83,7 @@ protected:
     BoundingSphere worldBound_;
     bool boundDirty_ = true;
     bool worldStale_ = true;  // the frame above this node changed untracked (new parent)
+    bool mayHoldOccluders_ = false;  // groups and Occluder nodes set it; groups refine it when merged
 
 private:
     std::string name_;

@@ -47,6 +47,9 @@ public:
     /// non-finite spheres and for spheres reaching the near plane. Thread-safe between finish()
     /// and the next begin().
     bool occluded(const BoundingSphere& sphere) const;
+    /// The same answer as occluded(), always reached over the sphere's whole screen rectangle
+    /// (occluded() first looks at the pixel under the sphere's centre); for tests.
+    bool occludedOverRectangle(const BoundingSphere& sphere) const;
 
     /// Buffer width in pixels.
     int width() const { return width_; }
@@ -62,6 +65,9 @@ public:
     std::uint64_t pixelsWritten() const { return pixelsWritten_; }
 
 private:
+    // The test of occluded(), with `shortcut` whether to look at the centre's pixel first.
+    bool test(const BoundingSphere& sphere, bool shortcut) const;
+
     struct Level {
         int width, height;
         std::vector<float> r;  // reciprocal depth
