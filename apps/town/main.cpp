@@ -53,6 +53,7 @@
 #include "throng/support/BudgetLadder.h"
 #include "throng/support/FrameBudgetAllocator.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/support/SceneImpostors.h"
 #include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
@@ -358,16 +359,7 @@ int main(int argc, char** argv) {
     }
     std::unique_ptr<ImpostorSet> impostors;
     if (impostorDistance > 0.0) {
-        support::ProgressBar bar("baking impostors", 1000);
-        std::vector<ImpostorSet::Source> sources;
-        for (const auto& t : world->templates()) sources.push_back({t.tmpl, t.clip});
-        ImpostorBakeOptions bake;
-        bake.cellSize = 64;
-        bake.progress = [&](int done, int total) {
-            bar.update(std::size_t(1000.0 * done / std::max(total, 1)), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
-        };
-        impostors = std::make_unique<ImpostorSet>(context, sources, bake);
-        bar.finish(std::to_string(impostors->size()) + " templates, " + std::to_string(impostors->textureBytes() >> 20) + " MiB of atlases");
+        impostors = support::bakeSceneImpostors(context, *world, true);
         impostors->attach(processor, impostorDistance, world->description().representation.hysteresis * impostorDistance);
     }
     CrowdRendererOptions rendererOptions;

@@ -52,6 +52,7 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/support/SceneImpostors.h"
 #include "throng/vtk/CrowdProp.h"
 #include "throng/vtk/ScenePolyData.h"
 #include "throng/vtk/WindowPng.h"
@@ -229,15 +230,7 @@ private:
         }
         if (r.impostorDistance > 0.0) {
             // Baked offscreen: the atlases are CPU images, uploaded by the renderer into VTK's context.
-            auto context = createContext({.width = 64, .height = 64});
-            support::ProgressBar bar("baking impostors", 1000);
-            std::vector<ImpostorSet::Source> sources;
-            for (const auto& t : world_.templates()) sources.push_back({t.tmpl, t.clip});
-            ImpostorBakeOptions bake;
-            bake.cellSize = 64;  // as throng-town
-            bake.progress = [&](int done, int total) { bar.update(std::size_t(1000.0 * done / std::max(total, 1))); };
-            impostors_ = std::make_unique<ImpostorSet>(context, sources, bake);
-            bar.finish(std::to_string(impostors_->size()) + " templates");
+            impostors_ = support::bakeSceneImpostors(createContext({.width = 64, .height = 64}), world_, true);
             impostors_->attach(processor, r.impostorDistance, r.hysteresis * r.impostorDistance);
         }
     }

@@ -8,6 +8,7 @@
 #include "throng/render/ImageSimilarity.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
+#include "throng/support/SceneImpostors.h"
 
 namespace throng::bench {
 
@@ -18,11 +19,7 @@ std::unique_ptr<sim::Simulation> buildWorld(const std::string& scene, std::int64
 }
 
 std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world) {
-    std::vector<ImpostorSet::Source> sources;
-    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
-    ImpostorBakeOptions bake;
-    bake.cellSize = 64;
-    return std::make_unique<ImpostorSet>(context, sources, bake);
+    return support::bakeSceneImpostors(context, world, false);
 }
 
 std::pair<double, double> impostorDistance(const sim::Simulation& world) {

@@ -64,7 +64,7 @@ int writeSpeedDensity(const std::filesystem::path& file, std::span<const double>
     double lowest = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < speeds.size(); ++i) lowest = std::min(lowest, positions[3 * i + 1]);
     std::vector<std::uint32_t> inCell(cells, 0);  // this frame's people per cell; only touched cells reset
-    std::vector<std::size_t> frames;              // actor-frames per people count
+    std::vector<std::size_t> actorFrames;         // per count of people sharing the cell
     std::vector<double> speedSums;
     std::size_t onGround = 0;
     std::size_t first = 0;
@@ -76,8 +76,8 @@ int writeSpeedDensity(const std::filesystem::path& file, std::span<const double>
         for (std::size_t i = first; i < end; ++i) {
             if (!ground(i)) continue;
             const std::uint32_t k = inCell[cellOf[i]];
-            if (k >= frames.size()) frames.resize(k + 1, 0), speedSums.resize(k + 1, 0.0);
-            ++frames[k];
+            if (k >= actorFrames.size()) actorFrames.resize(k + 1, 0), speedSums.resize(k + 1, 0.0);
+            ++actorFrames[k];
             speedSums[k] += speeds[i];
             ++onGround;
         }
@@ -87,15 +87,15 @@ int writeSpeedDensity(const std::filesystem::path& file, std::span<const double>
     std::ofstream out(file);
     out << kSpeedDensityHeader << '\n';
     char line[160];
-    for (std::size_t k = 1; k < frames.size(); ++k) {
-        if (frames[k] == 0) continue;
-        std::snprintf(line, sizeof line, "%zu,%.9g,%zu,%.9g,%.9g\n", k, double(k) / (cellSize * cellSize), frames[k],
-                      double(frames[k]) / double(onGround), speedSums[k] / double(frames[k]));
+    for (std::size_t k = 1; k < actorFrames.size(); ++k) {
+        if (actorFrames[k] == 0) continue;
+        std::snprintf(line, sizeof line, "%zu,%.9g,%zu,%.9g,%.9g\n", k, double(k) / (cellSize * cellSize), actorFrames[k],
+                      double(actorFrames[k]) / double(onGround), speedSums[k] / double(actorFrames[k]));
         out << line;
     }
     out.flush();
     if (!out) throw std::runtime_error("writeCrowdMaps: cannot write " + file.string());
-    return frames.empty() ? 0 : int(frames.size() - 1);
+    return actorFrames.empty() ? 0 : int(actorFrames.size() - 1);
 }
 
 }  // namespace
