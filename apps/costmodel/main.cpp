@@ -89,7 +89,9 @@ void ensureDisplay(int argc, char** argv) {
         std::exit(1);
     }
     setenv("THRONG_UNDER_XVFB", "1", 1);
-    std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a")};
+    // -noreset: otherwise the server resets when one chart's window closes and the next may be refused.
+    std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"), const_cast<char*>("-s"),
+                               const_cast<char*>("-screen 0 1280x1024x24 -noreset")};
     static char self[4096];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
     if (len <= 0) {
