@@ -133,6 +133,7 @@ void ActorProcessor::processTraditionally(Node& root, const Camera& camera, doub
     stats_.occlusionTests = f.cull.occlusionTests;
     stats_.occludersDrawn = f.occlusion.occludersDrawn;
     stats_.occlusionBufferMs = f.occlusion.bufferMs;
+    stats_.occlusionRested = f.occlusion.rested;
     stats_.spheresTested = f.cull.spheresTested;
     stats_.lodDistances = f.cull.lodDistances;
     stats_.drawItems = f.cull.drawItems;
@@ -181,12 +182,14 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         stats_.internalSpheresComputed += matrices.statistics().spheresRecomputed;
     });
     // Occlusion, when on: this frame's occluders drawn into the buffer CULL tests against.
-    if (occlusion_) {
+    // A stage that rests this frame (the last one rejected little) builds and tests nothing.
+    if (occlusion_ && occlusion_->due(camera)) {
         const OcclusionStatistics& o = occlusion_->build(root, camera, f.frustum);
         stats_.occlusionBufferMs = o.bufferMs;
         stats_.occludersDrawn = o.occludersDrawn;
         f.occlusion = &occlusion_->buffer();
     }
+    stats_.occlusionRested = occlusion_ && occlusion_->statistics().rested;
     // Generic CULL, which meets actor nodes after the generic groups above them; phase 2: CULL 1,
     // then occlusion of the survivors.
     timed(stats_.cullMs, [&] {
@@ -211,6 +214,9 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     timed(stats_.poseMs, [&] { cascade::evaluateBehaviours(f); });            // phase 5
     timed(stats_.cull3Ms, [&] { cascade::cullInternalSpheres(f); });          // phase 6: CULL 3
     timed(stats_.drawListMs, [&] { cascade::buildDrawList(f); });             // phase 7
+    if (occlusion_)
+        occlusion_->settle(stats_.occludedWithGroup + stats_.occludedRefpoint + stats_.occludedSklsroot + stats_.nodesOccluded,
+                           stats_.occlusionTests);
     stats_.fmultTotal = c ? counter.totalFmult() : 0;
 }
 

@@ -100,7 +100,7 @@ const char* kCsvHeader =
     "draw_ms,scene_ms,mesh_ms,impostor_ms,morph_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
-    "occlusion_cells_hidden,occlusion_tests,nodes_occluded,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
+    "occlusion_cells_hidden,occlusion_tests,nodes_occluded,occlusion_rested,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
     "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred";
 
 // With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
@@ -131,7 +131,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << ',' << s.impostors << ',' << r.cellsMorphed << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
-      << s.occlusionTests << ',' << s.nodesOccluded << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
+      << s.occlusionTests << ',' << s.nodesOccluded << ',' << (s.occlusionRested ? 1 : 0) << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
       << f.ghosts << ',' << f.handovers << ',' << f.deferred;
     if (budget) {
@@ -185,7 +185,7 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   "actors %llu: culled with group %llu  A %llu  B %llu  C1 %llu  C2 %llu  C3.1 %llu  C3.2 %llu\n"
                   "posed %llu, skeleton nodes %llu, draw items %llu, triangles %llu\n"
                   "APP+CULL %.2f ms (APP %.2f, refpoints %.2f, bounds %.2f, CULL1 %.2f, roots %.2f, CULL2 %.2f, poses %.2f, CULL3 %.2f, list %.2f)\n"
-                  "occlusion: %llu occluders drawn in %.2f ms; hidden: %llu with their group, %llu Refpoint, %llu Sklsroot, %llu tiles (O: buffer)\n"
+                  "occlusion%s: %llu occluders drawn in %.2f ms; hidden: %llu with their group, %llu Refpoint, %llu Sklsroot, %llu tiles (O: buffer)\n"
                   "key-pose caches: %llu actors in the band, %llu drawn from a cache, %llu skinned (pose did not fit), %llu poses stored\n"
                   "LOD scale %.2f (+/-)   culling pyramid %s (C)   camera %s (Tab)   %s",
                   world.description().name.c_str(), fps, s.processing == Processing::Actor ? "actor" : "traditional",
@@ -194,7 +194,7 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   (unsigned long long)s.c3_1, (unsigned long long)s.c3_2, (unsigned long long)s.actorsPosed,
                   (unsigned long long)s.skeletonNodesEvaluated, (unsigned long long)s.drawItems, (unsigned long long)s.primitives,
                   s.appCullMs(), s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs,
-                  s.cull3Ms, s.drawListMs, (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
+                  s.cull3Ms, s.drawListMs, s.occlusionRested ? " (resting: the last test hid little)" : "", (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
                   (unsigned long long)s.occludedWithGroup, (unsigned long long)s.occludedRefpoint, (unsigned long long)s.occludedSklsroot,
                   (unsigned long long)s.nodesOccluded, (unsigned long long)s.keyPoseBand, (unsigned long long)s.keyPoseActors,
                   (unsigned long long)s.keyPoseMisses, (unsigned long long)s.keyPoseUpdates, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",

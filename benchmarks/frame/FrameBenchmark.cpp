@@ -85,6 +85,7 @@ struct Options {
     std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
     std::string occlusionCsv;              // where that section's rows go as CSV (empty: nowhere)
+    bool occlusionPath = false;            // that section also follows the scene's camera path
     std::vector<std::int64_t> regionActors{10000, 100000, 1000000};  // crowds of the regions section
     int regionFrames = 40;                 // measured steps per thread count in the regions section
     std::vector<std::string> sections{"methods", "scaling", "pipeline"};
@@ -482,38 +483,56 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
 struct OcclusionRow {
     std::string camera;
     int width = 0, height = 0;  // 0 x 0: occlusion off
-    double bufferMs = 0, appCullMs = 0, hidden = 0, reachingCull1 = 0, posed = 0, tiles = 0;
+    int rest = 0;               // OcclusionSettings::restFrames (0: tests every frame)
+    double bufferMs = 0, appCullMs = 0, hidden = 0, reachingCull1 = 0, posed = 0, tiles = 0, rested = 0;
+    std::string label() const {
+        if (!width) return "off";
+        return std::to_string(width) + "x" + std::to_string(height) + (rest ? ", rest " + std::to_string(rest) : "");
+    }
 };
 
 // The occlusion buffer's resolution against rejection and time (actor + impostors processing, the
-// same ticks for every resolution and for occlusion off).
+// same ticks for every resolution and for occlusion off), and the scene's resolution resting after
+// frames that hid little (the scene's rest, or 8 frames with the default limits). The "path" camera
+// follows the scene's camera path once, tick by tick, so rests end as they would in the example.
 std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
-    const int sizes[][2] = {{0, 0}, {64, 36}, {128, 72}, {256, 144}, {512, 288}, {1024, 576}};
-    constexpr int kSizes = 6;
     auto world = bench::buildWorld(o.scene, o.occlusionActors);
+    const OcclusionSettings declared = world->description().representation.occlusion.value_or(OcclusionSettings{});
+    const int rest = declared.restFrames > 0 ? declared.restFrames : 8;
+    struct Variant {
+        int width, height, rest;
+    };
+    const std::vector<Variant> variants = {{0, 0, 0},       {64, 36, 0},   {128, 72, 0}, {256, 144, 0}, {512, 288, 0},
+                                           {1024, 576, 0}, {declared.width, declared.height, rest}};
     *actorsOut = std::int64_t(world->crowd().size());
     auto impostors = bakeImpostors(context, *world);
     const auto [distance, hysteresis] = impostorDistance(*world);
     std::vector<std::unique_ptr<ActorProcessor>> processors;
-    for (const auto& size : sizes) {
+    for (const Variant& v : variants) {
         processors.push_back(std::make_unique<ActorProcessor>(world->crowd()));
         impostors->attach(*processors.back(), distance, hysteresis);
-        if (size[0] > 0) {
-            OcclusionSettings settings = world->description().representation.occlusion.value_or(OcclusionSettings{});
-            settings.width = size[0], settings.height = size[1];
+        if (v.width > 0) {
+            OcclusionSettings settings = declared;
+            settings.width = v.width, settings.height = v.height, settings.restFrames = v.rest;
             processors.back()->setOcclusion(settings);
         }
     }
     for (int f = 0; f < o.warmup; ++f) world->step();
     std::vector<OcclusionRow> rows;
-    for (const std::string& cameraName : o.cameras) {
-        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
-        OcclusionRow r[kSizes];
-        for (int k = 0; k < kSizes; ++k) r[k].camera = cameraName, r[k].width = sizes[k][0], r[k].height = sizes[k][1];
-        for (int f = -2; f < o.frames; ++f) {
+    std::vector<std::string> cameras = o.cameras;
+    if (o.occlusionPath) cameras.push_back("path");
+    const double aspect = double(o.width) / double(o.height);
+    for (const std::string& cameraName : cameras) {
+        const bool path = cameraName == "path";
+        const int frames = path ? int(std::ceil(world->camera().duration() / world->description().step)) + 1 : o.frames;
+        std::vector<OcclusionRow> r(variants.size());
+        for (std::size_t k = 0; k < variants.size(); ++k)
+            r[k].camera = cameraName, r[k].width = variants[k].width, r[k].height = variants[k].height, r[k].rest = variants[k].rest;
+        for (int f = -2; f < frames; ++f) {
             const FrameContext& now = world->step();
-            for (int k = 0; k < kSizes; ++k) {
-                const ActorFrameStatistics s = processors[std::size_t(k)]->processFrame(world->root(), camera, now.time);
+            const Camera camera = world->camera().at(path ? std::max(f, 0) * world->description().step : cameraTime(cameraName), aspect);
+            for (std::size_t k = 0; k < variants.size(); ++k) {
+                const ActorFrameStatistics s = processors[k]->processFrame(world->root(), camera, now.time);
                 if (f < 0) continue;
                 r[k].bufferMs += s.occlusionBufferMs;
                 r[k].appCullMs += s.appCullMs();
@@ -521,10 +540,12 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
                 r[k].reachingCull1 += double(s.actorsInScene - s.culledWithGroup - s.a);
                 r[k].posed += double(s.actorsPosed);
                 r[k].tiles += double(s.nodesOccluded);
+                r[k].rested += s.occlusionRested ? 1.0 : 0.0;
             }
         }
         for (OcclusionRow& row : r) {
-            for (double* v : {&row.bufferMs, &row.appCullMs, &row.hidden, &row.reachingCull1, &row.posed, &row.tiles}) *v /= o.frames;
+            for (double* v : {&row.bufferMs, &row.appCullMs, &row.hidden, &row.reachingCull1, &row.posed, &row.tiles, &row.rested})
+                *v /= frames;
             rows.push_back(row);
         }
         std::fprintf(stderr, "bench_frame: occlusion resolutions, %s camera done\n", cameraName.c_str());
@@ -739,6 +760,7 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(2, 1'000'000));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_flag("--occlusion-path", o.occlusionPath, "the occlusion section also follows the scene's camera path once, tick by tick");
     app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section in the common accuracy CSV (one record per buffer resolution and camera)")->type_name("FILE");
     app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(wholeNumber(1, 10'000'000));
     app.add_option("--town-samples", o.townSamples, "cameras along the path in the town section")
@@ -837,24 +859,26 @@ int main(int argc, char** argv) {
             const auto sweep = occlusionSweep(o, context, &actors);
             report << "\nOcclusion buffer resolution against rejection and time, actor + impostors processing, " << actors
                    << " actors, one thread, means over " << o.frames << " ticks (\"hidden\": actors rejected by occlusion, as a share of those "
-                   << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less):\n\n"
-                   << "| camera | buffer | buffer ms | APP+CULL ms | hidden | hidden share | posed | tiles hidden |\n"
-                   << "|---|---|---:|---:|---:|---:|---:|---:|\n";
+                   << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less"
+                   << "; \"rested\": share of frames the stage rested after one that hid little; the path camera follows the "
+                   << "scene's camera path once, means over its ticks):\n\n"
+                   << "| camera | buffer | buffer ms | APP+CULL ms | hidden | hidden share | posed | tiles hidden | rested |\n"
+                   << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
             // The common accuracy CSV. Occlusion is conservative (no visible actor is rejected at any
             // resolution), so its measures are what it achieves: the share hidden, and the posing left.
             std::unique_ptr<support::AccuracyCsv> csv;
             if (!o.occlusionCsv.empty()) csv = std::make_unique<support::AccuracyCsv>(o.occlusionCsv);
             char line[512];
             for (const OcclusionRow& r : sweep) {
-                const std::string size = r.width ? std::to_string(r.width) + "x" + std::to_string(r.height) : "off";
+                const std::string size = r.label();
                 const double share = r.reachingCull1 > 0 ? r.hidden / r.reachingCull1 : 0.0;
-                std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.2f | %.0f | %.1f %% | %.0f | %.0f |\n", r.camera.c_str(), size.c_str(),
-                              r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles);
+                std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.2f | %.0f | %.1f %% | %.0f | %.0f | %.0f %% |\n", r.camera.c_str(),
+                              size.c_str(), r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles, 100.0 * r.rested);
                 report << line;
                 // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
                 if (csv) {
                     support::AccuracyRecord a;
-                    a.knob = "occlusion buffer resolution";
+                    a.knob = r.rest ? "occlusion rest" : "occlusion buffer resolution";
                     a.value = size;
                     a.off = r.width == 0;
                     a.metrics = {{"hidden_share", share, "share", false}, {"actors_posed", r.posed, "actors", true},

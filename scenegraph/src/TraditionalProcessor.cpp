@@ -46,7 +46,10 @@ const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Came
     stats_.matricesBoundsMs = watch.elapsedMs();
     stats_.matrices = matrices.statistics();
 
-    if (occlusion_) stats_.occlusion = occlusion_->build(root, camera, cullingFrustum_ ? *cullingFrustum_ : camera.frustum());
+    // A stage that rests this frame (the last one rejected little) builds and tests nothing.
+    const bool occluding = occlusion_ && occlusion_->due(camera);
+    if (occluding) stats_.occlusion = occlusion_->build(root, camera, cullingFrustum_ ? *cullingFrustum_ : camera.frustum());
+    else if (occlusion_) stats_.occlusion = occlusion_->statistics();
 
     watch.restart();
     current_ = 1 - current_;  // the previous frame's list stays intact for a DRAW still reading it
@@ -55,10 +58,11 @@ const FrameStatistics& TraditionalProcessor::processFrame(Node& root, const Came
     CullVisitor cull(camera, list, counter, lodScale_);
     if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
     cull.setFrameTime(time);
-    if (occlusion_) cull.setOcclusion(&occlusion_->buffer());
+    if (occluding) cull.setOcclusion(&occlusion_->buffer());
     root.accept(cull);
     stats_.cullMs = watch.elapsedMs();
     stats_.cull = cull.statistics();
+    if (occluding) occlusion_->settle(stats_.cull.nodesOccluded, stats_.cull.occlusionTests);
 
     if (backend) {
         watch.restart();

@@ -344,7 +344,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").positive();
         if (r.has("occlusion")) {
             const Reader o = r.at("occlusion");
-            o.object({"width", "height", "maxOccluders"});
+            o.object({"width", "height", "maxOccluders", "rest"});
             OcclusionSettings settings;
             const auto size = [&](const char* key, int& into) {
                 if (!o.has(key)) return;
@@ -358,6 +358,23 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
                 const std::int64_t v = o.at("maxOccluders").atLeast(1);
                 if (v > 1000000) o.at("maxOccluders").fail("must be at most 1000000, got " + std::to_string(v));
                 settings.maxOccluders = static_cast<int>(v);
+            }
+            // "rest": {"frames": N, "below": share, "wakeDistance": m, "wakeAngle": degrees}
+            if (o.has("rest")) {
+                const Reader rest = o.at("rest");
+                rest.object({"frames", "below", "wakeDistance", "wakeAngle"});
+                const std::int64_t frames = rest.at("frames").atLeast(1);
+                if (frames > 1000) rest.at("frames").fail("must be at most 1000, got " + std::to_string(frames));
+                settings.restFrames = static_cast<int>(frames);
+                const auto bounded = [&](const char* key, double hi, double& into) {
+                    if (!rest.has(key)) return;
+                    const double v = rest.at(key).number();
+                    if (v < 0.0 || v > hi) rest.at(key).fail("must be in [0, " + std::to_string(static_cast<int>(hi)) + "]");
+                    into = v;
+                };
+                bounded("below", 1.0, settings.restBelow);
+                bounded("wakeDistance", 1000000.0, settings.wakeDistance);
+                bounded("wakeAngle", 180.0, settings.wakeAngleDegrees);
             }
             s.representation.occlusion = settings;
         }

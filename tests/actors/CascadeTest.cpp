@@ -291,6 +291,60 @@ TEST(Cascade, OcclusionRejectsOnlyWhatTheBufferHidesWhateverTheThreads) {
     EXPECT_EQ(drawn[0], drawn[1]);
 }
 
+// A narrow pillar hides a few actors of a wide crowd: with rest declared, the frame after the one
+// that measured so little rests: no buffer, no test, every actor processed exactly as without
+// occlusion (same classes, same draw list), whatever the threads; then it measures again.
+TEST(Cascade, UnrewardingOcclusionRestsAndThenProcessesExactlyAsWithoutIt) {
+    auto scene = makeRandomCrowd(12, 1500, 60.0);
+    auto pillar = std::make_shared<Transform>();
+    pillar->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-6, -20, -1), glm::vec3(6, 20, 1)}},
+                                                AxisBox{glm::vec3(-7, -21, -2), glm::vec3(7, 21, 2)}));
+    scene->root->addChild(pillar);
+    Camera camera;
+    camera.setPerspective(1.0, 1.6, 0.1, 500.0);
+    camera.setLookAt(Vec3(0, 5, 90), Vec3(0, 0, 0), Vec3(0, 1, 0));
+    OcclusionSettings settings;
+    settings.restFrames = 2;
+    settings.restBelow = 0.2;
+
+    std::vector<ActorClass> classesOff;
+    std::vector<std::pair<ActorId, std::uint32_t>> drawnOff;
+    {
+        ActorProcessor plain(scene->crowd);
+        plain.processFrame(*scene->root, camera, 0.1);
+        for (ActorId id : scene->ids) classesOff.push_back(scene->crowd.actorClass(id));
+        for (const DrawItem& item : plain.drawList().items()) drawnOff.emplace_back(item.actor, item.part);
+    }
+    for (unsigned threads : {1u, 2u}) {
+        ActorProcessor resting(scene->crowd);
+        resting.setThreads(threads);
+        resting.setOcclusion(settings);
+        const ActorFrameStatistics first = resting.processFrame(*scene->root, camera, 0.0);
+        const std::uint64_t hidden = first.occludedWithGroup + first.occludedRefpoint + first.occludedSklsroot;
+        EXPECT_FALSE(first.occlusionRested);
+        ASSERT_GT(hidden, 0u) << "the pillar must hide someone";
+        ASSERT_LT(double(hidden), 0.2 * double(first.occlusionTests)) << "and little";
+
+        const ActorFrameStatistics rest = resting.processFrame(*scene->root, camera, 0.1);
+        EXPECT_TRUE(rest.occlusionRested);
+        EXPECT_EQ(rest.occludersDrawn, 0u);
+        EXPECT_EQ(rest.occlusionTests, 0u);
+        EXPECT_EQ(rest.occlusionBufferMs, 0.0);
+        EXPECT_EQ(rest.occludedWithGroup + rest.occludedRefpoint + rest.occludedSklsroot, 0u);
+        std::vector<ActorClass> classes;
+        for (ActorId id : scene->ids) classes.push_back(scene->crowd.actorClass(id));
+        EXPECT_EQ(classes, classesOff) << threads << " threads";
+        std::vector<std::pair<ActorId, std::uint32_t>> drawn;
+        for (const DrawItem& item : resting.drawList().items()) drawn.emplace_back(item.actor, item.part);
+        EXPECT_EQ(drawn, drawnOff) << threads << " threads";
+
+        EXPECT_TRUE(resting.processFrame(*scene->root, camera, 0.2).occlusionRested);
+        const ActorFrameStatistics again = resting.processFrame(*scene->root, camera, 0.3);
+        EXPECT_FALSE(again.occlusionRested) << "the rest lasts restFrames frames";
+        EXPECT_GT(again.occludedWithGroup + again.occludedRefpoint + again.occludedSklsroot, 0u);
+    }
+}
+
 TEST(Cascade, AHeldObjectEnlargesBothSpheresAndIsDrawnWithTheActor) {
     Crowd crowd;
     const auto tmpl = makeSeedHumanoid();

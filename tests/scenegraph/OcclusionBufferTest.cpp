@@ -106,6 +106,26 @@ TEST(OcclusionBuffer, RejectsBadSizesAndNonPerspectiveCameras) {
     OcclusionBuffer buffer(64, 64);
     EXPECT_THROW(buffer.begin(ortho), std::invalid_argument);
     EXPECT_THROW(OcclusionCulling(OcclusionSettings{64, 64, 0}), std::invalid_argument);
+    const auto refused = [](OcclusionSettings settings, const char* name) {
+        try {
+            OcclusionCulling stage(settings);
+            ADD_FAILURE() << "accepted a bad '" << name << "'";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    };
+    OcclusionSettings s;
+    s.restFrames = -1;
+    refused(s, "restFrames");
+    s = OcclusionSettings{};
+    s.restBelow = std::nan("");
+    refused(s, "restBelow");
+    s = OcclusionSettings{};
+    s.wakeDistance = -1;
+    refused(s, "wakeDistance");
+    s = OcclusionSettings{};
+    s.wakeAngleDegrees = 181;
+    refused(s, "wakeAngleDegrees");
 }
 
 // Whether the segment from the origin to `p` passes through box [lo, hi] before reaching p (slab test).
@@ -274,6 +294,86 @@ TEST(OcclusionCulling, AnOccluderAddedBelowAnOccluderFreeSubtreeIsFound) {
     EXPECT_EQ(c.occlusion.occludersInView, 0u);
     EXPECT_EQ(c.cull.nodesOccluded, 0u);
     EXPECT_FALSE(outer->mayHoldOccluders());
+}
+
+// A view where occlusion hides little: with rest declared the stage then builds and tests nothing
+// for restFrames frames (everything is drawn, as without occlusion), wakes when the camera moves or
+// turns, and never rests where it hides much. Without rest declared it never rests.
+TEST(OcclusionCulling, RestsAfterAFrameThatHidLittleUntilTheCameraMovesOrTurns) {
+    auto root = std::make_shared<Group>();
+    auto wall = std::make_shared<Transform>();
+    wall->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -10)));
+    wall->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-1, -1, -0.5f), glm::vec3(1, 1, 0.5f)}},
+                                              AxisBox{glm::vec3(-1.5f, -1.5f, -1), glm::vec3(1.5f, 1.5f, 1)}));
+    root->addChild(wall);
+    const auto cube = std::make_shared<MeshDrawable>(makeBox("cube", glm::vec3(0), glm::vec3(0.25f), glm::vec4(1)));
+    const auto place = [&](const Vec3& at) {
+        auto t = std::make_shared<Transform>();
+        t->setMatrix(glm::translate(Mat4(1.0), at));
+        t->addChild(std::make_shared<Geometry>(cube));
+        root->addChild(t);
+    };
+    place(Vec3(0, 0, -30));  // the one hidden
+    for (int i = 1; i <= 12; ++i) place(Vec3(-12.0 + 2.0 * i, 3.0, -30));  // above the wall, in view
+    const Camera camera = lookingDownMinusZ();
+
+    OcclusionSettings settings;
+    settings.restFrames = 3;
+    settings.restBelow = 0.2;
+    TraditionalProcessor resting, always, plain;
+    resting.setOcclusion(settings);
+    always.setOcclusion(OcclusionSettings{});
+    const FrameStatistics first = resting.processFrame(*root, camera, 0.0);
+    EXPECT_FALSE(first.occlusion.rested);
+    EXPECT_EQ(first.cull.nodesOccluded, 1u);
+    ASSERT_LT(double(first.cull.nodesOccluded), 0.2 * double(first.cull.occlusionTests)) << "the view must hide little";
+    const std::uint64_t drawnWithout = plain.processFrame(*root, camera, 0.0).cull.drawItems;
+    for (int frame = 1; frame <= 3; ++frame) {
+        const FrameStatistics s = resting.processFrame(*root, camera, 0.1 * frame);
+        EXPECT_TRUE(s.occlusion.rested) << "frame " << frame;
+        EXPECT_EQ(s.occlusion.occludersDrawn, 0u);
+        EXPECT_EQ(s.cull.occlusionTests, 0u);
+        EXPECT_EQ(s.cull.nodesOccluded, 0u);
+        EXPECT_EQ(s.cull.drawItems, drawnWithout);
+        EXPECT_FALSE(always.processFrame(*root, camera, 0.1 * frame).occlusion.rested);
+    }
+    const FrameStatistics after = resting.processFrame(*root, camera, 0.4);
+    EXPECT_FALSE(after.occlusion.rested) << "the rest lasts restFrames frames";
+    EXPECT_EQ(after.cull.nodesOccluded, 1u);
+
+    // Resting again (it hid little again): a step past wakeDistance, or a turn past wakeAngle, wakes it.
+    EXPECT_TRUE(resting.processFrame(*root, camera, 0.5).occlusion.rested);
+    Camera moved;
+    moved.setPerspective(glm::radians(60.0), 16.0 / 9.0, 0.1, 1000.0);
+    moved.setLookAt(Vec3(0, 0, 2.5), Vec3(0, 0, -30));
+    EXPECT_FALSE(resting.processFrame(*root, moved, 0.6).occlusion.rested);
+    Camera nudged;  // within both limits of the frame just measured
+    nudged.setPerspective(glm::radians(60.0), 16.0 / 9.0, 0.1, 1000.0);
+    nudged.setLookAt(Vec3(0.5, 0, 2.5), Vec3(0.5, 0, -30));
+    EXPECT_TRUE(resting.processFrame(*root, nudged, 0.7).occlusion.rested);
+    Camera turned;
+    turned.setPerspective(glm::radians(60.0), 16.0 / 9.0, 0.1, 1000.0);
+    turned.setLookAt(Vec3(0, 0, 2.5), Vec3(-10, 0, -30));  // about 18 degrees
+    EXPECT_FALSE(resting.processFrame(*root, turned, 0.8).occlusion.rested);
+
+    // Where occlusion hides much it keeps testing.
+    auto hidden = std::make_shared<Group>();
+    auto wall2 = std::make_shared<Transform>();
+    wall2->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -10)));
+    wall2->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-1, -1, -0.5f), glm::vec3(1, 1, 0.5f)}},
+                                               AxisBox{glm::vec3(-1.5f, -1.5f, -1), glm::vec3(1.5f, 1.5f, 1)}));
+    hidden->addChild(wall2);
+    auto t = std::make_shared<Transform>();
+    t->setMatrix(glm::translate(Mat4(1.0), Vec3(0, 0, -30)));
+    t->addChild(std::make_shared<Geometry>(cube));
+    hidden->addChild(t);
+    TraditionalProcessor worthIt;
+    worthIt.setOcclusion(settings);
+    for (int frame = 0; frame < 5; ++frame) {
+        const FrameStatistics s = worthIt.processFrame(*hidden, camera, 0.1 * frame);
+        EXPECT_FALSE(s.occlusion.rested) << "frame " << frame;
+        EXPECT_EQ(s.cull.nodesOccluded, 1u);
+    }
 }
 
 TEST(OcclusionCulling, OccluderNodesRejectBadBoxes) {

@@ -220,6 +220,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"no occluder allowed",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"maxOccluders": 0}}})",
                  "/representation/occlusion/maxOccluders", "at least 1"},
+        BadScene{"occlusion rest without frames",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"below": 0.1}}}})",
+                 "/representation/occlusion/rest/frames", "is missing"},
+        BadScene{"occlusion rest share above one",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"frames": 4, "below": 1.5}}}})",
+                 "/representation/occlusion/rest/below", "in [0, 1]"},
+        BadScene{"occlusion rest wake angle too wide",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"frames": 4, "wakeAngle": 200}}}})",
+                 "/representation/occlusion/rest/wakeAngle", "in [0, 180]"},
         BadScene{"unknown occlusion field",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"depth": 3}}})",
                  "/representation/occlusion/depth", "not a known field"},
@@ -277,7 +286,15 @@ TEST(SceneParser, OcclusionIsReadOnlyWhenDeclared) {
     EXPECT_EQ(s.representation.occlusion->width, 320);
     EXPECT_EQ(s.representation.occlusion->height, 180);
     EXPECT_EQ(s.representation.occlusion->maxOccluders, 40);
+    EXPECT_EQ(s.representation.occlusion->restFrames, 0) << "occlusion never rests unless the scene says so";
     EXPECT_TRUE(s.town->occluders);
+    const SceneDescription resting = parseScene(
+        scene(kActors, R"(, "representation": {"occlusion": {"rest": {"frames": 8, "below": 0.2, "wakeDistance": 3, "wakeAngle": 15}}})"),
+        kAssets);
+    EXPECT_EQ(resting.representation.occlusion->restFrames, 8);
+    EXPECT_DOUBLE_EQ(resting.representation.occlusion->restBelow, 0.2);
+    EXPECT_DOUBLE_EQ(resting.representation.occlusion->wakeDistance, 3.0);
+    EXPECT_DOUBLE_EQ(resting.representation.occlusion->wakeAngleDegrees, 15.0);
 }
 
 TEST(SceneParser, KeyPoseCachesAreReadOnlyWhenDeclared) {

@@ -222,7 +222,7 @@ def effects(exe, scenes, work):
         tests = sum(int(r["occlusion_tests"]) for r in rows)
         if declared and (drawn == 0 or tests == 0):
             sys.exit(f"declared occlusion drew {drawn} occluders and made {tests} tests")
-        if not declared and (drawn != 0 or tests != 0 or any(float(r["occlusion_buffer_ms"]) != 0 for r in rows)):
+        if not declared and (drawn != 0 or tests != 0 or any(float(r["occlusion_buffer_ms"]) != 0 or r["occlusion_rested"] != "0" for r in rows)):
             sys.exit(f"undeclared occlusion drew {drawn} occluders and made {tests} tests")
         # Key-pose caches: declared, actors of the band are drawn from them; undeclared, no band.
         band = sum(int(r["key_pose_band"]) for r in rows)

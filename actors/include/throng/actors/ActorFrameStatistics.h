@@ -55,6 +55,7 @@ struct ActorFrameStatistics {
     std::uint64_t occlusionTests = 0;      ///< sphere tests against the buffer, all kinds
     std::uint64_t nodesOccluded = 0;       ///< generic nodes rejected by occlusion (town tiles...)
     std::uint64_t occludersDrawn = 0;      ///< Occluder nodes drawn into the buffer
+    bool occlusionRested = false;          ///< occlusion rested this frame (OcclusionSettings::restFrames)
 
     // Work.
     std::uint64_t actorsPosed = 0;            ///< actors whose behaviour posed them this frame
