@@ -492,7 +492,7 @@ struct OcclusionRow {
 };
 
 // The occlusion buffer's resolution against rejection and time (actor + impostors processing, the
-// same ticks for every resolution and for occlusion off), and the scene's resolution resting after
+// same ticks for every resolution and for occlusion off, in turns), and the scene's resolution resting after
 // frames that hid little (the scene's rest, or 8 frames with the default limits). The "path" camera
 // follows the scene's camera path once, tick by tick, so rests end as they would in the example.
 std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
@@ -531,7 +531,9 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
         for (int f = -2; f < frames; ++f) {
             const FrameContext& now = world->step();
             const Camera camera = world->camera().at(path ? std::max(f, 0) * world->description().step : cameraTime(cameraName), aspect);
-            for (std::size_t k = 0; k < variants.size(); ++k) {
+            // Each tick starts with another variant, so none always runs on caches its predecessor warmed.
+            for (std::size_t i = 0; i < variants.size(); ++i) {
+                const std::size_t k = (i + std::size_t(f + 2)) % variants.size();
                 const ActorFrameStatistics s = processors[k]->processFrame(world->root(), camera, now.time);
                 if (f < 0) continue;
                 r[k].bufferMs += s.occlusionBufferMs;
