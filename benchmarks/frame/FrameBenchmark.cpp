@@ -878,20 +878,29 @@ int main(int argc, char** argv) {
                               size.c_str(), r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles, 100.0 * r.rested);
                 report << line;
                 // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
-                if (csv) {
+                // Knob "occlusion rest": its "off" is the same resolution testing every frame.
+                const auto record = [&](const OcclusionRow& row, const char* knob, const std::string& value, bool off) {
+                    const double rowShare = row.reachingCull1 > 0 ? row.hidden / row.reachingCull1 : 0.0;
                     support::AccuracyRecord a;
-                    a.knob = r.rest ? "occlusion rest" : "occlusion buffer resolution";
-                    a.value = size;
-                    a.off = r.width == 0;
-                    a.metrics = {{"hidden_share", share, "share", false}, {"actors_posed", r.posed, "actors", true},
-                                 {"tiles_hidden", r.tiles, "tiles", false}};
-                    a.ms = r.appCullMs;
+                    a.knob = knob;
+                    a.value = value;
+                    a.off = off;
+                    a.metrics = {{"hidden_share", rowShare, "share", false}, {"actors_posed", row.posed, "actors", true},
+                                 {"tiles_hidden", row.tiles, "tiles", false}};
+                    a.ms = row.appCullMs;
                     a.msPhase = "app_cull";
-                    a.memoryBytes = double(std::int64_t(r.width) * r.height * 16 / 3);
+                    a.memoryBytes = double(std::int64_t(row.width) * row.height * 16 / 3);
                     a.scene = support::sceneName(o.scene);
-                    a.camera = r.camera;
+                    a.camera = row.camera;
                     a.actors = actors;
                     csv->add(a);
+                };
+                if (csv && !r.rest) record(r, "occlusion buffer resolution", size, r.width == 0);
+                if (csv && r.rest) {
+                    for (const OcclusionRow& every : sweep)
+                        if (every.camera == r.camera && every.width == r.width && every.height == r.height && every.rest == 0)
+                            record(every, "occlusion rest", "every frame", true);
+                    record(r, "occlusion rest", std::to_string(r.rest) + " frames", false);
                 }
             }
         }
