@@ -5,7 +5,7 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   determinism  same seed: identical stats.csv (timing columns aside) and identical frames,
                run twice with 1 thread, with 2 and 4, and with DRAW overlapping the next frame
   effects      a scene that declares no avoidance, gaze or flight never constructs or ticks them;
-               declaring them turns them on
+               declaring them turns them on; declared occlusion rests on some frames, testing nothing there
   window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
   mpi          under $THRONG_MPIEXEC with 1 and 2 ranks: the same stats.csv (timing and per-rank columns
                aside) and the same frames as the plain program, with walkers crossing between ranks
@@ -222,6 +222,13 @@ def effects(exe, scenes, work):
         tests = sum(int(r["occlusion_tests"]) for r in rows)
         if declared and (drawn == 0 or tests == 0):
             sys.exit(f"declared occlusion drew {drawn} occluders and made {tests} tests")
+        # The effects scene lets occlusion rest after frames that hid little: a rested frame builds and tests nothing.
+        rested = [r for r in rows if r["occlusion_rested"] == "1"]
+        if declared and not (0 < len(rested) < len(rows)):
+            sys.exit(f"declared occlusion with rest rested on {len(rested)} of {len(rows)} frames; expected some, not all")
+        for r in rested:
+            if int(r["occlusion_tests"]) or int(r["occluders_drawn"]) or float(r["occlusion_buffer_ms"]) or int(r["occluded_refpoint"]):
+                sys.exit(f"frame {r['frame']} rested yet drew {r['occluders_drawn']} occluders and made {r['occlusion_tests']} tests")
         if not declared and (drawn != 0 or tests != 0 or any(float(r["occlusion_buffer_ms"]) != 0 or r["occlusion_rested"] != "0" for r in rows)):
             sys.exit(f"undeclared occlusion drew {drawn} occluders and made {tests} tests")
         # Key-pose caches: declared, actors of the band are drawn from them; undeclared, no band.
