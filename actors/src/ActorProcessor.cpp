@@ -214,7 +214,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     timed(stats_.poseMs, [&] { cascade::evaluateBehaviours(f); });            // phase 5
     timed(stats_.cull3Ms, [&] { cascade::cullInternalSpheres(f); });          // phase 6: CULL 3
     timed(stats_.drawListMs, [&] { cascade::buildDrawList(f); });             // phase 7
-    if (occlusion_)
+    if (f.occlusion)
         occlusion_->settle(stats_.occludedWithGroup + stats_.occludedRefpoint + stats_.occludedSklsroot + stats_.nodesOccluded,
                            stats_.occlusionTests);
     stats_.fmultTotal = c ? counter.totalFmult() : 0;

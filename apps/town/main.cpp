@@ -345,11 +345,7 @@ int main(int argc, char** argv) {
     if (o.occlusion && world->description().representation.occlusion) processor.setOcclusion(world->description().representation.occlusion);
     // Key-pose caches for the middle band when the scene declares them (and --key-pose-cache does
     // not turn them off).
-    if (o.keyPoseCache && world->description().representation.keyPoseCache) {
-        const sim::KeyPoseCacheDescription& k = *world->description().representation.keyPoseCache;
-        for (auto& cache : world->makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
-        processor.setKeyPoseDistance(k.distance, world->description().representation.hysteresis * k.distance);
-    }
+    if (o.keyPoseCache) world->attachKeyPoseCaches(processor);
     // Far actors as impostors when the scene asks for them (or --impostor-distance does, or a rung
     // of the --frame-budget ladder).
     double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;

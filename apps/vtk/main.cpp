@@ -224,10 +224,7 @@ private:
         processor.setLodScale(r.lodScale);
         if (r.occlusion) processor.setOcclusion(r.occlusion);
         if (!throngDrawing) return;
-        if (r.keyPoseCache) {
-            for (auto& cache : world_.makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
-            processor.setKeyPoseDistance(r.keyPoseCache->distance, r.hysteresis * r.keyPoseCache->distance);
-        }
+        world_.attachKeyPoseCaches(processor);
         if (r.impostorDistance > 0.0) {
             // Baked offscreen: the atlases are CPU images, uploaded by the renderer into VTK's context.
             impostors_ = support::bakeSceneImpostors(createContext({.width = 64, .height = 64}), world_, true);

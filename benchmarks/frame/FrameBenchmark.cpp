@@ -485,6 +485,7 @@ struct OcclusionRow {
     int width = 0, height = 0;  // 0 x 0: occlusion off
     int rest = 0;               // OcclusionSettings::restFrames (0: tests every frame)
     double bufferMs = 0, appCullMs = 0, hidden = 0, reachingCull1 = 0, posed = 0, tiles = 0, rested = 0;
+    double hiddenShare() const { return reachingCull1 > 0 ? hidden / reachingCull1 : 0.0; }
     std::string label() const {
         if (!width) return "off";
         return std::to_string(width) + "x" + std::to_string(height) + (rest ? ", rest " + std::to_string(rest) : "");
@@ -870,32 +871,30 @@ int main(int argc, char** argv) {
             // resolution), so its measures are what it achieves: the share hidden, and the posing left.
             std::unique_ptr<support::AccuracyCsv> csv;
             if (!o.occlusionCsv.empty()) csv = std::make_unique<support::AccuracyCsv>(o.occlusionCsv);
+            const auto record = [&](const OcclusionRow& row, const char* knob, const std::string& value, bool off) {
+                support::AccuracyRecord a;
+                a.knob = knob;
+                a.value = value;
+                a.off = off;
+                a.metrics = {{"hidden_share", row.hiddenShare(), "share", false}, {"actors_posed", row.posed, "actors", true},
+                             {"tiles_hidden", row.tiles, "tiles", false}};
+                a.ms = row.appCullMs;
+                a.msPhase = "app_cull";
+                // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
+                a.memoryBytes = double(std::int64_t(row.width) * row.height * 16 / 3);
+                a.scene = support::sceneName(o.scene);
+                a.camera = row.camera;
+                a.actors = actors;
+                csv->add(a);
+            };
             char line[512];
             for (const OcclusionRow& r : sweep) {
                 const std::string size = r.label();
-                const double share = r.reachingCull1 > 0 ? r.hidden / r.reachingCull1 : 0.0;
                 std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.2f | %.0f | %.1f %% | %.0f | %.0f | %.0f %% |\n", r.camera.c_str(),
-                              size.c_str(), r.bufferMs, r.appCullMs, r.hidden, 100.0 * share, r.posed, r.tiles, 100.0 * r.rested);
+                              size.c_str(), r.bufferMs, r.appCullMs, r.hidden, 100.0 * r.hiddenShare(), r.posed, r.tiles, 100.0 * r.rested);
                 report << line;
-                // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
-                // Knob "occlusion rest": its "off" is the same resolution testing every frame.
-                const auto record = [&](const OcclusionRow& row, const char* knob, const std::string& value, bool off) {
-                    const double rowShare = row.reachingCull1 > 0 ? row.hidden / row.reachingCull1 : 0.0;
-                    support::AccuracyRecord a;
-                    a.knob = knob;
-                    a.value = value;
-                    a.off = off;
-                    a.metrics = {{"hidden_share", rowShare, "share", false}, {"actors_posed", row.posed, "actors", true},
-                                 {"tiles_hidden", row.tiles, "tiles", false}};
-                    a.ms = row.appCullMs;
-                    a.msPhase = "app_cull";
-                    a.memoryBytes = double(std::int64_t(row.width) * row.height * 16 / 3);
-                    a.scene = support::sceneName(o.scene);
-                    a.camera = row.camera;
-                    a.actors = actors;
-                    csv->add(a);
-                };
                 if (csv && !r.rest) record(r, "occlusion buffer resolution", size, r.width == 0);
+                // Knob "occlusion rest": its "off" is the same resolution testing every frame.
                 if (csv && r.rest) {
                     for (const OcclusionRow& every : sweep)
                         if (every.camera == r.camera && every.width == r.width && every.height == r.height && every.rest == 0)

@@ -178,10 +178,7 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
     for (Method& m : methods) {
         m.processor = std::make_unique<ActorProcessor>(world->crowd());
         if (declared.occlusion) m.processor->setOcclusion(declared.occlusion);
-        if (m.kind != Kind::AllSkinned && declared.keyPoseCache) {
-            for (auto& cache : world->makeKeyPoseCaches()) m.processor->setKeyPoseCache(std::move(cache));
-            m.processor->setKeyPoseDistance(declared.keyPoseCache->distance, declared.hysteresis * declared.keyPoseCache->distance);
-        }
+        if (m.kind != Kind::AllSkinned) world->attachKeyPoseCaches(*m.processor);
         if (m.kind == Kind::Impostors)
             impostors->attach(*m.processor, m.distance > 0 ? m.distance : distance, m.distance > 0 ? hysteresis / distance * m.distance : hysteresis);
         m.draw = std::make_unique<CrowdRenderer>(context, m.renderer);

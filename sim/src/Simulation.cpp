@@ -9,6 +9,7 @@
 #include <string>
 
 #include "throng/actors/ActorGroup.h"
+#include "throng/actors/ActorProcessor.h"
 #include "throng/actors/ProceduralBird.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/actors/Table3Template.h"
@@ -396,6 +397,13 @@ void Simulation::distribute(Ranks& ranks) {
     // Only rank 0 draws: elsewhere the behaviours of the other actors (standing, gazing, flying)
     // would be computed for nothing.
     walkersOnly_ = ranks.rank() != 0;
+}
+
+void Simulation::attachKeyPoseCaches(ActorProcessor& processor) {
+    const auto& declared = description_.representation.keyPoseCache;
+    if (!declared) return;
+    for (auto& cache : makeKeyPoseCaches()) processor.setKeyPoseCache(std::move(cache));
+    processor.setKeyPoseDistance(declared->distance, description_.representation.hysteresis * declared->distance);
 }
 
 std::vector<std::shared_ptr<KeyPoseCache>> Simulation::makeKeyPoseCaches() {

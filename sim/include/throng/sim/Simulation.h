@@ -23,6 +23,7 @@
 #include "throng/sim/TownLayout.h"
 
 namespace throng {
+class ActorProcessor;
 class LOD;
 }
 
@@ -106,6 +107,10 @@ public:
     /// fresh set, since a cache serves one processor. Throws SceneError naming the template if it
     /// cannot be cached (no skinned mesh, rigid parts).
     std::vector<std::shared_ptr<KeyPoseCache>> makeKeyPoseCaches();
+    /// Gives `processor` fresh caches (makeKeyPoseCaches) and the scene's band: from the declared
+    /// distance, with the representation's hysteresis. Nothing when the scene declares no cache.
+    /// Throws as makeKeyPoseCaches.
+    void attachKeyPoseCaches(ActorProcessor& processor);
     /// Multiplies the distances of the town's LOD levels on top of any LOD scale (LOD::
     /// setDistanceScale on every tile's LOD node; the scene's town/lodScale at build, else 1).
     /// No effect on a town built without levels. Call between frames. Throws std::invalid_argument
