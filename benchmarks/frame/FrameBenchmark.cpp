@@ -19,7 +19,9 @@
 // `--sections town` (not run by default): the town's DRAW alone, the GL finished after the town
 // pass, along the whole camera path (10 actors by default), with the old drawing, each improvement
 // alone (front-to-back order, constant faces shaded per vertex, town LOD) and all together, the
-// variants interleaved frame by frame on the same cameras.
+// variants interleaved frame by frame on the same cameras; then where the default scene's pass goes
+// (probes in the same rotation: clear and finish only, vertices and set-up only, depth only, no
+// depth rejection) and how many fragments it rasterises and keeps per frame.
 //
 // usage: bench_frame --help
 
@@ -560,21 +562,30 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
 struct TownVariant {
     std::string name;
     bool frontToBack = false, constantFaces = false, lod = false, occlusion = false;
+    bool clearOnly = false;                  // probe: clear and finish, no item drawn
+    DrawProbe probe = DrawProbe::None;       // probe: work the renderer leaves out
     std::vector<double> ms;         // mean town pass per camera sample (wall clock)
     std::vector<double> cpuMs;      // the same in CPU time of the whole process (every GL thread)
     double triangles = 0;           // mean town triangles drawn per frame
+    bool isProbe() const { return clearOnly || probe != DrawProbe::None; }
 };
 
 std::vector<TownVariant> townVariants() {
     std::vector<TownVariant> v;
-    v.push_back({"old drawing", false, false, false, false, {}, {}, 0});
-    v.push_back({"front to back", true, false, false, false, {}, {}, 0});
-    v.push_back({"constant faces", false, true, false, false, {}, {}, 0});
-    v.push_back({"town LOD", false, false, true, false, {}, {}, 0});
-    v.push_back({"occlusion culling", false, false, false, true, {}, {}, 0});
-    v.push_back({"front to back + constant faces", true, true, false, false, {}, {}, 0});
-    v.push_back({"front to back + constant faces + occlusion (default scene)", true, true, false, true, {}, {}, 0});
-    v.push_back({"all together", true, true, true, true, {}, {}, 0});
+    using P = DrawProbe;
+    v.push_back({"old drawing", false, false, false, false, false, P::None, {}, {}, 0});
+    v.push_back({"front to back", true, false, false, false, false, P::None, {}, {}, 0});
+    v.push_back({"constant faces", false, true, false, false, false, P::None, {}, {}, 0});
+    v.push_back({"town LOD", false, false, true, false, false, P::None, {}, {}, 0});
+    v.push_back({"occlusion culling", false, false, false, true, false, P::None, {}, {}, 0});
+    v.push_back({"front to back + constant faces", true, true, false, false, false, P::None, {}, {}, 0});
+    v.push_back({"front to back + constant faces + occlusion (default scene)", true, true, false, true, false, P::None, {}, {}, 0});
+    v.push_back({"all together", true, true, true, true, false, P::None, {}, {}, 0});
+    // Probes of the default scene's pass: the same list with part of the work left out.
+    v.push_back({"clear and finish only", true, true, false, true, true, P::None, {}, {}, 0});
+    v.push_back({"vertices and set-up only (scissored to 8 x 8 pixels)", true, true, false, true, false, P::SetUpOnly, {}, {}, 0});
+    v.push_back({"depth only (colour writes off)", true, true, false, true, false, P::DepthOnly, {}, {}, 0});
+    v.push_back({"no depth rejection (every fragment shaded)", true, true, false, true, false, P::NoDepthRejection, {}, {}, 0});
     return v;
 }
 
@@ -599,8 +610,29 @@ const std::vector<glm::dvec2> kTownLod{{50.0, 1.0}, {100.0, 0.5}, {std::numeric_
 struct TownResult {
     std::vector<TownVariant> variants;
     std::vector<double> times;      // camera path times sampled
+    std::vector<double> rasterised; // the default scene's town fragments per camera, in screens (depth test always passes)
+    std::vector<double> passing;    // of those, passing the depth test as drawn (front to back), in screens
     bool lodDeclared = false;
 };
+
+// Fragments of one town pass (back faces culled) that reach the depth test, and that pass it as
+// drawn, each in screens (fragments / pixels).
+std::pair<double, double> townFragments(GlRenderer& r, const Camera& camera, const DrawList& list) {
+    const RendererOptions drawn = r.options();
+    double screens[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        RendererOptions counting = drawn;
+        counting.countFragments = true;
+        counting.probe = k == 0 ? DrawProbe::NoDepthRejection : DrawProbe::None;
+        r.setOptions(counting);
+        r.beginFrame(camera);
+        r.draw(list);
+        screens[k] = double(r.statistics().fragments) / (double(r.width()) * double(r.height()));
+        r.endFrame();
+    }
+    r.setOptions(drawn);
+    return {screens[0], screens[1]};
+}
 
 TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context) {
     // Two worlds of one seed: the town as declared (with its LOD, if any) and at full detail.
@@ -632,12 +664,16 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
         RendererOptions ro;
         ro.frontToBack = v.frontToBack;
         ro.constantFaces = v.constantFaces;
+        ro.probe = v.probe;
         renderers.push_back(std::make_unique<GlRenderer>(context, ro));
     }
     DrawList lists[4];
     const double aspect = double(o.width) / double(o.height), duration = worlds[0]->camera().duration();
     const std::size_t nv = result.variants.size();
     std::vector<double> wall(nv), cpu(nv);  // this sample's sums per variant
+    const std::size_t defaultVariant = std::size_t(std::find_if(result.variants.begin(), result.variants.end(), [](const TownVariant& v) {
+        return v.frontToBack && v.constantFaces && !v.lod && v.occlusion && !v.isProbe();
+    }) - result.variants.begin());
     for (int sample = -1; sample < o.townSamples; ++sample) {  // sample -1: uploads and JIT, not measured
         const double t = duration * (std::max(sample, 0) + 0.5) / o.townSamples;
         const Camera camera = worlds[0]->camera().at(t, aspect);
@@ -655,7 +691,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
                 r.beginFrame(camera);
                 const double cpu0 = processCpuMs();
                 Stopwatch watch;
-                r.draw(lists[(result.variants[k].lod ? 1 : 0) + (result.variants[k].occlusion ? 2 : 0)]);
+                if (!result.variants[k].clearOnly) r.draw(lists[(result.variants[k].lod ? 1 : 0) + (result.variants[k].occlusion ? 2 : 0)]);
                 r.endFrame();
                 wall[k] += watch.elapsedMs();
                 cpu[k] += processCpuMs() - cpu0;
@@ -663,6 +699,9 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
             }
         }
         if (sample < 0) continue;
+        const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, lists[2]);
+        result.rasterised.push_back(rasterised);
+        result.passing.push_back(passing);
         result.times.push_back(t);
         for (std::size_t k = 0; k < nv; ++k) {
             result.variants[k].ms.push_back(wall[k] / o.townFrames);
@@ -686,10 +725,29 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
       << "| variant | mean ms | worst camera ms | vs old | CPU ms (all threads) | town triangles |\n|---|---:|---:|---:|---:|---:|\n";
     const double old = mean(r.variants.front().ms);
     for (const TownVariant& v : r.variants) {
+        if (v.isProbe()) continue;
         std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2fx | %.1f | %.0f |\n", v.name.c_str(), mean(v.ms),
                       *std::max_element(v.ms.begin(), v.ms.end()), old / mean(v.ms), mean(v.cpuMs), v.triangles);
         t << line;
     }
+    // Where the default scene's pass goes: the same list and renderer with part of the work left out.
+    t << "\nWhere the default scene's town pass goes (its list and renderer, part of the work left out; the same frames):\n\n"
+         "| probe | mean ms | share of the whole pass | CPU ms (all threads) |\n|---|---:|---:|---:|\n";
+    double whole = 0;
+    for (const TownVariant& v : r.variants)
+        if (!v.isProbe() && v.frontToBack && v.constantFaces && !v.lod && v.occlusion) whole = mean(v.ms);
+    for (const TownVariant& v : r.variants) {
+        if (!v.isProbe() && !(v.frontToBack && v.constantFaces && !v.lod && v.occlusion)) continue;
+        std::snprintf(line, sizeof line, "| %s | %.1f | %.0f %% | %.1f |\n", !v.isProbe() ? "the whole pass" : v.name.c_str(),
+                      mean(v.ms), 100.0 * mean(v.ms) / std::max(whole, 1e-9), mean(v.cpuMs));
+        t << line;
+    }
+    std::snprintf(line, sizeof line,
+                  "\nFragments per frame, in screens of %d x %d pixels (back faces culled): %.2f reach the depth test (%.2f to %.2f over the "
+                  "cameras), %.2f pass it as drawn front to back.\n",
+                  o.width, o.height, mean(r.rasterised), *std::min_element(r.rasterised.begin(), r.rasterised.end()),
+                  *std::max_element(r.rasterised.begin(), r.rasterised.end()), mean(r.passing));
+    t << line;
     if (!r.lodDeclared) t << "\nThe scene declares no town LOD; the LOD rows use 50 m full, 100 m half the triangles, a quarter beyond.\n";
     t << "\nPer camera (path time in s), ms:\n\n| time |";
     for (const TownVariant& v : r.variants) t << ' ' << v.name << " |";

@@ -149,6 +149,7 @@ struct GlRenderer::Impl {
     std::size_t keyPoseBytes = 0;     // GPU bytes of every key-pose cache
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
     std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
+    GLuint fragmentQuery = 0;  // GL_SAMPLES_PASSED, made on the first draw that counts fragments
     GLint maxTextureBufferTexels = 0;
     std::unordered_map<const MeshData*, std::unique_ptr<MeshEntry>> meshes;
     std::unordered_map<const Image*, TextureEntry> textures;
@@ -561,6 +562,7 @@ GlRenderer::~GlRenderer() {
     gl.DeleteBuffers(3, buffers);
     const GLuint textures[] = {r.paletteTexture, r.whiteTexture};
     gl.DeleteTextures(2, textures);
+    if (r.fragmentQuery) gl.DeleteQueries(1, &r.fragmentQuery);
 }
 
 void GlRenderer::beginFrame(const Camera& camera) {
@@ -593,11 +595,23 @@ void GlRenderer::beginFrame(const Camera& camera) {
     } else {
         gl.Disable(GL_CULL_FACE);
     }
+    // A probe's state from the frame before would also limit the clear.
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     if (r.options.clear) {
         const glm::vec4& c = r.options.clearColor;
         gl.ClearColor(c.r, c.g, c.b, c.a);
         gl.ClearDepth(1.0);
         gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+    switch (r.options.probe) {
+    case DrawProbe::None: break;
+    case DrawProbe::SetUpOnly:
+        gl.Enable(GL_SCISSOR_TEST);
+        gl.Scissor(target.x, target.y, 8, 8);
+        break;
+    case DrawProbe::DepthOnly: gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE); break;
+    case DrawProbe::NoDepthRejection: gl.DepthFunc(GL_ALWAYS); break;
     }
 }
 
@@ -607,6 +621,10 @@ void GlRenderer::draw(const DrawList& list) {
     Stopwatch watch;
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
+    if (r.options.countFragments) {
+        if (!r.fragmentQuery) gl.GenQueries(1, &r.fragmentQuery);
+        gl.BeginQuery(GL_SAMPLES_PASSED, r.fragmentQuery);
+    }
     const std::vector<DrawItem>& items = list.items();
     ++r.drawStamp;
     r.lastMesh = nullptr;
@@ -840,6 +858,12 @@ void GlRenderer::draw(const DrawList& list) {
     }
     gl.BindVertexArray(0);
     if (clockwise) gl.FrontFace(GL_CCW);
+    if (r.options.countFragments) {
+        gl.EndQuery(GL_SAMPLES_PASSED);
+        GLuint64 passed = 0;
+        gl.GetQueryObjectui64v(r.fragmentQuery, GL_QUERY_RESULT, &passed);
+        r.stats.fragments += passed;
+    }
     r.stats.drawMs += watch.elapsedMs();
 }
 

@@ -121,6 +121,53 @@ TEST_F(RendererTest, MirroredItemsAreNotDrawnInsideOut) {
     EXPECT_EQ(renderer.statistics().drawCalls, 2u);
 }
 
+// Probes leave part of DRAW's work out, to find where its time goes; fragment counts say how much
+// was rasterised. Two boxes, the nearer hiding part of the farther: drawn front to back, exactly the
+// covered pixels pass the depth test; with no depth rejection every fragment of both boxes does
+// (the sum of each drawn alone); set-up only passes at most the 8 x 8 scissor; depth only writes no
+// colour; and the next plain frame is the picture drawn before any probe.
+TEST_F(RendererTest, ProbesLeaveWorkOutAndFragmentCountsAddUp) {
+    const auto nearBox = test::drawable(makeBox("near", glm::vec3(0.0f), glm::vec3(0.4f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f)));
+    const auto farBox = test::drawable(makeBox("far", glm::vec3(0.0f), glm::vec3(0.7f), glm::vec4(0.3f, 0.6f, 0.8f, 1.0f)));
+    const Mat4 nearAt = glm::translate(Mat4(1.0), Vec3(0.3, 0.1, 1.0)), farAt = glm::translate(Mat4(1.0), Vec3(-0.2, 0.0, -1.0));
+    test::Scene both, nearOnly, farOnly;
+    both.add(farBox, farAt);  // listed far first: the renderer sorts
+    both.add(nearBox, nearAt);
+    nearOnly.add(nearBox, nearAt);
+    farOnly.add(farBox, farAt);
+    const Camera camera = test::makeCamera(Vec3(0.5, 0.8, 4.0), Vec3(0.0));
+    RendererOptions options;
+    options.countFragments = true;
+    GlRenderer renderer(context, options);
+    const auto fragmentsOf = [&](const test::Scene& scene, DrawProbe probe, Image* image = nullptr) {
+        RendererOptions o = options;
+        o.probe = probe;
+        renderer.setOptions(o);
+        const Image frame = test::renderFrame(renderer, camera, scene);
+        if (image) *image = frame;
+        return renderer.statistics().fragments;
+    };
+    Image plain, again, depthOnly;
+    const std::uint64_t passed = fragmentsOf(both, DrawProbe::None, &plain);
+    const std::uint64_t nearAlone = fragmentsOf(nearOnly, DrawProbe::None), farAlone = fragmentsOf(farOnly, DrawProbe::None);
+    const std::uint64_t everyFragment = fragmentsOf(both, DrawProbe::NoDepthRejection);
+    EXPECT_GT(nearAlone, 1000u);
+    EXPECT_EQ(passed, test::coveredPixels(plain));
+    EXPECT_EQ(everyFragment, nearAlone + farAlone);
+    EXPECT_LT(passed, everyFragment);  // the near box hides part of the far one
+    const std::uint64_t triangles = renderer.statistics().triangles;
+    EXPECT_LE(fragmentsOf(both, DrawProbe::SetUpOnly), 64u);
+    EXPECT_EQ(renderer.statistics().triangles, triangles);  // every triangle still sent
+    EXPECT_EQ(fragmentsOf(both, DrawProbe::DepthOnly, &depthOnly), passed);
+    EXPECT_EQ(test::coveredPixels(depthOnly), 0u);
+    EXPECT_EQ(fragmentsOf(both, DrawProbe::None, &again), passed);
+    EXPECT_EQ(compareImages(plain, again).maxChannelDifference, 0);
+    // Not counting: the statistic stays zero.
+    renderer.setOptions(RendererOptions{});
+    test::renderFrame(renderer, camera, both);
+    EXPECT_EQ(renderer.statistics().fragments, 0u);
+}
+
 TEST_F(RendererTest, MeshesAndTexturesAreUploadedOnceAndReleasedWhenGone) {
     GlRenderer renderer(context);
     const Camera camera = test::makeCamera(Vec3(0, 0, 3), Vec3(0.0));

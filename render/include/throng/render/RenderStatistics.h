@@ -23,6 +23,7 @@ struct RenderStatistics {
                                            ///< consecutive rows; not counted in drawCalls)
     std::uint64_t keyPoseVertices = 0;     ///< cache vertices read (an interpolated instance reads two per vertex)
     std::uint64_t keyPoseCacheBytes = 0;   ///< GPU bytes held by the renderer's key-pose caches (every mesh and source)
+    std::uint64_t fragments = 0;           ///< fragments that passed the depth test (RendererOptions::countFragments)
     double drawMs = 0;                     ///< CPU time spent in draw() (GL work may run later)
 };
 

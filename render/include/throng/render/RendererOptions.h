@@ -6,6 +6,15 @@
 
 namespace throng {
 
+/// Part of DRAW's work left out, to find where its time goes (benchmarks: the picture is not the
+/// scene's). Each keeps everything else as configured.
+enum class DrawProbe {
+    None,              ///< draw as configured
+    SetUpOnly,         ///< every triangle transformed, clipped and set up, then scissored to 8 x 8 pixels
+    DepthOnly,         ///< colour writes off: rasterisation and the depth test, nothing written but depth
+    NoDepthRejection,  ///< the depth test always passes: every rasterised fragment is shaded and written
+};
+
 /// How GlRenderer draws.
 struct RendererOptions {
     int width = 0;                    ///< viewport width in pixels (0: keep the context's size)
@@ -15,10 +24,10 @@ struct RendererOptions {
     bool forceCpuSkinning = false;    ///< skin on the CPU (skinMesh) instead of in the vertex shader
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
-    bool flatTint = false;
+    bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
     /// beginFrame clears colour and depth. Off when drawing into a frame another renderer has begun
     /// and will present (a VTK render window), so its picture and depth stay under ours.
-    bool clear = true;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
+    bool clear = true;
     /// Draws nearer items first (groups by their nearest instance, instances near to far), so the
     /// depth test rejects hidden fragments before they are shaded. Same picture, less shading.
     bool frontToBack = true;
@@ -31,6 +40,10 @@ struct RendererOptions {
     glm::vec3 lightColor{0.85f, 0.82f, 0.75f};      ///< sun radiance (linear)
     glm::vec3 skyColor{0.40f, 0.45f, 0.55f};        ///< hemisphere light from above (linear)
     glm::vec3 groundColor{0.18f, 0.16f, 0.14f};     ///< hemisphere light from below (linear)
+    DrawProbe probe = DrawProbe::None;  ///< work left out of each frame (benchmarks)
+    /// Counts the fragments each draw() lets through the depth test (RenderStatistics::fragments).
+    /// draw() then waits for the GL to finish its items: for benchmarks, not for frame times.
+    bool countFragments = false;
 };
 
 }  // namespace throng
