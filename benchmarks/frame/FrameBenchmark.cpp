@@ -86,6 +86,7 @@ struct Options {
     std::string scene = THRONG_TOWN_DEFAULT_SCENE;
     std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
+    std::vector<int> occlusionRests;       // rest lengths of the occlusion section's resting rows (empty: the scene's)
     std::string occlusionCsv;              // where that section's rows go as CSV (empty: nowhere)
     bool occlusionPath = false;            // that section also follows the scene's camera path
     std::vector<std::int64_t> regionActors{10000, 100000, 1000000};  // crowds of the regions section
@@ -496,17 +497,18 @@ struct OcclusionRow {
 
 // The occlusion buffer's resolution against rejection and time (actor + impostors processing, the
 // same ticks for every resolution and for occlusion off, in turns), and the scene's resolution resting after
-// frames that hid little (the scene's rest, or 8 frames with the default limits). The "path" camera
+// frames that hid little (the scene's rest, or 8 frames with the default limits, or each length of
+// --occlusion-rests). The "path" camera
 // follows the scene's camera path once, tick by tick, so rests end as they would in the example.
 std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
     auto world = bench::buildWorld(o.scene, o.occlusionActors);
     const OcclusionSettings declared = world->description().representation.occlusion.value_or(OcclusionSettings{});
-    const int rest = declared.restFrames > 0 ? declared.restFrames : 8;
     struct Variant {
         int width, height, rest;
     };
-    const std::vector<Variant> variants = {{0, 0, 0},       {64, 36, 0},   {128, 72, 0}, {256, 144, 0}, {512, 288, 0},
-                                           {1024, 576, 0}, {declared.width, declared.height, rest}};
+    std::vector<Variant> variants = {{0, 0, 0}, {64, 36, 0}, {128, 72, 0}, {256, 144, 0}, {512, 288, 0}, {1024, 576, 0}};
+    for (int rest : o.occlusionRests.empty() ? std::vector<int>{declared.restFrames > 0 ? declared.restFrames : 8} : o.occlusionRests)
+        variants.push_back({declared.width, declared.height, rest});
     *actorsOut = std::int64_t(world->crowd().size());
     auto impostors = bakeImpostors(context, *world);
     const auto [distance, hysteresis] = impostorDistance(*world);
@@ -821,6 +823,8 @@ int main(int argc, char** argv) {
         ->type_name("N")->check(wholeNumber(2, 1'000'000));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
         ->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--occlusion-rests", o.occlusionRests, "rest lengths of the occlusion section's resting rows (default: the scene's)")
+        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 1000));
     app.add_flag("--occlusion-path", o.occlusionPath, "the occlusion section also follows the scene's camera path once, tick by tick");
     app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section in the common accuracy CSV (one record per buffer resolution and camera)")->type_name("FILE");
     app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(wholeNumber(1, 10'000'000));
