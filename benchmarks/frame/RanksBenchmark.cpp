@@ -51,6 +51,7 @@ struct Row {
     std::size_t walkers = 0, regions = 0;
     double buildSeconds = 0, stepMs = 0, peakGb = 0;
     std::vector<double> workMs, waitMs, agents;     // per rank
+    std::vector<double> stepping;                   // per rank: walkers whose region stepped (far ones may wait)
     double ghosts = 0, ghostsToRanks = 0, handedToRanks = 0, borderBytes = 0, stateBytes = 0;
 };
 
@@ -80,7 +81,7 @@ Row measure(const Options& o, std::int64_t actors, sim::Ranks& ranks) {
     row.regions = walk.regionCount();
     for (int s = 0; s < o.warmup; ++s) world->step();
     const auto n = walk.distributed() ? std::size_t(ranks.size()) : 0;
-    row.workMs.assign(n, 0.0), row.waitMs.assign(n, 0.0), row.agents.assign(n, 0.0);
+    row.workMs.assign(n, 0.0), row.waitMs.assign(n, 0.0), row.agents.assign(n, 0.0), row.stepping.assign(n, 0.0);
     for (int s = 0; s < o.steps; ++s) {
         world->step();
         row.stepMs += world->lastStepMs() / o.steps;
@@ -89,6 +90,7 @@ Row measure(const Options& o, std::int64_t actors, sim::Ranks& ranks) {
             const auto& share = walk.rankSteps()[r];
             row.workMs[r] += share.workMs / o.steps, row.waitMs[r] += share.waitMs / o.steps;
             row.agents[r] += double(share.agents) / o.steps;
+            row.stepping[r] += double(share.agents - share.deferred) / o.steps;
             row.ghostsToRanks += double(share.ghostsToRanks) / o.steps, row.handedToRanks += double(share.handedToRanks) / o.steps;
             row.borderBytes += double(share.borderBytes) / o.steps, row.stateBytes += double(share.stateBytes) / o.steps;
         }
@@ -146,8 +148,8 @@ int main(int argc, char** argv) {
     const bool first = ranks.rank() == 0;
     if (first)
         std::printf("| actors | walkers | regions | ranks x threads | step ms | work ms per rank | wait ms per rank | walkers per rank | "
-                    "ghosts | to other ranks | handed to other ranks | border bytes | bytes per border agent | state bytes to rank 0 | "
-                    "build s | peak GB (rank 0) |\n|---:|---:|---:|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                    "stepping per rank | ghosts | to other ranks | handed to other ranks | border bytes | bytes per border agent | state bytes to rank 0 | "
+                    "build s | peak GB (rank 0) |\n|---:|---:|---:|---|---:|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (std::int64_t actors : o.actors) {
         Row r;
         try {
@@ -159,9 +161,9 @@ int main(int argc, char** argv) {
         }
         if (!first) continue;
         const double borderAgents = r.ghostsToRanks + r.handedToRanks;
-        std::printf("| %lld | %zu | %zu | %d x %d | %.1f | %s | %s | %s | %.0f | %.0f | %.1f | %.0f | %s | %.0f | %.1f | %.2f |\n", (long long)r.actors,
+        std::printf("| %lld | %zu | %zu | %d x %d | %.1f | %s | %s | %s | %s | %.0f | %.0f | %.1f | %.0f | %s | %.0f | %.1f | %.2f |\n", (long long)r.actors,
                     r.walkers, r.regions, ranks.size(), o.threads, r.stepMs, join(r.workMs, "%.1f").c_str(), join(r.waitMs, "%.1f").c_str(),
-                    join(r.agents, "%.0f").c_str(), r.ghosts, r.ghostsToRanks, r.handedToRanks, r.borderBytes,
+                    join(r.agents, "%.0f").c_str(), join(r.stepping, "%.0f").c_str(), r.ghosts, r.ghostsToRanks, r.handedToRanks, r.borderBytes,
                     borderAgents > 0 ? std::to_string(int(r.borderBytes / borderAgents + 0.5)).c_str() : "-", r.stateBytes, r.buildSeconds, r.peakGb);
         std::fflush(stdout);
         if (!o.csv.empty()) {
