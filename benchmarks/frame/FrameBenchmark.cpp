@@ -566,28 +566,34 @@ struct TownVariant {
     bool frontToBack = false, constantFaces = false, lod = false, occlusion = false;
     bool clearOnly = false;                  // probe: clear and finish, no item drawn
     DrawProbe probe = DrawProbe::None;       // probe: work the renderer leaves out
-    std::vector<double> ms;         // mean town pass per camera sample (wall clock)
-    std::vector<double> cpuMs;      // the same in CPU time of the whole process (every GL thread)
+    std::vector<double> ms{};       // mean town pass per camera sample (wall clock)
+    std::vector<double> cpuMs{};    // the same in CPU time of the whole process (every GL thread)
     double triangles = 0;           // mean town triangles drawn per frame
     bool isProbe() const { return clearOnly || probe != DrawProbe::None; }
+    /// Drawn as the default scene draws its town (a probe of it too).
+    bool asDefaultScene() const { return frontToBack && constantFaces && !lod && occlusion; }
+    /// Which of townDraw's lists it draws: full tiles or LOD tiles, without or with occlusion.
+    std::size_t list() const { return (lod ? 1 : 0) + (occlusion ? 2 : 0); }
 };
 
 std::vector<TownVariant> townVariants() {
     std::vector<TownVariant> v;
-    using P = DrawProbe;
-    v.push_back({"old drawing", false, false, false, false, false, P::None, {}, {}, 0});
-    v.push_back({"front to back", true, false, false, false, false, P::None, {}, {}, 0});
-    v.push_back({"constant faces", false, true, false, false, false, P::None, {}, {}, 0});
-    v.push_back({"town LOD", false, false, true, false, false, P::None, {}, {}, 0});
-    v.push_back({"occlusion culling", false, false, false, true, false, P::None, {}, {}, 0});
-    v.push_back({"front to back + constant faces", true, true, false, false, false, P::None, {}, {}, 0});
-    v.push_back({"front to back + constant faces + occlusion (default scene)", true, true, false, true, false, P::None, {}, {}, 0});
-    v.push_back({"all together", true, true, true, true, false, P::None, {}, {}, 0});
+    v.push_back({.name = "old drawing"});
+    v.push_back({.name = "front to back", .frontToBack = true});
+    v.push_back({.name = "constant faces", .constantFaces = true});
+    v.push_back({.name = "town LOD", .lod = true});
+    v.push_back({.name = "occlusion culling", .occlusion = true});
+    v.push_back({.name = "front to back + constant faces", .frontToBack = true, .constantFaces = true});
+    v.push_back({.name = "front to back + constant faces + occlusion (default scene)", .frontToBack = true, .constantFaces = true, .occlusion = true});
+    v.push_back({.name = "all together", .frontToBack = true, .constantFaces = true, .lod = true, .occlusion = true});
     // Probes of the default scene's pass: the same list with part of the work left out.
-    v.push_back({"clear and finish only", true, true, false, true, true, P::None, {}, {}, 0});
-    v.push_back({"vertices and set-up only (scissored to 8 x 8 pixels)", true, true, false, true, false, P::SetUpOnly, {}, {}, 0});
-    v.push_back({"depth only (colour writes off)", true, true, false, true, false, P::DepthOnly, {}, {}, 0});
-    v.push_back({"no depth rejection (every fragment shaded)", true, true, false, true, false, P::NoDepthRejection, {}, {}, 0});
+    const auto probe = [&](const char* name, bool clearOnly, DrawProbe p) {
+        v.push_back({.name = name, .frontToBack = true, .constantFaces = true, .occlusion = true, .clearOnly = clearOnly, .probe = p});
+    };
+    probe("clear and finish only", true, DrawProbe::None);
+    probe("vertices and set-up only (scissored to 8 x 8 pixels)", false, DrawProbe::SetUpOnly);
+    probe("depth only (colour writes off)", false, DrawProbe::DepthOnly);
+    probe("no depth rejection (every fragment shaded)", false, DrawProbe::NoDepthRejection);
     return v;
 }
 
@@ -674,7 +680,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
     const std::size_t nv = result.variants.size();
     std::vector<double> wall(nv), cpu(nv);  // this sample's sums per variant
     const std::size_t defaultVariant = std::size_t(std::find_if(result.variants.begin(), result.variants.end(), [](const TownVariant& v) {
-        return v.frontToBack && v.constantFaces && !v.lod && v.occlusion && !v.isProbe();
+        return v.asDefaultScene() && !v.isProbe();
     }) - result.variants.begin());
     for (int sample = -1; sample < o.townSamples; ++sample) {  // sample -1: uploads and JIT, not measured
         const double t = duration * (std::max(sample, 0) + 0.5) / o.townSamples;
@@ -693,7 +699,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
                 r.beginFrame(camera);
                 const double cpu0 = processCpuMs();
                 Stopwatch watch;
-                if (!result.variants[k].clearOnly) r.draw(lists[(result.variants[k].lod ? 1 : 0) + (result.variants[k].occlusion ? 2 : 0)]);
+                if (!result.variants[k].clearOnly) r.draw(lists[result.variants[k].list()]);
                 r.endFrame();
                 wall[k] += watch.elapsedMs();
                 cpu[k] += processCpuMs() - cpu0;
@@ -701,7 +707,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
             }
         }
         if (sample < 0) continue;
-        const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, lists[2]);
+        const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, lists[result.variants[defaultVariant].list()]);
         result.rasterised.push_back(rasterised);
         result.passing.push_back(passing);
         result.times.push_back(t);
@@ -737,9 +743,9 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
          "| probe | mean ms | share of the whole pass | CPU ms (all threads) |\n|---|---:|---:|---:|\n";
     double whole = 0;
     for (const TownVariant& v : r.variants)
-        if (!v.isProbe() && v.frontToBack && v.constantFaces && !v.lod && v.occlusion) whole = mean(v.ms);
+        if (!v.isProbe() && v.asDefaultScene()) whole = mean(v.ms);
     for (const TownVariant& v : r.variants) {
-        if (!v.isProbe() && !(v.frontToBack && v.constantFaces && !v.lod && v.occlusion)) continue;
+        if (!v.asDefaultScene()) continue;
         std::snprintf(line, sizeof line, "| %s | %.1f | %.0f %% | %.1f |\n", !v.isProbe() ? "the whole pass" : v.name.c_str(),
                       mean(v.ms), 100.0 * mean(v.ms) / std::max(whole, 1e-9), mean(v.cpuMs));
         t << line;
