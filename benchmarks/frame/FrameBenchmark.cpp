@@ -20,8 +20,9 @@
 // pass, along the whole camera path (10 actors by default), with the old drawing, each improvement
 // alone (front-to-back order, constant faces shaded per vertex, town LOD) and all together, the
 // variants interleaved frame by frame on the same cameras; then where the default scene's pass goes
-// (probes in the same rotation: clear and finish only, vertices and set-up only, depth only, no
-// depth rejection) and how many fragments it rasterises and keeps per frame.
+// (probes in the same rotation: clear and finish only, vertices and set-up only, depth only, one
+// colour, no depth rejection), how many fragments it rasterises and keeps per frame, and how far an
+// image cache of the town would be from the truth after the view moved a fraction of a pixel.
 //
 // usage: bench_frame --help
 
@@ -29,6 +30,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <cstdio>
 #include <fstream>
@@ -47,6 +49,7 @@
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/ImageCompare.h"
 #include "throng/render/ImpostorSet.h"
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/scenegraph/Stopwatch.h"
@@ -593,6 +596,7 @@ std::vector<TownVariant> townVariants() {
     probe("clear and finish only", true, DrawProbe::None);
     probe("vertices and set-up only (scissored to 8 x 8 pixels)", false, DrawProbe::SetUpOnly);
     probe("depth only (colour writes off)", false, DrawProbe::DepthOnly);
+    probe("one colour (the same fragments, per-pixel shading left out)", false, DrawProbe::OneColour);
     probe("no depth rejection (every fragment shaded)", false, DrawProbe::NoDepthRejection);
     return v;
 }
@@ -615,12 +619,27 @@ double processCpuMs() {
 // 100 m, a quarter beyond.
 const std::vector<glm::dvec2> kTownLod{{50.0, 1.0}, {100.0, 0.5}, {std::numeric_limits<double>::infinity(), 0.25}};
 
+// Sub-pixel displacements of the view, in pixels, at which a cached image of the town is compared
+// with the town drawn again.
+constexpr double kReuseOffsets[] = {0.1, 0.25, 0.5};
+
+// How far a cached image of the town is from the truth after the view moved a fraction of a pixel,
+// over the sampled cameras: shown as it was (nearest texel), or resampled to follow (bilinear).
+struct ImageReuse {
+    std::vector<double> keptOver;    // share of pixels over 8/255, the cached image unchanged
+    std::vector<double> shiftedOver; // the same, the cached image shifted bilinearly by the offset
+    std::vector<double> keptPsnr, shiftedPsnr;
+};
+
 struct TownResult {
     std::vector<TownVariant> variants;
     std::vector<double> times;      // camera path times sampled
     std::vector<double> rasterised; // the default scene's town fragments per camera, in screens (depth test always passes)
     std::vector<double> passing;    // of those, passing the depth test as drawn (front to back), in screens
     bool lodDeclared = false;
+    // What an image cache of the town would have to stay under (see townImageReuse).
+    std::vector<ImageReuse> reuse;  // one per sub-pixel offset in kReuseOffsets
+    std::vector<double> turnPixels; // the view's turn from one tick to the next along the path, in pixels at the centre
 };
 
 // Fragments of one town pass (back faces culled) that reach the depth test, and that pass it as
@@ -640,6 +659,68 @@ std::pair<double, double> townFragments(GlRenderer& r, const Camera& camera, con
     }
     r.setOptions(drawn);
     return {screens[0], screens[1]};
+}
+
+// `image` moved `dx` pixels to the right (0 <= dx < 1), sampled bilinearly; the first column repeats.
+Image shiftedRight(const Image& image, double dx) {
+    Image out = image;
+    const std::size_t row = std::size_t(image.width) * 4;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 4; ++c) {
+                const std::size_t at = std::size_t(y) * row + std::size_t(x) * 4 + std::size_t(c);
+                const double left = image.rgba[x > 0 ? at - 4 : at], here = image.rgba[at];
+                out.rgba[at] = static_cast<std::uint8_t>(std::lround(dx * left + (1.0 - dx) * here));
+            }
+    return out;
+}
+
+// `camera` with its image moved `dx` pixels to the right (the view turned by that much, to first
+// order): a translation in clip space after the projection.
+Camera shiftedCamera(const Camera& camera, double dx, int width) {
+    Camera c = camera;
+    c.setProjectionMatrix(glm::translate(Mat4(1.0), Vec3(2.0 * dx / width, 0.0, 0.0)) * camera.projection());
+    return c;
+}
+
+// The default scene's town pass from `camera`, and again with the view moved by each of
+// kReuseOffsets: how much a cached image would be off, kept or shifted to follow (golden-image
+// threshold 8/255).
+void townImageReuse(GlRenderer& r, const Camera& camera, const DrawList& list, std::vector<ImageReuse>& reuse) {
+    const auto frame = [&](const Camera& c) {
+        r.beginFrame(c);
+        r.draw(list);
+        Image image = r.readFrame();
+        r.endFrame();
+        return image;
+    };
+    const Image cached = frame(camera);
+    reuse.resize(std::size(kReuseOffsets));
+    for (std::size_t i = 0; i < std::size(kReuseOffsets); ++i) {
+        const Image truth = frame(shiftedCamera(camera, kReuseOffsets[i], r.width()));
+        const ImageDifference kept = compareImages(cached, truth, 8), shifted = compareImages(shiftedRight(cached, kReuseOffsets[i]), truth, 8);
+        reuse[i].keptOver.push_back(kept.fractionOverThreshold);
+        reuse[i].shiftedOver.push_back(shifted.fractionOverThreshold);
+        reuse[i].keptPsnr.push_back(kept.psnr);
+        reuse[i].shiftedPsnr.push_back(shifted.psnr);
+    }
+}
+
+// The view's turn from each tick of `path` to the next, in pixels at the image centre.
+std::vector<double> pathTurnPixels(const sim::CameraPath& path, double step, double aspect, int height) {
+    std::vector<double> turns;
+    const auto forward = [&](double t) {
+        const Mat4 inverse = glm::inverse(path.at(t, aspect).view());
+        return glm::normalize(Vec3(inverse * glm::dvec4(0.0, 0.0, -1.0, 0.0)));
+    };
+    const double pixel = path.at(0.0, aspect).fovY() / height;
+    Vec3 before = forward(0.0);
+    for (double t = step; t <= path.duration(); t += step) {
+        const Vec3 now = forward(t);
+        turns.push_back(std::acos(std::clamp(glm::dot(before, now), -1.0, 1.0)) / pixel);
+        before = now;
+    }
+    return turns;
 }
 
 TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context) {
@@ -708,6 +789,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
         }
         if (sample < 0) continue;
         const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, lists[result.variants[defaultVariant].list()]);
+        townImageReuse(*renderers[defaultVariant], camera, lists[result.variants[defaultVariant].list()], result.reuse);
         result.rasterised.push_back(rasterised);
         result.passing.push_back(passing);
         result.times.push_back(t);
@@ -716,12 +798,13 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
             result.variants[k].cpuMs.push_back(cpu[k] / o.townFrames);
         }
     }
+    result.turnPixels = pathTurnPixels(worlds[0]->camera(), worlds[0]->description().step, aspect, o.height);
     return result;
 }
 
 std::string townTable(const TownResult& r, const Options& o, const std::string& gl) {
     std::ostringstream t;
-    char line[512];
+    char line[1024];
     auto mean = [](const std::vector<double>& v) {
         double s = 0;
         for (double x : v) s += x;
@@ -756,6 +839,32 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
                   o.width, o.height, mean(r.rasterised), *std::min_element(r.rasterised.begin(), r.rasterised.end()),
                   *std::max_element(r.rasterised.begin(), r.rasterised.end()), mean(r.passing));
     t << line;
+    // What an image cache (drawing the town once and showing it again) would have to stay under.
+    std::vector<double> turns = r.turnPixels;
+    std::sort(turns.begin(), turns.end());
+    const auto turnedAtLeast = [&](double px) {
+        return 100.0 * double(turns.end() - std::lower_bound(turns.begin(), turns.end(), px)) / double(std::max<std::size_t>(turns.size(), 1));
+    };
+    if (!turns.empty()) {
+        std::snprintf(line, sizeof line,
+                      "\nAn image cache of the town (drawn once, shown again) against the golden-image tolerance (at most 0.5 %% of the pixels "
+                      "over 8/255): along the camera path the view turns %.2f px a tick at the image centre (median of %zu ticks; %.0f %% "
+                      "of the ticks turn 0.1 px or more, %.0f %% 0.5 px or more). The default pass drawn again with the view moved by a "
+                      "fraction of a pixel, against its image before (kept) or shifted bilinearly to follow, over the cameras:\n\n"
+                      "| view moved by | pixels over 8/255, kept (mean, worst) | PSNR dB kept (worst) | pixels over 8/255, shifted (mean, worst) | "
+                      "PSNR dB shifted (worst) |\n|---:|---:|---:|---:|---:|\n",
+                      turns[turns.size() / 2], turns.size(), turnedAtLeast(0.1), turnedAtLeast(0.5));
+        t << line;
+        for (std::size_t i = 0; i < r.reuse.size(); ++i) {
+            const ImageReuse& u = r.reuse[i];
+            std::snprintf(line, sizeof line, "| %.2f px | %.2f %%, %.2f %% | %.1f | %.2f %%, %.2f %% | %.1f |\n", kReuseOffsets[i],
+                          100.0 * mean(u.keptOver), 100.0 * *std::max_element(u.keptOver.begin(), u.keptOver.end()),
+                          *std::min_element(u.keptPsnr.begin(), u.keptPsnr.end()), 100.0 * mean(u.shiftedOver),
+                          100.0 * *std::max_element(u.shiftedOver.begin(), u.shiftedOver.end()),
+                          *std::min_element(u.shiftedPsnr.begin(), u.shiftedPsnr.end()));
+            t << line;
+        }
+    }
     if (!r.lodDeclared) t << "\nThe scene declares no town LOD; the LOD rows use 50 m full, 100 m half the triangles, a quarter beyond.\n";
     t << "\nPer camera (path time in s), ms:\n\n| time |";
     for (const TownVariant& v : r.variants) t << ' ' << v.name << " |";

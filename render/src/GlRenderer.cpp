@@ -612,6 +612,7 @@ void GlRenderer::beginFrame(const Camera& camera) {
         break;
     case DrawProbe::DepthOnly: gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE); break;
     case DrawProbe::NoDepthRejection: gl.DepthFunc(GL_ALWAYS); break;
+    case DrawProbe::OneColour: break;  // chosen per group in draw()
     }
 }
 
@@ -795,6 +796,7 @@ void GlRenderer::draw(const DrawList& list) {
     };
     // Constant faces need every drawn triangle to face the eye (their colour has no back side).
     const bool constantFaces = r.options.constantFaces && r.options.cullBackFaces && !r.options.flatTint;  // ID renders: one program
+    const bool oneColour = r.options.probe == DrawProbe::OneColour && !r.options.flatTint;
     for (Group& g : r.groups) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;
@@ -841,7 +843,10 @@ void GlRenderer::draw(const DrawList& list) {
             ++r.stats.drawCalls;
         };
         const GLsizei classified = m.constantIndexCount + m.flatLitIndexCount;
-        if (constantFaces && g.path == Path::Rigid && classified > 0) {
+        if (oneColour && g.path == Path::Rigid) {
+            useProgram(r.constantFaces, e);
+            drawRange(classified > 0 ? m.indexCount : 0, m.indexCount);  // the order the pass itself draws
+        } else if (constantFaces && g.path == Path::Rigid && classified > 0) {
             // The classified copy of the indices: constant triangles, flat-lit ones, then the rest.
             r.stats.constantTriangles += std::uint64_t(m.constantIndexCount / 3) * g.count;
             r.stats.flatLitTriangles += std::uint64_t(m.flatLitIndexCount / 3) * g.count;

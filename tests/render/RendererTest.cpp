@@ -125,7 +125,8 @@ TEST_F(RendererTest, MirroredItemsAreNotDrawnInsideOut) {
 // was rasterised. Two boxes, the nearer hiding part of the farther: drawn front to back, exactly the
 // covered pixels pass the depth test; with no depth rejection every fragment of both boxes does
 // (the sum of each drawn alone); set-up only passes at most the 8 x 8 scissor; depth only writes no
-// colour; and the next plain frame is the picture drawn before any probe.
+// colour; one colour passes the same fragments, shaded otherwise; and the next plain frame is the
+// picture drawn before any probe.
 TEST_F(RendererTest, ProbesLeaveWorkOutAndFragmentCountsAddUp) {
     const auto nearBox = test::drawable(makeBox("near", glm::vec3(0.0f), glm::vec3(0.4f), glm::vec4(0.8f, 0.6f, 0.3f, 1.0f)));
     const auto farBox = test::drawable(makeBox("far", glm::vec3(0.0f), glm::vec3(0.7f), glm::vec4(0.3f, 0.6f, 0.8f, 1.0f)));
@@ -160,6 +161,15 @@ TEST_F(RendererTest, ProbesLeaveWorkOutAndFragmentCountsAddUp) {
     EXPECT_EQ(renderer.statistics().triangles, triangles);  // every triangle still sent
     EXPECT_EQ(fragmentsOf(both, DrawProbe::DepthOnly, &depthOnly), passed);
     EXPECT_EQ(test::coveredPixels(depthOnly), 0u);
+    EXPECT_EQ(fragmentsOf(both, DrawProbe::OneColour), passed);  // the same fragments pass
+    // A checker-textured quad, shaded per pixel when drawn: one colour per triangle under the probe.
+    test::Scene checker;
+    checker.add(test::drawable(makeQuad(2.0f, 2.0f, makeCheckerImage(64, 8, {255, 0, 0, 255}, {255, 255, 255, 255}))), Mat4(1.0));
+    Image textured, oneColour;
+    const std::uint64_t quadFragments = fragmentsOf(checker, DrawProbe::None, &textured);
+    EXPECT_EQ(fragmentsOf(checker, DrawProbe::OneColour, &oneColour), quadFragments);
+    EXPECT_EQ(test::coveredPixels(oneColour), test::coveredPixels(textured));
+    EXPECT_GT(compareImages(textured, oneColour, 8).fractionOverThreshold, 0.1);
     EXPECT_EQ(fragmentsOf(both, DrawProbe::None, &again), passed);
     EXPECT_EQ(compareImages(plain, again).maxChannelDifference, 0);
     // Not counting: the statistic stays zero.

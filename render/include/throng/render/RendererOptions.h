@@ -13,6 +13,10 @@ enum class DrawProbe {
     SetUpOnly,         ///< every triangle transformed, clipped and set up, then scissored to 8 x 8 pixels
     DepthOnly,         ///< colour writes off: rasterisation and the depth test, nothing written but depth
     NoDepthRejection,  ///< the depth test always passes: every rasterised fragment is shaded and written
+    /// Rigid items drawn by the one-colour program (each triangle its vertex colour, nothing
+    /// interpolated): the same triangles, order and depth test, the per-pixel shading left out.
+    /// llvmpipe runs a fragment shader even with colour writes off, so DepthOnly cannot isolate it.
+    OneColour,
 };
 
 /// How GlRenderer draws.
