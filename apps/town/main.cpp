@@ -77,8 +77,10 @@ struct PreparedFrame {
     int rung = -1;                     // --frame-budget: the ladder rung it was processed and drawn with
 };
 
-// The occlusion buffer as a picture: near occluders light, far ones dark, nothing drawn clear.
-Image occlusionPicture(const OcclusionBuffer& buffer) {
+// The occlusion buffer as a picture: near occluders light, far ones dark, nothing drawn clear. When
+// the stage rests, the buffer is the last one built, from another view, and nothing is tested
+// against it: it is shown grey and faint, so it is not read as this frame's.
+Image occlusionPicture(const OcclusionBuffer& buffer, bool resting) {
     Image image;
     image.name = "occlusion buffer";
     image.width = buffer.width();
@@ -89,7 +91,10 @@ Image occlusionPicture(const OcclusionBuffer& buffer) {
             const double d = buffer.depthAt(x, image.height - 1 - y);  // buffer row 0 is the bottom
             std::uint8_t* p = &image.rgba[(std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 4];
             const auto level = static_cast<std::uint8_t>(std::isfinite(d) ? 255.0 / (1.0 + d / 20.0) : 0.0);
-            p[0] = p[1] = level, p[2] = std::isfinite(d) ? 255 : 96, p[3] = std::isfinite(d) ? 230 : 140;
+            if (resting)
+                p[0] = p[1] = p[2] = std::uint8_t(level / 2), p[3] = std::isfinite(d) ? 120 : 60;
+            else
+                p[0] = p[1] = level, p[2] = std::isfinite(d) ? 255 : 96, p[3] = std::isfinite(d) ? 230 : 140;
         }
     return image;
 }
@@ -194,7 +199,7 @@ std::string statusText(const sim::Simulation& world, const ActorFrameStatistics&
                   (unsigned long long)s.c3_1, (unsigned long long)s.c3_2, (unsigned long long)s.actorsPosed,
                   (unsigned long long)s.skeletonNodesEvaluated, (unsigned long long)s.drawItems, (unsigned long long)s.primitives,
                   s.appCullMs(), s.appMs, s.refpointMs, s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs,
-                  s.cull3Ms, s.drawListMs, s.occlusionRested ? " (resting: the last test hid little)" : "", (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
+                  s.cull3Ms, s.drawListMs, s.occlusionRested ? " (resting: the last test hid little; O shows the last buffer, grey)" : "", (unsigned long long)s.occludersDrawn, s.occlusionBufferMs,
                   (unsigned long long)s.occludedWithGroup, (unsigned long long)s.occludedRefpoint, (unsigned long long)s.occludedSklsroot,
                   (unsigned long long)s.nodesOccluded, (unsigned long long)s.keyPoseBand, (unsigned long long)s.keyPoseActors,
                   (unsigned long long)s.keyPoseMisses, (unsigned long long)s.keyPoseUpdates, lodScale, shrunk ? "shrunk" : "full", freeCamera ? "free" : "path",
@@ -427,7 +432,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "\nthrong-town: --vtk: %s; recording stops\n", e.what());
             recorder.reset();  // finishes what was written
         }
-        f.occlusion = showOcclusion && processor.occlusion() ? occlusionPicture(processor.occlusion()->buffer()) : Image{};
+        f.occlusion = showOcclusion && processor.occlusion() ? occlusionPicture(processor.occlusion()->buffer(), f.stats.occlusionRested) : Image{};
     };
     double lastFrameEnd = 0.0;
     auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
