@@ -788,8 +788,9 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
             }
         }
         if (sample < 0) continue;
-        const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, lists[result.variants[defaultVariant].list()]);
-        townImageReuse(*renderers[defaultVariant], camera, lists[result.variants[defaultVariant].list()], result.reuse);
+        const DrawList& defaultList = lists[result.variants[defaultVariant].list()];
+        const auto [rasterised, passing] = townFragments(*renderers[defaultVariant], camera, defaultList);
+        townImageReuse(*renderers[defaultVariant], camera, defaultList, result.reuse);
         result.rasterised.push_back(rasterised);
         result.passing.push_back(passing);
         result.times.push_back(t);

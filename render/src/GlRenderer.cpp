@@ -845,7 +845,7 @@ void GlRenderer::draw(const DrawList& list) {
         const GLsizei classified = m.constantIndexCount + m.flatLitIndexCount;
         if (oneColour && g.path == Path::Rigid) {
             useProgram(r.constantFaces, e);
-            drawRange(classified > 0 ? m.indexCount : 0, m.indexCount);  // the order the pass itself draws
+            drawRange(constantFaces && classified > 0 ? m.indexCount : 0, m.indexCount);  // the order the pass itself draws
         } else if (constantFaces && g.path == Path::Rigid && classified > 0) {
             // The classified copy of the indices: constant triangles, flat-lit ones, then the rest.
             r.stats.constantTriangles += std::uint64_t(m.constantIndexCount / 3) * g.count;
