@@ -28,7 +28,7 @@ void ActorGroup::traverseApp(AppVisitor& visitor) {
 }
 
 void ActorGroup::updateMatricesAndBound(MatrixBoundsVisitor& visitor) {
-    if (ActorTraversal* t = actorTraversal(visitor)) worldBound_ = t->bound(*this, ids_, visitor);
+    if (ActorTraversal* t = actorTraversal(visitor)) worldBound_ = t->bound(*this, ids_, visitor, roamingBound_);
     else worldBound_ = traditionalBound(*crowd_, ids_, visitor);
 }
 

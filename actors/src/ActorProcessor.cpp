@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cascade/CascadeFrame.h"
+#include "throng/actors/ActorGroup.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/AppVisitor.h"
@@ -220,17 +221,20 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     stats_.fmultTotal = c ? counter.totalFmult() : 0;
 }
 
-BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor) {
+BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor, const BoundingSphere& roaming) {
     visitor.statistics().worldMatricesComposed += ids.size();
     visitor.statistics().spheresRecomputed += ids.size();
-    return cascade::placeReferencePoints(*cascade_, ids, visitor.parentWorld(), visitor.parentIsIdentity());
+    return cascade::placeReferencePoints(*cascade_, ids, visitor.parentWorld(), visitor.parentIsIdentity(), roaming);
 }
 
 void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) {
     const PlaneMask mask = visitor.planeMask();
-    // A lone actor's node bound is its Refpoint Bsphere, which the traversal just tested (CULL 1);
-    // so is a group's when every member is inside the planes the group crosses.
-    const bool decided = ids.size() == 1 || mask == 0;
+    // A lone actor's node bound is its Refpoint Bsphere, which the traversal just tested (CULL 1),
+    // unless a roaming bound stands for it; a group's is decided when every member is inside the
+    // planes the group crosses.
+    const auto* group = dynamic_cast<const ActorGroup*>(&node);
+    const bool lone = ids.size() == 1 && !(group && group->roamingBound().valid());
+    const bool decided = lone || mask == 0;
     const std::uint8_t stage = !decided ? cascade::kPending : mask == 0 ? cascade::kInside : cascade::kCrossing;
     for (std::uint32_t member = 0; member < ids.size(); ++member)
         cascade_->candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});

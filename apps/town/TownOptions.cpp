@@ -90,6 +90,10 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("S")
         ->check(positiveNumber())
         ->capture_default_str();
+    app.add_option("--gather", o.gather,
+                   "under mpirun: the walkers the other ranks send rank 0 each step: view (those that can be seen or looked at) or all")
+        ->check(oneOf({"view", "all"}))
+        ->capture_default_str();
     app.add_option("--vtk", o.vtk, "write crowd data for ParaView here: actors every K steps, town, trajectories, crowd.pvd")
         ->type_name("DIR");
     app.add_option("--vtk-every", o.vtkEvery, "--vtk: an actors file every K simulation steps")

@@ -9,8 +9,9 @@
 // from frame N's own draw list; the frames written are the same either way.
 //
 // Under mpirun -np N every rank builds the same world and steps its share of the walkers' regions;
-// rank 0 gathers every walker after each step, then culls, draws and writes as one process would
-// (stats.csv adds each rank's share of the step). The files are the same with any number of ranks.
+// rank 0 gathers the walkers near the frame's view after each step (the others cannot be seen),
+// then culls, draws and writes as one process would (stats.csv adds each rank's share of the step).
+// The files are the same with any number of ranks.
 //
 // With --frame-budget MS, a FrameBudgetAllocator picks each frame's rung of a ladder (LOD scale,
 // impostor distance, key-pose distance, morph budget) from the APP+CULL+DRAW measured so far: a
@@ -117,7 +118,7 @@ std::string csvHeader(int ranks, bool budget) {
     std::string header = kCsvHeader;
     if (budget) header += kBudgetCsvHeader;
     for (int r = 0; r < ranks; ++r)
-        for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "state_bytes", "work_ms", "wait_ms"})
+        for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "sent", "state_bytes", "work_ms", "wait_ms"})
             header += ",rank" + std::to_string(r) + "_" + column;
     return header + "\n";
 }
@@ -148,7 +149,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     }
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
-          << share.borderBytes << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
+          << share.borderBytes << ',' << share.sent << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
     return o.str() + '\n';
 }
 
@@ -165,6 +166,7 @@ struct Sums {
             const sim::Locomotion::RankStepRecord& from = f.ranks[r];
             into.agents += from.agents, into.ghosts += from.ghosts, into.handovers += from.handovers;
             into.handedToRanks += from.handedToRanks, into.borderBytes += from.borderBytes, into.stateBytes += from.stateBytes;
+            into.sent += from.sent;
             into.workMs += from.workMs, into.waitMs += from.waitMs;
         }
         const ActorFrameStatistics& s = f.stats;
@@ -238,7 +240,7 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     for (const auto& r : sums.ranks)  // distributed: each rank's share of a step, on average
         j["meanPerRank"].push_back({{"agents", double(r.agents) / n}, {"ghosts", double(r.ghosts) / n}, {"handovers", double(r.handovers) / n},
                                     {"handedToRanks", double(r.handedToRanks) / n}, {"borderBytes", double(r.borderBytes) / n},
-                                    {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n}});
+                                    {"sent", double(r.sent) / n}, {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n}});
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders", "key-pose cache"}) {
@@ -415,6 +417,10 @@ int main(int argc, char** argv) {
         f.ghosts = f.handovers = f.deferred = 0;
         f.ranks.assign(distributed ? std::size_t(ranks.size()) : 0, {});
         if (step) {
+            // Distributed, the other ranks send only the walkers near this frame's view (a
+            // recorder of every actor needs them all).
+            if (distributed)
+                world->setGatherView(recorder || o.gather == "all" ? std::nullopt : std::optional<Frustum>(camera.frustum()));
             world->step();
             f.stepMs = world->lastStepMs();
             if (const sim::Locomotion* walk = world->locomotion()) {

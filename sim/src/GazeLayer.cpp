@@ -108,16 +108,21 @@ void GazeLayer::advance(const FrameContext& context) {
     base_->advance(context);  // the layer owns its base: the crowd only knows the layer
     const std::size_t n = state_.size();
     if (n == 0) return;
+    // Positions of the actors present in this process (every one, unless another process steps
+    // some of them and sent only those near the view).
+    present_.resize(n);
     forEachChunk(n, 512, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-            if (state_[i].tmpl) state_[i].position = Vec3(base_->referencePoint(std::uint32_t(i), context, nullptr)[3]);
+        for (std::size_t i = begin; i < end; ++i) {
+            present_[i] = state_[i].tmpl && base_->present(std::uint32_t(i));
+            if (present_[i]) state_[i].position = Vec3(base_->referencePoint(std::uint32_t(i), context, nullptr)[3]);
+        }
     });
-    // Neighbours come from a grid of cells one range wide, walked in a fixed order.
+    // Neighbours come from a grid of cells one range wide.
     glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const State& s : state_)
-        if (s.tmpl) {
-            lo = glm::min(lo, glm::dvec2(s.position.x, s.position.z));
-            hi = glm::max(hi, glm::dvec2(s.position.x, s.position.z));
+    for (std::size_t i = 0; i < n; ++i)
+        if (present_[i]) {
+            lo = glm::min(lo, glm::dvec2(state_[i].position.x, state_[i].position.z));
+            hi = glm::max(hi, glm::dvec2(state_[i].position.x, state_[i].position.z));
         }
     const double cell = settings_.range;
     const int nx = std::clamp(int((hi.x - lo.x) / cell) + 1, 1, 4096), nz = std::clamp(int((hi.y - lo.y) / cell) + 1, 1, 4096);
@@ -125,43 +130,37 @@ void GazeLayer::advance(const FrameContext& context) {
         return std::clamp(int((p.z - lo.y) / cell), 0, nz - 1) * nx + std::clamp(int((p.x - lo.x) / cell), 0, nx - 1);
     };
     cellStart_.assign(std::size_t(nx) * std::size_t(nz) + 1, 0);
-    for (const State& s : state_)
-        if (s.tmpl) ++cellStart_[std::size_t(cellOf(s.position)) + 1];
+    for (std::size_t i = 0; i < n; ++i)
+        if (present_[i]) ++cellStart_[std::size_t(cellOf(state_[i].position)) + 1];
     for (std::size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
     cellFill_.assign(cellStart_.begin(), cellStart_.end() - 1);
     cellActors_.resize(cellStart_.back());
     for (std::size_t j = 0; j < n; ++j)
-        if (state_[j].tmpl) cellActors_[cellFill_[std::size_t(cellOf(state_[j].position))]++] = std::uint32_t(j);
-    // Each actor picks someone within range, anew every few seconds (its own period and phase),
-    // and keeps looking at them for the period unless they walk out of range.
+        if (present_[j]) cellActors_[cellFill_[std::size_t(cellOf(state_[j].position))]++] = std::uint32_t(j);
+    // Each actor looks, for one of its periods (a few seconds, its own length and phase), at whoever
+    // within range draws its lowest number for that period: anyone near is equally likely, the
+    // choice holds while the same people stay near, and it depends on nothing but who is near now.
     // Per actor, in parallel: each reads positions and writes only its own choice.
     const double range2 = settings_.range * settings_.range;
     forEachChunk(n, 256, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
+            if (!present_[i]) continue;
             State& s = state_[i];
-            if (!s.tmpl) continue;
             const CounterRng rng(settings_.seed, s.stream);
             const double period = rng.uniform(0, 2.5, 5.0);
             const auto bucket = std::uint64_t(std::floor((context.time + rng.uniform(1, 0.0, period)) / period));
-            if (bucket == s.period && s.target >= 0) {
-                const glm::dvec3 d = state_[std::size_t(s.target)].position - s.position;
-                if (d.x * d.x + d.z * d.z <= range2) {
-                    s.lookAt = state_[std::size_t(s.target)].position + glm::dvec3(0, settings_.eyeHeight, 0);
-                    continue;
-                }
-            }
-            s.period = bucket;
-            int chosen = -1, seen = 0;
+            int chosen = -1;
+            std::uint64_t lowest = 0;
             const int c = cellOf(s.position), cx = c % nx, cz = c / nx;
             for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
                 for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x)
                     for (std::uint32_t k = cellStart_[std::size_t(z * nx + x)]; k < cellStart_[std::size_t(z * nx + x) + 1]; ++k) {
-                        const std::uint32_t j = cellActors_[k];  // reservoir sampling over the neighbours
+                        const std::uint32_t j = cellActors_[k];
                         if (j == i) continue;
                         const glm::dvec3 d = state_[j].position - s.position;
                         if (d.x * d.x + d.z * d.z > range2) continue;
-                        ++seen;
-                        if (rng.below(bucket * 1000003u + std::uint64_t(seen), std::uint64_t(seen)) == 0) chosen = int(j);
+                        const std::uint64_t draw = rng.bits((bucket << 32) ^ (std::uint64_t(j) + 2));  // counters 0 and 1 set the period
+                        if (chosen < 0 || draw < lowest || (draw == lowest && int(j) < chosen)) chosen = int(j), lowest = draw;
                     }
             s.target = chosen;
             s.lookAt = chosen >= 0 ? state_[std::size_t(chosen)].position + glm::dvec3(0, settings_.eyeHeight, 0)

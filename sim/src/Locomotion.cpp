@@ -22,7 +22,26 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 // Message tags of a distributed step's three exchanges.
-constexpr int kGhostTag = 101, kHandoverTag = 102, kWalkerTag = 103;
+constexpr int kGhostTag = 101, kHandoverTag = 102, kWalkerTag = 103, kViewTag = 104;
+
+// The view walkers are gathered near, as rank 0 sends it to the others each step.
+struct GatherViewRecord {
+    double planes[6][4] = {};   // (normal, offset) of each frustum plane, inside where n·p + d >= 0
+    double margin = 0.0;        // metres a walker may stand outside and still be sent
+    std::uint32_t active = 0;   // planes in use (bit i: plane i)
+    std::uint32_t on = 0;       // 0: send every walker
+};
+
+// Whether a walker standing at `p` is within `view.margin` of the view.
+bool nearView(const GatherViewRecord& view, const glm::vec3& p) {
+    if (!view.on) return true;
+    for (int i = 0; i < 6; ++i) {
+        if (!(view.active & (1u << i))) continue;
+        const double* q = view.planes[i];
+        if (q[0] * double(p.x) + q[1] * double(p.y) + q[2] * double(p.z) + q[3] < -view.margin) return false;
+    }
+    return true;
+}
 
 float wrapAngle(float a) {
     while (a > kPi) a -= 2 * kPi;
@@ -250,6 +269,13 @@ void Locomotion::start() {
 void Locomotion::distribute(Ranks& ranks) {
     if (started_) throw std::logic_error("Locomotion::distribute: the crowd has already started");
     ranks_ = &ranks;
+}
+
+void Locomotion::setGatherView(std::optional<Frustum> view, double margin) {
+    if (!std::isfinite(margin) || margin < 0.0)
+        throw std::invalid_argument("Locomotion::setGatherView: argument 'margin' must be finite and >= 0, not " + std::to_string(margin));
+    gatherView_ = std::move(view);
+    gatherMargin_ = margin;
 }
 
 void Locomotion::assignRanks() {
@@ -519,50 +545,81 @@ void Locomotion::walk(std::uint32_t slot, double dt) {
 }
 
 void Locomotion::gatherWalkers(RankStepRecord mine) {
-    // One message per rank: its share of the step, then a record per walker it steps, written in
-    // place (a million walkers are 40 MB a step: not copied twice).
-    Bytes message(sizeof(RankStepRecord) + ownSlots_.size() * sizeof(WalkerRecord));
-    std::memcpy(message.data(), &mine, sizeof mine);
-    for (std::size_t k = 0; k < ownSlots_.size(); ++k) {
-        const State& s = state_[ownSlots_[k]];
-        WalkerRecord w;
-        w.slot = ownSlots_[k], w.region = s.region;
-        for (int i = 0; i < 3; ++i) w.position[i] = s.position[i];
-        w.heading = s.heading, w.speed = s.speed, w.runWeight = s.runWeight, w.phase = s.phase;
-        std::memcpy(message.data() + sizeof(RankStepRecord) + k * sizeof(WalkerRecord), &w, sizeof w);
+    // Rank 0 tells the others which walkers to send: those near the frame's view, or every one.
+    GatherViewRecord view;
+    if (ranks_->rank() == 0 && gatherView_) {
+        view.on = 1, view.margin = gatherMargin_, view.active = gatherView_->activePlanes();
+        for (int i = 0; i < 6; ++i)
+            for (int k = 0; k < 4; ++k) view.planes[i][k] = gatherView_->plane(i)[k];
     }
+    {
+        const Stopwatch wait;
+        const Bytes bytes = ranks_->broadcast(packRecords(std::span<const GatherViewRecord>(&view, 1)), kViewTag, "view");
+        const std::vector<GatherViewRecord> got = unpackRecords<GatherViewRecord>(bytes, 0, "the view");
+        if (got.size() != 1) throw RankError(0, "rank 0 sent " + std::to_string(bytes.size()) + " bytes for the view, not one record");
+        view = got[0];
+        mine.waitMs += wait.elapsedMs();
+    }
+    // One message per rank: its share of the step, then a record per walker it sends, written in
+    // place (a million walkers are 40 MB a step: not copied twice).
+    const bool all = ranks_->rank() == 0 || !view.on;  // rank 0's own walkers are up to date there
+    std::size_t sent = 0;
+    if (!all)
+        for (std::uint32_t slot : ownSlots_) sent += nearView(view, state_[slot].position);
+    else
+        sent = ranks_->rank() == 0 ? 0 : ownSlots_.size();
+    mine.sent = ranks_->rank() == 0 ? ownSlots_.size() : sent;
+    Bytes message(sizeof(RankStepRecord) + sent * sizeof(WalkerRecord));
+    std::memcpy(message.data(), &mine, sizeof mine);
+    std::size_t k = 0;
+    if (ranks_->rank() != 0)
+        for (std::uint32_t slot : ownSlots_) {
+            const State& s = state_[slot];
+            if (!all && !nearView(view, s.position)) continue;
+            WalkerRecord w;
+            w.slot = slot, w.region = s.region;
+            for (int i = 0; i < 3; ++i) w.position[i] = s.position[i];
+            w.heading = s.heading, w.speed = s.speed, w.runWeight = s.runWeight, w.phase = s.phase;
+            std::memcpy(message.data() + sizeof(RankStepRecord) + k++ * sizeof(WalkerRecord), &w, sizeof w);
+        }
     const std::size_t sentBefore = ranks_->bytesSent();
-    const std::vector<Bytes> all = ranks_->gather(message, kWalkerTag, "walkers");
+    const std::vector<Bytes> gathered = ranks_->gather(message, kWalkerTag, "walkers");
     rankSteps_.assign(std::size_t(ranks_->size()), RankStepRecord{});
     if (ranks_->rank() != 0) {
         mine.stateBytes = ranks_->bytesSent() - sentBefore;
         rankSteps_[std::size_t(ranks_->rank())] = mine;
         return;
     }
+    // Rank 0: its own walkers are present, and those the others sent; the rest only with no view.
+    present_.assign(state_.size(), view.on ? 0 : 1);
+    for (std::uint32_t slot : ownSlots_) present_[slot] = 1;
     lastGhosts_ = lastHandovers_ = lastDeferred_ = 0;
-    for (std::size_t k = 0; k < all.size(); ++k) {
-        const Bytes& bytes = all[k];
+    for (std::size_t r = 0; r < gathered.size(); ++r) {
+        const Bytes& bytes = gathered[r];
         if (bytes.size() < sizeof(RankStepRecord) || (bytes.size() - sizeof(RankStepRecord)) % sizeof(WalkerRecord) != 0)
-            throw RankError(int(k), "rank " + std::to_string(k) + " sent " + std::to_string(bytes.size()) +
+            throw RankError(int(r), "rank " + std::to_string(r) + " sent " + std::to_string(bytes.size()) +
                                         " bytes of walkers, not a step record and whole walker records");
-        RankStepRecord& step = rankSteps_[k];
+        RankStepRecord& step = rankSteps_[r];
         std::memcpy(&step, bytes.data(), sizeof step);
-        if (k > 0) step.stateBytes = bytes.size() + sizeof(std::uint64_t);  // and its size header
+        if (r > 0) step.stateBytes = bytes.size() + sizeof(std::uint64_t);  // and its size header
         lastGhosts_ += step.ghosts, lastHandovers_ += step.handovers, lastDeferred_ += step.deferred;
-        if (k == 0) continue;  // rank 0's own walkers are already up to date
+        if (r == 0) continue;  // rank 0's own walkers are already up to date
         const std::size_t n = (bytes.size() - sizeof(RankStepRecord)) / sizeof(WalkerRecord);
         for (std::size_t i = 0; i < n; ++i) {
             WalkerRecord w;
             std::memcpy(&w, bytes.data() + sizeof(RankStepRecord) + i * sizeof(WalkerRecord), sizeof w);
             if (w.slot >= state_.size() || w.region >= regions_.size())
-                throw RankError(int(k), "rank " + std::to_string(k) + " sent a walker record for actor " + std::to_string(w.slot) +
+                throw RankError(int(r), "rank " + std::to_string(r) + " sent a walker record for actor " + std::to_string(w.slot) +
                                             " in region " + std::to_string(w.region) + ", which do not exist");
             State& s = state_[w.slot];
             s.region = w.region;
             s.position = glm::vec3(w.position[0], w.position[1], w.position[2]);
             s.heading = w.heading, s.speed = w.speed, s.runWeight = w.runWeight, s.phase = w.phase;
+            present_[w.slot] = 1;
         }
     }
+    presentCount_ = 0;
+    for (std::uint8_t p : present_) presentCount_ += p;
 }
 
 double Locomotion::clipTime(std::uint32_t slot, double) const {

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/common.hpp>
+
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CounterRng.h"
 
@@ -292,10 +294,20 @@ glm::vec3 NavMesh::randomPoint(const CounterRng& rng, std::uint64_t counter, dtN
 void NavMesh::indexPolygons() {
     const dtNavMesh* m = mesh_;
     double sum = 0.0;
+    bool boundsSet = false;
     for (int t = 0; t < m->getMaxTiles(); ++t) {
         const dtMeshTile* tile = m->getTile(t);
         if (!tile || !tile->header) continue;
         const dtPolyRef base = m->getPolyRefBase(tile);
+        auto widen = [&](const float* v, int count) {
+            for (int k = 0; k < count; ++k) {
+                const glm::vec3 p(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+                if (!boundsSet) lo_ = hi_ = p, boundsSet = true;
+                lo_ = glm::min(lo_, p), hi_ = glm::max(hi_, p);
+            }
+        };
+        widen(tile->verts, tile->header->vertCount);
+        widen(tile->detailVerts, tile->header->detailVertCount);
         for (int p = 0; p < tile->header->polyCount; ++p) {
             const dtPoly& poly = tile->polys[p];
             if (poly.getType() != DT_POLYTYPE_GROUND || !(poly.flags & kWalkFlag)) continue;

@@ -380,6 +380,23 @@ void Simulation::buildActors(const BuildProgress& progress) {
         }
         auto node = crowd_.makeGroupNode(info.actors);
         node->setName(g.name);
+        if (g.behaviour == "walk") {
+            // Walkers roam the whole mesh: their group's bound is the mesh's, whoever holds them
+            // (ranks that each step some agree on it). The gather margin covers how far a Refpoint
+            // Bsphere reaches from where its walker stands, and how far away (3D) anyone it may
+            // look at stands.
+            double reach = 0.0;
+            for (ActorId id : info.actors) {
+                const BoundingSphere& b = crowd_.state().refSphereLocal[id];
+                reach = std::max(reach, glm::length(b.center()) + b.radius());
+            }
+            const auto [lo, hi] = nav_->bounds();
+            const Vec3 low(lo), high(hi);
+            node->setRoamingBound(BoundingSphere(0.5 * (low + high), 0.5 * glm::length(high - low) + reach + 1.0));
+            const double height = high.y - low.y;
+            const double gaze = walkGaze ? std::sqrt(gazeSettings.range * gazeSettings.range + height * height) : 0.0;
+            gatherMargin_ = std::max(gatherMargin_, reach + gaze + 1.0);
+        }
         root_->addChild(node);
         groups_.push_back(std::move(info));
         progress("placing actors", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
@@ -388,6 +405,10 @@ void Simulation::buildActors(const BuildProgress& progress) {
     for (const auto& b : {std::shared_ptr<Behaviour>(walkers), std::shared_ptr<Behaviour>(idlers), std::shared_ptr<Behaviour>(walkGaze),
                           std::shared_ptr<Behaviour>(idleGaze)})
         if (b) behaviours_.push_back(b);
+}
+
+void Simulation::setGatherView(std::optional<Frustum> view) {
+    if (walkers_ && walkers_->distributed()) walkers_->setGatherView(std::move(view), gatherMargin_);
 }
 
 void Simulation::distribute(Ranks& ranks) {

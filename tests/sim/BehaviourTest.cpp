@@ -15,6 +15,7 @@
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Group.h"
+#include "throng/sim/CounterRng.h"
 #include "throng/sim/Flock.h"
 #include "throng/sim/GazeLayer.h"
 #include "throng/sim/IdleGroups.h"
@@ -198,4 +199,87 @@ TEST(Gaze, TheSklsrootBsphereGrowsToHoldATurnedHead) {
                 }
         }
     }
+}
+
+namespace {
+
+// People drifting over a square: each frame every one moves a little, from its own stream. Actors
+// the test marks absent are "simulated elsewhere": their state here is stale (far off).
+class Drifters : public Behaviour {
+public:
+    explicit Drifters(std::size_t n) : at_(n), present_(n, 1) {
+        for (std::size_t i = 0; i < n; ++i) at_[i] = glm::dvec3(CounterRng(7, i).uniform(0, 0.0, 60.0), 0.0, CounterRng(7, i).uniform(1, 0.0, 60.0));
+    }
+    void advance(const FrameContext& context) override {
+        ++frame_;
+        for (std::size_t i = 0; i < at_.size(); ++i) {
+            const CounterRng rng(8, i);
+            at_[i] += glm::dvec3(rng.uniform(2 * frame_, -0.05, 0.05), 0.0, rng.uniform(2 * frame_ + 1, -0.05, 0.05));
+        }
+        (void)context;
+    }
+    std::span<const double> levelEnds() const override { return ends_; }
+    Mat4 referencePoint(std::uint32_t slot, const FrameContext&, OpTally*) override {
+        Mat4 m(1.0);
+        m[3] = Vec4(present_[slot] ? at_[slot] : glm::dvec3(1e6 + slot, 0.0, 0.0), 1.0);
+        return m;
+    }
+    RootPose skeletonRoot(std::uint32_t, double, int, OpTally*) override { return RootPose{}; }
+    void pose(std::uint32_t, double, int, const ActorTemplate&, std::span<const std::uint8_t>, std::span<float>, OpTally*) override {}
+    BoundingSphere skeletonRootExtent(std::uint32_t) const override { return BoundingSphere(Vec3(0.0), 1.0); }
+    bool posesFromTemplateClips() const override { return true; }
+    bool present(std::uint32_t slot) const override { return present_[slot] != 0; }
+    std::size_t bytesPerSlot() const override { return sizeof(glm::dvec3); }
+
+    glm::dvec3 at(std::size_t slot) const { return at_[slot]; }
+    std::vector<std::uint8_t>& presence() { return present_; }
+
+private:
+    std::vector<double> ends_{100.0};
+    std::vector<glm::dvec3> at_;
+    std::vector<std::uint8_t> present_;
+    std::uint64_t frame_ = 0;
+};
+
+}  // namespace
+
+// Whom someone looks at depends only on who is within range now: a process holding only the
+// actors near some place (the others absent, their state stale) chooses for everyone there as a
+// process holding all of them does. A choice holds through its period while the same people stay
+// near, and changes from one period to the next.
+TEST(Gaze, TheChoiceDependsOnlyOnWhoIsNear) {
+    const std::size_t n = 300;
+    const auto humanoid = makeSeedHumanoid();
+    auto all = std::make_shared<Drifters>(n), part = std::make_shared<Drifters>(n);
+    GazeLayer::Settings settings;
+    settings.range = 6.0;
+    GazeLayer whole(all, settings), near(part, settings);
+    for (std::uint32_t i = 0; i < n; ++i) whole.wrap(i, humanoid, i), near.wrap(i, humanoid, i);
+    SimulationClock clock;
+    std::size_t compared = 0, looking = 0, changes = 0, held = 0;
+    std::vector<int> last(n, -2);
+    for (int f = 0; f < 400; ++f, clock.advance()) {
+        // The part holds those within 20 m of the square's centre, and everyone within 6 m of them.
+        for (std::size_t i = 0; i < n; ++i)
+            part->presence()[i] = glm::length(glm::dvec2(all->at(i).x - 30.0, all->at(i).z - 30.0)) < 26.5;
+        whole.advance(clock.context());
+        near.advance(clock.context());
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const int target = whole.lookingAt(i);
+            if (target >= 0) {
+                ++looking;
+                const glm::dvec3 d = all->at(std::size_t(target)) - all->at(i);
+                ASSERT_LE(d.x * d.x + d.z * d.z, 36.0 + 1e-9) << "actor " << i << " looks at someone out of range";
+            }
+            if (last[i] != -2) (target == last[i] ? held : changes) += 1;
+            last[i] = target;
+            if (glm::length(glm::dvec2(all->at(i).x - 30.0, all->at(i).z - 30.0)) >= 20.0) continue;
+            ASSERT_EQ(near.lookingAt(i), target) << "frame " << f << ", actor " << i << ": the part chose otherwise";
+            ++compared;
+        }
+    }
+    EXPECT_GT(compared, 400u * 80u) << "enough actors near the centre";
+    EXPECT_GT(looking, 400u * n / 2) << "most people have someone within 6 m";
+    EXPECT_GT(changes, 400u) << "choices change from period to period";
+    EXPECT_GT(held, 20u * changes) << "and hold within a period (2.5-5 s)";
 }

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "PlazaWalkers.h"
+#include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/Ranks.h"
 #include "throng/sim/SimulationClock.h"
@@ -38,17 +41,32 @@ std::vector<float> drawnState(Locomotion& walk, std::uint32_t slot) {
     return out;
 }
 
+// Whether a walker standing at `p` lies within `margin` of every plane of `view`.
+bool nearView(const Frustum& view, const glm::vec3& p, double margin) {
+    for (int i = 0; i < Frustum::kPlaneCount; ++i) {
+        if (!(view.activePlanes() & (1u << i))) continue;
+        const Vec4& q = view.plane(i);
+        if (q.x * double(p.x) + q.y * double(p.y) + q.z * double(p.z) + q.w < -margin) return false;
+    }
+    return true;
+}
+
 // Steps the plaza alone and split over the ranks (with `far`, far regions deferred), then compares.
-void stepsBitwiseAsOneProcess(bool far) {
+// With `view`, rank 0 gathers only the walkers within 1 m of it: exactly those are present there
+// (with its own), and they are as one process has them.
+void stepsBitwiseAsOneProcess(bool far, std::optional<Frustum> view = std::nullopt) {
     const std::shared_ptr<const NavMesh> nav = test::plaza(true);
     Ranks ranks;
     const auto alone = crossing(nav, far), shared = crossing(nav, far);
     shared->distribute(ranks);
+    if (view) shared->setGatherView(view, 1.0);
+    EXPECT_THROW(shared->setGatherView(view, -1.0), std::invalid_argument);
     alone->advance(FrameContext{});  // starts it (a step of no time)
     EXPECT_THROW(alone->distribute(ranks), std::logic_error) << "distribute() after the start is refused";
     SimulationClock clock;
     ThreadTeam team(2);
-    std::size_t acrossRanks = 0, deferred = 0;
+    std::size_t acrossRanks = 0, deferred = 0, leftOut = 0, cameBack = 0;
+    std::vector<std::uint8_t> wasPresent(alone->size(), 1);
     std::string firstMismatch;  // every rank steps all frames whatever it finds: the others wait for it
     team.run([&] {
         for (int f = 0; f < 300; ++f, clock.advance()) {
@@ -58,6 +76,22 @@ void stepsBitwiseAsOneProcess(bool far) {
             std::uint64_t agents = 0;
             for (const auto& step : shared->rankSteps()) agents += step.agents, acrossRanks += step.handedToRanks;
             deferred += shared->lastDeferredCount();
+            if (view) {  // present: its own walkers and those near the view, as one process has them
+                const auto [own, ownEnd] = shared->ownRegions();
+                std::size_t present = 0;
+                for (std::uint32_t slot = 0; slot < alone->size() && firstMismatch.empty(); ++slot) {
+                    const bool expected = (alone->region(slot) >= own && alone->region(slot) < ownEnd) ||
+                                          nearView(*view, alone->position(slot), 1.0);
+                    present += shared->present(slot);
+                    leftOut += !shared->present(slot), cameBack += shared->present(slot) && !wasPresent[slot];
+                    wasPresent[slot] = shared->present(slot);
+                    if (shared->present(slot) != expected)
+                        firstMismatch = "frame " + std::to_string(f) + ": actor " + std::to_string(slot) + (expected ? " missing" : " sent");
+                    else if (expected && drawnState(*shared, slot) != drawnState(*alone, slot))
+                        firstMismatch = "frame " + std::to_string(f) + ": actor " + std::to_string(slot) + " differs from one process";
+                }
+                if (present != shared->presentCount()) firstMismatch = "presentCount() is not the walkers present";
+            }
             if (shared->lastGhostCount() != alone->lastGhostCount() || shared->lastHandoverCount() != alone->lastHandoverCount() ||
                 shared->lastDeferredCount() != alone->lastDeferredCount() || agents != alone->size())
                 firstMismatch = "frame " + std::to_string(f) + ": " + std::to_string(shared->lastGhostCount()) + " ghosts, " +
@@ -72,6 +106,7 @@ void stepsBitwiseAsOneProcess(bool far) {
     std::size_t compared = 0;
     for (std::uint32_t slot = 0; slot < alone->size(); ++slot) {
         if (ranks.rank() != 0 && (shared->region(slot) < first || shared->region(slot) >= end)) continue;
+        if (!shared->present(slot)) continue;  // left out near the view: compared above while present
         const std::vector<float> a = drawnState(*alone, slot), b = drawnState(*shared, slot);
         for (std::size_t k = 0; k < a.size(); ++k)
             ASSERT_EQ(std::memcmp(&a[k], &b[k], sizeof(float)), 0)
@@ -84,6 +119,10 @@ void stepsBitwiseAsOneProcess(bool far) {
     }
     if (ranks.rank() == 0 && ranks.size() > 1) {
         EXPECT_GT(acrossRanks, 10u) << "walkers should cross from one rank's regions to another's, or the test proves little";
+        if (view) {
+            EXPECT_GT(leftOut, 1000u) << "the view should leave walkers out";
+            EXPECT_GT(cameBack, 4u) << "walkers should come back near the view (" << leftOut << " left out)";
+        }
     }
 }
 
@@ -93,5 +132,12 @@ void stepsBitwiseAsOneProcess(bool far) {
 // a rank silent.
 TEST(DistributedLocomotion, StepsBitwiseAsOneProcess) { stepsBitwiseAsOneProcess(false); }
 TEST(DistributedLocomotion, StepsBitwiseAsOneProcessWithFarRegionsDeferred) { stepsBitwiseAsOneProcess(true); }
+// Rank 0 gathers only the walkers near a view over one corner of the plaza.
+TEST(DistributedLocomotion, GathersOnlyTheWalkersNearTheView) {
+    Camera camera;
+    camera.setPerspective(0.7, 1.5, 0.5, 35.0);
+    camera.setLookAt(Vec3(-32.0, 8.0, -32.0), Vec3(-5.0, 0.0, -5.0), Vec3(0.0, 1.0, 0.0));
+    stepsBitwiseAsOneProcess(false, camera.frustum());
+}
 
 }  // namespace throng::sim

@@ -129,13 +129,19 @@ def mpi(exe, scenes, work):
         shares = [int(r["rank0_agents"]), int(r["rank1_agents"])]
         if min(shares) == 0 or sum(shares) > actors:
             sys.exit(f"frame {r['frame']}: the ranks stepped {shares} walkers of {actors} actors")
+    # Rank 1 sends rank 0 only the walkers near the view: some frames leave some out, and some
+    # send some (the comparison above then covers walkers left out and walkers coming back).
+    left_out = sum(1 for r in rows[1:] if int(r["rank1_sent"]) < int(r["rank1_agents"]))
+    sent = sum(1 for r in rows[1:] if int(r["rank1_sent"]) > 0)
+    if left_out == 0 or sent == 0:
+        sys.exit(f"rank 1 left walkers out in {left_out} frames and sent some in {sent}: the view's gather is not covered")
     across = sum(int(r["rank0_handed_to_ranks"]) + int(r["rank1_handed_to_ranks"]) for r in rows)
     border = sum(int(r["rank0_border_bytes"]) + int(r["rank1_border_bytes"]) for r in rows)
     if across == 0 or border == 0:
         sys.exit(f"{across} walkers crossed between the ranks and {border} bytes of ghosts and handovers travelled: "
                  "the comparison would not cover the exchange")
     print(f"plain, 1 and 2 ranks agree: {len(reference)} rows, {len(reference_frames)} frames; "
-          f"{across} walkers crossed between ranks, {border} border bytes")
+          f"{across} walkers crossed between ranks, {border} border bytes; rank 1 left walkers out in {left_out} frames")
 
 
 def process_of_rank(launcher_pid, rank):

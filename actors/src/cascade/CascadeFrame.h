@@ -186,8 +186,10 @@ void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from);
 /// Phase 1: the Reference Point of every actor, in the scene or not, whatever the camera.
 void computeReferencePoints(CascadeFrame& f);
 /// Phase 1, placed in the world by the generic matrices traversal: Reference Points and Refpoint
-/// Bspheres of the actors `ids` under `parent`; returns the bound of them all.
-BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity);
+/// Bspheres of the actors `ids` under `parent`; returns the bound of them all: grown over them, or
+/// `roaming` (when valid) widened only by a member outside it.
+BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity,
+                                   const BoundingSphere& roaming);
 /// Phase 2: CULL 1 on the Refpoint Bspheres of group members still pending (flat, several at a
 /// time), then the survivors.
 void cullReferencePoints(CascadeFrame& f);

@@ -27,9 +27,11 @@ void computeReferencePoints(CascadeFrame& f) {
     for (Node* node : f.crowd->nodes()) node->dirtyBound();  // every actor moved
 }
 
-BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity) {
+BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity,
+                                   const BoundingSphere& roaming) {
     Crowd::State& s = f.crowd->state();
     const bool group = ids.size() > 1;
+    const bool grow = !roaming.valid();
     f.parallel(ids.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         OpCounter* c = f.counterOf(out);
         OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
@@ -38,6 +40,11 @@ BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> id
             const ActorId id = ids[k];
             s.refWorld[id] = parentIsIdentity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
             s.refSphereWorld[id] = s.refSphereLocal[id].transformed(s.refWorld[id], sphereOps);
+            if (!grow) {  // a declared roaming bound: only a member outside it (never, if it holds) widens it
+                if (!roaming.clearlyContains(s.refSphereWorld[id]) && !roaming.contains(s.refSphereWorld[id]))
+                    out.bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
+                continue;
+            }
             // Most members lie well inside the bound grown so far: no square root for them (when
             // counting operations, every member goes through expandBy as the model prices it).
             if (sphereOps || !out.bound.clearlyContains(s.refSphereWorld[id]))
@@ -46,8 +53,8 @@ BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> id
         countOperations(c, OpCategory::RefpointMatrix, end - begin);
         countOperations(c, OpCategory::BsphereRecompute, end - begin);
     });
-    // The chunks' bounds, merged in chunk order.
-    BoundingSphere bound;
+    // The chunks' bounds, merged in chunk order (after the roaming bound, when declared).
+    BoundingSphere bound = roaming;
     OpTally* sphereOps = tallyFor(f.context.counter, OpCategory::BsphereRecompute);
     for (std::size_t c = 0; c < chunkCount(ids.size(), kLightGrain); ++c) bound.expandBy(f.chunks[c].bound, sphereOps);
     return bound;

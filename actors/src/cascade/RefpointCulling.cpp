@@ -1,6 +1,7 @@
 // Phase 2 of actor processing, CULL 1: Refpoint Bspheres against the frustum. A lone actor's and a
 // group's sphere were tested by the generic CULL traversal; members of groups that cross a plane are
-// tested here, flat and several at a time, relative to the eye.
+// tested here, flat and several at a time, relative to the eye. Members another process simulates
+// and did not send (not present()) were found outside the view there.
 
 #include "CascadeFrame.h"
 #include "throng/actors/Crowd.h"
@@ -36,6 +37,9 @@ void cullReferencePoints(CascadeFrame& f) {
     });
     for (std::size_t i = 0; i < f.pending.size(); ++i) {
         Candidate& cand = f.candidates[f.pending[i]];
+        // An actor simulated by another process that did not send it this step lies outside the
+        // view (that is why it was not sent); its state here is stale, so its test decides nothing.
+        if (!s.behaviour[cand.id]->present(s.slot[cand.id])) f.containment[i] = Containment::Outside;
         switch (f.containment[i]) {
             case Containment::Outside: cand.stage = kOutside; break;
             case Containment::Inside: cand.stage = kInside, cand.mask = 0; break;

@@ -26,6 +26,16 @@ public:
     /// The actors, in order (DrawItem::instance indexes this list).
     std::span<const ActorId> ids() const { return ids_; }
 
+    /// Declares that every member's Refpoint Bsphere stays inside `bound` wherever the members go
+    /// (in the group's parent frame; for walkers, their walkable area): actor processing then
+    /// takes it as the group's bound instead of growing one over the members every frame. Such a
+    /// bound does not depend on where the members are, so processes that each hold some of them
+    /// agree on it. A member found outside still widens it for that frame (culling stays
+    /// conservative). An empty sphere (the default) grows the bound over the members.
+    void setRoamingBound(const BoundingSphere& bound) { roamingBound_ = bound; }
+    /// The declared roaming bound, empty when none.
+    const BoundingSphere& roamingBound() const { return roamingBound_; }
+
     void traverseApp(AppVisitor& visitor) override;
     void updateMatricesAndBound(MatrixBoundsVisitor& visitor) override;
     void traverseCull(CullVisitor& visitor) override;
@@ -34,6 +44,7 @@ public:
 private:
     Crowd* crowd_;
     std::vector<ActorId> ids_;
+    BoundingSphere roamingBound_;
 };
 
 }  // namespace throng

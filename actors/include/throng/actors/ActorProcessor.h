@@ -127,7 +127,7 @@ public:
 
 private:
     // ActorTraversal: actor processing's handling of Actor and ActorGroup nodes.
-    BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor) override;
+    BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor, const BoundingSphere& roaming) override;
     void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
     void culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
 

@@ -21,8 +21,10 @@ public:
     static const char kKey;
 
     virtual ~ActorTraversal() = default;
-    /// Matrices and bounds: places the actors `ids` of `node` in the world; returns the node's bound.
-    virtual BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor) = 0;
+    /// Matrices and bounds: places the actors `ids` of `node` in the world; returns the node's bound
+    /// (`roaming` when valid and it holds them all: ActorGroup::setRoamingBound).
+    virtual BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor,
+                                 const BoundingSphere& roaming = {}) = 0;
     /// CULL: `node`'s bound passed; takes its actors `ids` into the actor culling cascade.
     virtual void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) = 0;
     /// CULL: `node`'s bound was outside; its actors `ids` are rejected.

@@ -57,6 +57,12 @@ public:
     /// actor `slot` shows at `time`. Default: `time` itself.
     virtual double clipTime(std::uint32_t slot, double time) const { (void)slot; return time; }
 
+    /// Whether actor `slot`'s state in this process is that of the last step. False only for an
+    /// actor simulated by another process of the run that did not send it this step, because it
+    /// cannot be seen (nor be looked at by anyone who can): CULL 1 rejects it without reading it.
+    /// Default true.
+    virtual bool present(std::uint32_t slot) const { (void)slot; return true; }
+
     /// Bytes of state one more actor takes in this behaviour.
     virtual std::size_t bytesPerSlot() const = 0;
 

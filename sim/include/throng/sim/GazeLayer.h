@@ -4,6 +4,11 @@
 // (from positions and each actor's own random stream, so it is view-independent); the turn is
 // applied when the actor is posed, with two precision levels: neck and head sharing the turn near,
 // the neck alone farther, nothing beyond the last band (or once the neck is deactivated).
+//
+// The choice has no memory: in each of its periods an actor looks at whoever within range draws
+// the lowest of its random numbers for that period. So it depends only on who is within range now
+// and not on who was before, nor on the order neighbours are visited; a process that holds only
+// the actors near the view (the others are not present()) chooses as one holding everyone does.
 
 #include <limits>
 #include <map>
@@ -49,6 +54,7 @@ public:
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return base_->skeletonRootExtent(slot); }
     bool posesFromTemplateClips() const override { return base_->posesFromTemplateClips(); }
+    bool present(std::uint32_t slot) const override { return base_->present(slot); }
     double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot) + state_[slot].margin; }
     double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }
     int mainClip(std::uint32_t slot) const override { return base_->mainClip(slot); }
@@ -63,7 +69,6 @@ private:
         Joints joints;
         std::uint64_t stream = 0;
         int target = -1;
-        std::uint64_t period = ~std::uint64_t{0};  // which of its own periods chose `target`
         glm::dvec3 position{0.0};
         glm::dvec3 lookAt{0.0};
         double margin = 0.0;
@@ -81,6 +86,7 @@ private:
     std::vector<State> state_;
     std::map<const ActorTemplate*, Joints> joints_;
     std::vector<std::uint32_t> cellStart_, cellFill_, cellActors_;  // neighbour grid, reused
+    std::vector<std::uint8_t> present_;  // per slot: a gazing actor whose state is this step's
 };
 
 }  // namespace throng::sim

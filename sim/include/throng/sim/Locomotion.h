@@ -11,8 +11,10 @@
 // crosses a border is handed over at the end of the step, in order of actor slot. Ghost export and
 // import and the handover are separate steps over flat records (GhostRecord, HandoverRecord), so
 // that regions owned by other processes exchange them as messages: distribute() splits the regions
-// over the ranks of an MPI run, and rank 0 gathers every walker's drawn state (WalkerRecord) after
-// each step. The same layout gives the same trajectories with any number of threads or ranks.
+// over the ranks of an MPI run, and rank 0 gathers the walkers' drawn state (WalkerRecord) after
+// each step: every walker, or, given the view the frame culls against (setGatherView), only those
+// near it; the others are not present() there. The same layout gives the same trajectories with
+// any number of threads or ranks.
 
 #include <limits>
 #include <memory>
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "throng/actors/Behaviour.h"
+#include "throng/scenegraph/Frustum.h"
 #include "throng/sim/EffectCounters.h"
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/RegionGrid.h"
@@ -104,6 +107,7 @@ public:
         std::uint64_t handedToRanks = 0;   ///< of those, agents handed to a region of another rank
         std::uint64_t borderBytes = 0;     ///< bytes of ghosts and handovers sent to other ranks
         std::uint64_t stateBytes = 0;      ///< bytes of walker records sent to rank 0
+        std::uint64_t sent = 0;            ///< walkers it sent rank 0 (all its own unless a view is set)
         double workMs = 0.0;               ///< milliseconds stepping its regions and walkers
         double waitMs = 0.0;               ///< milliseconds in exchanges with the other ranks
     };
@@ -166,6 +170,16 @@ public:
     void distribute(Ranks& ranks);
     /// Whether distribute() was called.
     bool distributed() const { return ranks_ != nullptr; }
+    /// Distributed, set on rank 0 before a step: the other ranks then send rank 0 only the walkers
+    /// standing within `margin` metres of `view` (the frustum the frame will cull against, sent to
+    /// them in the step), and the others are not present() on rank 0 until they come near it again.
+    /// The margin must cover how far a walker's Refpoint Bsphere reaches from where it stands, and
+    /// how far away anyone who matters to a visible walker may be (whom it looks at). Without a view
+    /// (the default) every walker is sent. Throws std::invalid_argument for a margin that is
+    /// negative or not finite.
+    void setGatherView(std::optional<Frustum> view, double margin = 0.0);
+    /// Walkers rank 0 holds this step's state of: every one, unless a gather view left some out.
+    std::size_t presentCount() const { return present_.empty() ? actors_.size() : presentCount_; }
     /// Regions this rank steps, [first, second) (all of them unless distributed; valid after the
     /// first step).
     std::pair<std::uint32_t, std::uint32_t> ownRegions() const { return {firstRegion_, endRegion_}; }
@@ -181,6 +195,7 @@ public:
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return state_[slot].extent; }
     bool posesFromTemplateClips() const override { return true; }
+    bool present(std::uint32_t slot) const override { return present_.empty() || present_[slot] != 0; }
     double poseMargin(std::uint32_t slot) const override { return state_[slot].blendMargin; }
     double clipTime(std::uint32_t slot, double time) const override;
     int mainClip(std::uint32_t slot) const override { return actors_[slot].walkClip; }
@@ -259,6 +274,12 @@ private:
     std::vector<int> regionRank_;
     std::vector<std::uint32_t> ownSlots_;
     std::vector<RankStepRecord> rankSteps_;
+    // Distributed: the view walkers are gathered near (rank 0; sent to the others each step), and
+    // on rank 0 which walkers' state is this step's (empty: all of them).
+    std::optional<Frustum> gatherView_;
+    double gatherMargin_ = 0.0;
+    std::vector<std::uint8_t> present_;
+    std::size_t presentCount_ = 0;
 };
 
 }  // namespace throng::sim

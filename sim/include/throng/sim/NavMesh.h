@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -58,6 +59,9 @@ public:
     dtNavMeshQuery* newQuery() const;
     /// Number of polygons.
     int polygonCount() const;
+    /// The box holding every vertex of the mesh and of its detail surface (where agents stand):
+    /// its lowest and highest corners.
+    std::pair<glm::vec3, glm::vec3> bounds() const { return {lo_, hi_}; }
     /// The settings it was built with.
     const NavMeshSettings& settings() const { return settings_; }
 
@@ -74,6 +78,7 @@ private:
     std::vector<double> polyAreaSum_;      // running sum of their areas (for random points)
     dtNavMeshQuery* query_ = nullptr;
     NavMeshSettings settings_;
+    glm::vec3 lo_{0.0f}, hi_{0.0f};        // bounds()
 };
 
 }  // namespace throng::sim

@@ -13,6 +13,7 @@
 
 #include "throng/actors/Crowd.h"
 #include "throng/scenegraph/FrameContext.h"
+#include "throng/scenegraph/Frustum.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CameraPath.h"
@@ -79,6 +80,14 @@ public:
     /// of one process; the other ranks step their walkers only. Call before the first step; `ranks` must outlive the stepping. Throws
     /// std::logic_error after the first step.
     void distribute(Ranks& ranks);
+    /// Distributed, on rank 0, before step(): the frustum the coming frame will cull against. The
+    /// other ranks then send only the walkers that could pass CULL 1 or be looked at by one that
+    /// does (Locomotion::setGatherView, with a margin from the walkers' Refpoint Bspheres and the
+    /// gaze range); the rest are absent this frame and rejected by CULL 1 unread. Null: every
+    /// walker is sent (what a recorder of every actor needs). No effect unless distributed.
+    void setGatherView(std::optional<Frustum> view);
+    /// Metres beyond the view within which walkers are still sent (see setGatherView).
+    double gatherMargin() const { return gatherMargin_; }
 
     /// The scene graph: the town's tiles and one node per actor group.
     Group& root() { return *root_; }
@@ -146,6 +155,7 @@ private:
     bool started_ = false;
     bool walkersOnly_ = false;     // distributed, on a rank other than 0: steps its walkers only
     double walkersOnlyMs_ = 0.0;
+    double gatherMargin_ = 0.0;  // setGatherView's margin, from the walkers and the gaze range
     std::uint64_t townTriangles_ = 0;
     std::vector<std::shared_ptr<LOD>> townLods_;  // every tile's LOD node (town LOD declared)
     double townLodScale_ = 1.0;
