@@ -228,7 +228,10 @@ nlohmann::json summaryJson(const town::TownOptions& o, const sim::Simulation& wo
     for (const auto& g : world.groups()) j["groups"].push_back({{"name", g.name}, {"behaviour", g.behaviour}, {"actors", g.actors.size()}});
     if (const auto* t = world.town()) j["town"] = {{"tilesX", t->tilesX}, {"tilesZ", t->tilesZ}, {"tileSize", t->tileSize}, {"triangles", world.townTriangles()}};
     if (const auto* nav = world.navMesh()) j["navMeshPolygons"] = nav->polygonCount();
-    if (const auto* walkers = world.locomotion()) j["regions"] = walkers->regionCount();
+    if (const auto* walkers = world.locomotion()) {
+        j["regions"] = walkers->regionCount();
+        j["gatherMargin"] = world.gatherMargin();  // metres beyond the view walkers are gathered within (under mpirun)
+    }
     const double n = double(std::max<std::int64_t>(sums.frames, 1));
     j["wallSeconds"] = wallSeconds;
     j["fps"] = sums.frames > 1 ? double(sums.frames - 1) / std::max(1e-9, wallSeconds - firstFrameSeconds) : 0.0;

@@ -440,3 +440,100 @@ TEST(Cascade, DestroyedNodesLeaveTheCrowdAndTheOthersStillDrawAsTraditionalProce
     EXPECT_GT(cascade.drawList().items().size(), 0u);
     EXPECT_TRUE(primitives(cascade.drawList()) == primitives(traditional.drawList()));
 }
+
+namespace {
+
+// Key-frame actors of which some are "simulated elsewhere": absent ones report a stale Reference
+// Point (in front of the camera, where CULL 1 would keep them if it read it).
+class PartlyPresent : public KeyframeBehaviour {
+public:
+    std::vector<std::uint8_t> absent;
+    Vec3 stale{0.0};
+    Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override {
+        if (slot < absent.size() && absent[slot]) {
+            Mat4 m(1.0);
+            m[3] = Vec4(stale, 1.0);
+            return m;
+        }
+        return KeyframeBehaviour::referencePoint(slot, context, ops);
+    }
+    bool present(std::uint32_t slot) const override { return slot >= absent.size() || !absent[slot]; }
+};
+
+struct LineOfActors {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<PartlyPresent> behaviour = std::make_shared<PartlyPresent>();
+    std::shared_ptr<ActorGroup> group;
+};
+
+// `n` standing seed humanoids 2 m apart along x, centred on the origin, in one group node.
+std::unique_ptr<LineOfActors> lineOfActors(int n) {
+    auto s = std::make_unique<LineOfActors>();
+    static const auto humanoid = makeSeedHumanoid();
+    std::vector<ActorId> ids;
+    for (int i = 0; i < n; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = humanoid;
+        a.clip = humanoid->findClip("walk");
+        a.position = Vec3(2.0 * (i - 0.5 * (n - 1)), 0.0, 0.0);
+        ids.push_back(s->crowd.add(humanoid, s->behaviour, s->behaviour->addActor(a)));
+    }
+    s->group = s->crowd.makeGroupNode(ids);
+    s->root->addChild(s->group);
+    return s;
+}
+
+}  // namespace
+
+// A declared roaming bound stands for a group's bound (members inside leave it as it is, one
+// outside widens it), and it changes nothing the cascade decides; actors another process holds and
+// did not send (not present) are rejected by CULL 1 without reading their stale state, counted as
+// tested, and everything else is processed as if they were there.
+TEST(Cascade, ARoamingBoundStandsForTheGroupAndAbsentActorsAreRejectedUnread) {
+    Camera camera;
+    camera.setPerspective(0.8, 1.5, 0.1, 200.0);
+    camera.setLookAt(Vec3(-20.0, 2.0, 25.0), Vec3(-20.0, 1.0, 0.0), Vec3(0, 1, 0));  // sees the left end of the line
+    auto grown = lineOfActors(60), roaming = lineOfActors(60);
+    roaming->group->setRoamingBound(BoundingSphere(Vec3(0.0), 200.0));
+    ActorProcessor pg(grown->crowd), pr(roaming->crowd);
+    const ActorFrameStatistics a = pg.processFrame(*grown->root, camera, 0.5);
+    const std::size_t grownItems = pg.drawList().size();
+    ASSERT_GT(a.a, 10u) << "the right end lies outside the view";
+    ASSERT_GT(grownItems, 0u);
+    const ActorFrameStatistics b = pr.processFrame(*roaming->root, camera, 0.5);
+    EXPECT_EQ(roaming->group->worldBound(), BoundingSphere(Vec3(0.0), 200.0)) << "the declared bound stands";
+    EXPECT_EQ(b.a, a.a);
+    EXPECT_EQ(b.spheresTested, a.spheresTested);
+    EXPECT_EQ(pr.drawList().size(), grownItems);
+
+    // Those outside the view are absent, their stale Reference Points right in front of the camera.
+    roaming->behaviour->absent.assign(60, 0);
+    std::size_t absent = 0;
+    for (std::uint32_t i = 0; i < 60; ++i)
+        if (grown->crowd.actorClass(ActorId(i)) == ActorClass::A) roaming->behaviour->absent[i] = 1, ++absent;
+    roaming->behaviour->stale = Vec3(-20.0, 0.0, 10.0);
+    const ActorFrameStatistics c = pr.processFrame(*roaming->root, camera, 0.5);
+    EXPECT_EQ(absent, a.a);
+    EXPECT_EQ(c.a, a.a) << "absent actors are rejected at CULL 1";
+    EXPECT_EQ(c.spheresTested, a.spheresTested) << "and counted as tested";
+    EXPECT_EQ(c.primitives, a.primitives);
+    EXPECT_EQ(pr.drawList().size(), grownItems) << "nothing stale is drawn";
+    for (std::uint32_t i = 0; i < 60; ++i) EXPECT_EQ(roaming->crowd.actorClass(ActorId(i)), grown->crowd.actorClass(ActorId(i))) << i;
+
+    // A member outside the declared bound widens it.
+    auto one = lineOfActors(1);
+    one->group->setRoamingBound(BoundingSphere(Vec3(0.0, 0.0, 500.0), 5.0));
+    ActorProcessor po(one->crowd);
+    po.processFrame(*one->root, camera, 0.0);
+    EXPECT_TRUE(one->group->worldBound().contains(one->crowd.state().refSphereWorld[0])) << "widened to hold its member";
+    // A lone member's own sphere is still tested at CULL 1 (the node's bound is not its sphere).
+    one->group->setRoamingBound(BoundingSphere(Vec3(0.0), 300.0));
+    Camera away;
+    away.setPerspective(0.8, 1.5, 0.1, 2000.0);
+    away.setLookAt(Vec3(0.0, 2.0, 100.0), Vec3(0.0, 1.0, 200.0), Vec3(0, 1, 0));  // sees the bound, not the actor
+    const ActorFrameStatistics d = po.processFrame(*one->root, away, 0.0);
+    EXPECT_EQ(d.a, 1u) << "the lone member is rejected at CULL 1";
+    EXPECT_EQ(d.c1, 0u);
+    EXPECT_EQ(po.drawList().size(), 0u);
+}

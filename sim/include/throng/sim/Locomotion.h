@@ -163,9 +163,10 @@ public:
 
     /// Splits the regions over the ranks of the run (ranges of consecutive regions holding about
     /// as many starting walkers each): this rank steps only its own, exchanging ghosts and handovers
-    /// with the others each step, and rank 0 gathers every walker's state (WalkerRecord), so that
-    /// position(), speed(), region() and the Behaviour calls there are those of one process. Other
-    /// ranks know only their own walkers. `ranks` must outlive the stepping. Throws
+    /// with the others each step, and rank 0 gathers the walkers' state (WalkerRecord), so that
+    /// position(), speed(), region() and the Behaviour calls there are those of one process for
+    /// every walker present() (all of them unless a gather view is set). Other ranks know only
+    /// their own walkers. `ranks` must outlive the stepping. Throws
     /// std::logic_error after the first step; exchanges throw RankError (a rank failed).
     void distribute(Ranks& ranks);
     /// Whether distribute() was called.
