@@ -21,7 +21,7 @@ namespace throng::sim {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
-// Message tags of a distributed step's three exchanges.
+// Message tags of a distributed step's four exchanges.
 constexpr int kGhostTag = 101, kHandoverTag = 102, kWalkerTag = 103, kViewTag = 104;
 
 // The view walkers are gathered near, as rank 0 sends it to the others each step.
@@ -32,7 +32,7 @@ struct GatherViewRecord {
     std::uint32_t on = 0;       // 0: send every walker
 };
 
-// Whether a walker standing at `p` is within `view.margin` of the view.
+// Whether a walker standing at `p` is within `view.margin` of the view (always, with no view).
 bool nearView(const GatherViewRecord& view, const glm::vec3& p) {
     if (!view.on) return true;
     for (int i = 0; i < 6; ++i) {
@@ -562,20 +562,19 @@ void Locomotion::gatherWalkers(RankStepRecord mine) {
     }
     // One message per rank: its share of the step, then a record per walker it sends, written in
     // place (a million walkers are 40 MB a step: not copied twice).
-    const bool all = ranks_->rank() == 0 || !view.on;  // rank 0's own walkers are up to date there
+    // Rank 0's own walkers are up to date there: it sends none (and counts them all as sent).
+    const bool root = ranks_->rank() == 0;
     std::size_t sent = 0;
-    if (!all)
+    if (!root)
         for (std::uint32_t slot : ownSlots_) sent += nearView(view, state_[slot].position);
-    else
-        sent = ranks_->rank() == 0 ? 0 : ownSlots_.size();
-    mine.sent = ranks_->rank() == 0 ? ownSlots_.size() : sent;
+    mine.sent = root ? ownSlots_.size() : sent;
     Bytes message(sizeof(RankStepRecord) + sent * sizeof(WalkerRecord));
     std::memcpy(message.data(), &mine, sizeof mine);
     std::size_t k = 0;
-    if (ranks_->rank() != 0)
+    if (!root)
         for (std::uint32_t slot : ownSlots_) {
             const State& s = state_[slot];
-            if (!all && !nearView(view, s.position)) continue;
+            if (!nearView(view, s.position)) continue;
             WalkerRecord w;
             w.slot = slot, w.region = s.region;
             for (int i = 0; i < 3; ++i) w.position[i] = s.position[i];
@@ -585,7 +584,7 @@ void Locomotion::gatherWalkers(RankStepRecord mine) {
     const std::size_t sentBefore = ranks_->bytesSent();
     const std::vector<Bytes> gathered = ranks_->gather(message, kWalkerTag, "walkers");
     rankSteps_.assign(std::size_t(ranks_->size()), RankStepRecord{});
-    if (ranks_->rank() != 0) {
+    if (!root) {
         mine.stateBytes = ranks_->bytesSent() - sentBefore;
         rankSteps_[std::size_t(ranks_->rank())] = mine;
         return;
