@@ -38,7 +38,7 @@ void Actor::updateMatricesAndBound(MatrixBoundsVisitor& visitor) {
 
 void Actor::traverseCull(CullVisitor& visitor) {
     const std::span<const ActorId> ids(&id_, 1);
-    if (ActorTraversal* t = actorTraversal(visitor)) t->cull(*this, ids, visitor);
+    if (ActorTraversal* t = actorTraversal(visitor)) t->cull(*this, ids, visitor, true);
     else traditionalCull(*crowd_, *this, ids, visitor, false);
 }
 

@@ -33,7 +33,7 @@ void ActorGroup::updateMatricesAndBound(MatrixBoundsVisitor& visitor) {
 }
 
 void ActorGroup::traverseCull(CullVisitor& visitor) {
-    if (ActorTraversal* t = actorTraversal(visitor)) t->cull(*this, ids_, visitor);
+    if (ActorTraversal* t = actorTraversal(visitor)) t->cull(*this, ids_, visitor, ids_.size() == 1 && !roamingBound_.valid());
     else traditionalCull(*crowd_, *this, ids_, visitor, true);
 }
 

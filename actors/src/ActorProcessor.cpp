@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "cascade/CascadeFrame.h"
-#include "throng/actors/ActorGroup.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/AppVisitor.h"
@@ -227,14 +226,11 @@ BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, Matrix
     return cascade::placeReferencePoints(*cascade_, ids, visitor.parentWorld(), visitor.parentIsIdentity(), roaming);
 }
 
-void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) {
+void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor, bool boundIsMemberSphere) {
     const PlaneMask mask = visitor.planeMask();
-    // A lone actor's node bound is its Refpoint Bsphere, which the traversal just tested (CULL 1),
-    // unless a roaming bound stands for it; a group's is decided when every member is inside the
-    // planes the group crosses.
-    const auto* group = dynamic_cast<const ActorGroup*>(&node);
-    const bool lone = ids.size() == 1 && !(group && group->roamingBound().valid());
-    const bool decided = lone || mask == 0;
+    // A lone actor's node bound is its Refpoint Bsphere, which the traversal just tested (CULL 1);
+    // a group's members are decided when they are inside every plane the group crosses.
+    const bool decided = boundIsMemberSphere || mask == 0;
     const std::uint8_t stage = !decided ? cascade::kPending : mask == 0 ? cascade::kInside : cascade::kCrossing;
     for (std::uint32_t member = 0; member < ids.size(); ++member)
         cascade_->candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});

@@ -128,7 +128,7 @@ public:
 private:
     // ActorTraversal: actor processing's handling of Actor and ActorGroup nodes.
     BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor, const BoundingSphere& roaming) override;
-    void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
+    void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor, bool boundIsMemberSphere) override;
     void culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
 
     void processActors(Node& root, const Camera& camera, double time);

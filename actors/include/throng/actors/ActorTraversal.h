@@ -26,7 +26,9 @@ public:
     virtual BoundingSphere bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor,
                                  const BoundingSphere& roaming = {}) = 0;
     /// CULL: `node`'s bound passed; takes its actors `ids` into the actor culling cascade.
-    virtual void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) = 0;
+    /// `boundIsMemberSphere`: the bound is its one actor's Refpoint Bsphere, so the traversal's
+    /// test was that actor's CULL 1 (not so for a group with a roaming bound).
+    virtual void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor, bool boundIsMemberSphere) = 0;
     /// CULL: `node`'s bound was outside; its actors `ids` are rejected.
     virtual void culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) = 0;
 };
