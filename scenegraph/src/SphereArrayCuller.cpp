@@ -14,7 +14,13 @@ constexpr float kRelMargin = 8.0f * std::numeric_limits<float>::epsilon();
 // The kernel is compiled for several instruction sets and chosen at load time. The planes are
 // copied into locals so that they stay in registers; the body (detail::sphereContainment) has no
 // branch, so the loop vectorises across spheres.
-__attribute__((target_clones("avx512f", "avx2", "default")))
+//
+// No AVX-512 clone: GCC 12's returns with dirty upper halves in zmm0-15 (its vzeroupper comes before
+// the remainder loop, which moves 512-bit plane constants back into zmm12-15), and on Intel Xeons
+// that state slows every SSE instruction run afterwards (the rest of Throng is built for baseline
+// x86-64) until something clears it: actor processing of 10k Table-2 actors took 55 ms instead of
+// 19, its pose phase 45 ms instead of 9.7. The AVX2 clone ends clean.
+__attribute__((target_clones("avx2", "default")))
 void classifyKernel(const float* __restrict x, const float* __restrict y, const float* __restrict z,
                     const float* __restrict radius, std::size_t n, const detail::CullPlanes<float>& planes,
                     std::uint8_t* __restrict out) {

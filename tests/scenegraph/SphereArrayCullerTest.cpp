@@ -3,8 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <random>
 #include <vector>
+
+#if defined(__x86_64__)
+#include <cpuid.h>
+#endif
 
 #include "throng/scenegraph/SphereArrayCuller.h"
 #include "throng/scenes/RandomScenes.h"
@@ -54,7 +59,45 @@ Agreement compareWithDouble(std::mt19937_64& rng, const Vec3& origin, int camera
     return a;
 }
 
+#if defined(__x86_64__)
+// Whether XGETBV with ECX = 1 (XINUSE: which register states are not in their initial state) exists.
+bool canReadStatesInUse() {
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    return __get_cpuid_count(0xd, 1, &a, &b, &c, &d) && (a & (1u << 2));
+}
+
+// XINUSE bits 2 and 6: the upper halves of ymm0-15 and zmm0-15 hold something.
+std::uint64_t dirtyUpperHalves() {
+    std::uint32_t lo = 0, hi = 0;
+    asm volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(1));
+    return ((std::uint64_t(hi) << 32) | lo) & ((1u << 2) | (1u << 6));
+}
+
+__attribute__((target("avx"))) void clearUpperHalves() { asm volatile("vzeroupper"); }
+#endif
+
 }  // namespace
+
+// The kernel is compiled for wider instruction sets than the rest of Throng: it must leave no dirty
+// upper register halves behind, or every SSE instruction after it pays for them on Intel CPUs
+// (GCC 12's AVX-512 clone did, and made actor processing three times slower).
+TEST(SphereArrayCuller, LeavesNoDirtyUpperRegisterHalves) {
+#if defined(__x86_64__)
+    if (!canReadStatesInUse()) GTEST_SKIP() << "this CPU cannot say which register states are in use (XGETBV 1)";
+    std::mt19937_64 rng(7);
+    const Camera cam = scenes::randomCamera(rng, 100.0, Vec3(0.0));
+    const SphereArrayCuller culler(cam.frustum(), cam.eye());
+    for (std::size_t n = 1; n <= 300; ++n) {  // every remainder of every vector width
+        std::vector<float> x(n, 1.0f), y(n, 2.0f), z(n, -30.0f), r(n, 0.5f);
+        std::vector<Containment> out(n);
+        clearUpperHalves();
+        culler.classify({x, y, z, r}, out);
+        ASSERT_EQ(dirtyUpperHalves(), 0u) << n << " spheres";
+    }
+#else
+    GTEST_SKIP() << "x86-64 only";
+#endif
+}
 
 TEST(SphereArrayCuller, AgreesWithDoubleNearTheOrigin) {
     std::mt19937_64 rng(5);
