@@ -27,11 +27,10 @@ inline ActorItemBase actorItemBase(const Crowd::State& s, ActorId id, const Node
     return ActorItemBase{node, member, id, s.tint[id], b.mainClip(s.slot[id]), b.clipTime(s.slot[id], time)};
 }
 
-/// The item drawing `drawable` for part `part` of the actor `a`, at vaLod level `level`; its matrix
-/// and palette are given to DrawList::add, which keeps copies.
-inline DrawItem actorPartItem(const ActorItemBase& a, const Drawable& drawable, std::uint32_t part, int level,
-                              Representation representation = Representation::Mesh) {
-    DrawItem item;
+/// Fills `item` (fresh from DrawSegment::emplace, whose matrix and palette it keeps) to draw
+/// `drawable` for part `part` of the actor `a`, at vaLod level `level`.
+inline void setActorPart(DrawItem& item, const ActorItemBase& a, const Drawable& drawable, std::uint32_t part, int level,
+                         Representation representation = Representation::Mesh) {
     item.node = a.node;
     item.instance = a.member;
     item.tint = a.tint;
@@ -42,6 +41,16 @@ inline DrawItem actorPartItem(const ActorItemBase& a, const Drawable& drawable, 
     item.representation = representation;
     item.clip = a.clip;
     item.clipTime = a.clipTime;
+}
+
+/// Appends to `segment` the item drawing `drawable` for part `part` of the actor `a` at vaLod level
+/// `level`, placed by `world` (a matrix the segment keeps), with room for a skin palette of
+/// `paletteSize` matrices; returns it. The item is written once, in place.
+inline DrawItem& addActorPart(DrawSegment& segment, const ActorItemBase& a, const Drawable& drawable, std::uint32_t part,
+                              int level, const Mat4* world, std::size_t paletteSize = 0,
+                              Representation representation = Representation::Mesh) {
+    DrawItem& item = segment.emplace(drawable.primitiveCount(), world, paletteSize);
+    setActorPart(item, a, drawable, part, level, representation);
     return item;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "SpanChecks.h"
@@ -10,6 +11,13 @@
 
 namespace throng {
 namespace {
+
+// Orders key-time arrays lexicographically, so that equal ones meet in a map.
+struct TimesLess {
+    bool operator()(std::span<const float> a, std::span<const float> b) const {
+        return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end());
+    }
+};
 
 std::string channelName(const std::string& clip, std::size_t i) {
     return "clip '" + clip + "', channel " + std::to_string(i);
@@ -38,6 +46,11 @@ AnimationClip::AnimationClip(std::string name, std::vector<ClipChannel> channels
             if (!std::isfinite(v)) throw std::invalid_argument(channelName(name_, i) + ": has a non-finite value");
         duration_ = std::max(duration_, static_cast<double>(c.times.back()));
     }
+    // Channels with equal key times, found through a map from times to the first such channel.
+    std::map<std::span<const float>, std::uint32_t, TimesLess> first;
+    timeSources_.reserve(channels_.size());
+    for (std::size_t i = 0; i < channels_.size(); ++i)
+        timeSources_.push_back(first.try_emplace(std::span<const float>(channels_[i].times), static_cast<std::uint32_t>(i)).first->second);
 }
 
 double AnimationClip::localTime(double t, bool loop) const { return detail::clipLocalTime(duration_, t, loop, nullptr); }

@@ -42,6 +42,10 @@ double eyeDistance(const Mat4& skeletonRootWorld, const Vec3& eye, OpTally* ops)
 
 Mat4 rootPoseMatrix(const RootPose& root, OpTally* ops) { return detail::rootPoseMatrix(root, ops); }
 
+void nodeWorldMatrix(const Mat4& skeletonRootWorld, const Affine& model, Mat4& world, OpTally* ops) {
+    detail::nodeWorldMatrix(skeletonRootWorld, model, world, ops);
+}
+
 BoundingSphere partWorldSphere(const BoundingSphere& local, const Affine& model, const Mat4& skeletonRootWorld,
                                OpTally* ops) {
     return detail::partWorldSphere(local, model, skeletonRootWorld, ops);

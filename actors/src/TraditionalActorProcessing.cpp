@@ -3,6 +3,7 @@
 #include "ActorDrawItem.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/actors/detail/PoseKernels.h"
 #include "throng/scenegraph/CullVisitor.h"
 #include "throng/scenegraph/FrameContext.h"
 #include "throng/scenegraph/MatrixBoundsVisitor.h"
@@ -23,17 +24,19 @@ std::span<float> dofsOf(Crowd::State& s, ActorId id) {
 }
 
 // Runs body(chunk, begin, end) over [0, n) in fixed chunks, each with fresh outputs (its counter
-// enabled when `counting`), and returns the number of chunks, whose outputs the caller joins in order.
+// enabled when `counting`; with `cull`, a segment of its draw list of its own, in chunk order), and
+// returns the number of chunks, whose outputs the caller joins in order.
 template <class Body>
-std::size_t inChunks(Crowd& crowd, std::size_t n, bool counting, Body&& body) {
+std::size_t inChunks(Crowd& crowd, std::size_t n, bool counting, CullVisitor* cull, Body&& body) {
     auto& chunks = crowd.traditionalWorkspace().chunks;
     const std::size_t count = chunkCount(n, kGrain);
     if (chunks.size() < count) chunks.resize(count);
+    const std::size_t first = cull ? cull->openDrawSegments(count) : 0;
     for (std::size_t c = 0; c < count; ++c) {
         Chunk& out = chunks[c];
         out.ops.reset();
         out.ops.setEnabled(counting);
-        out.items.clear();
+        out.items = cull ? &cull->drawSegment(first + c) : nullptr;
         out.bound = BoundingSphere();
         out.matrices = {};
         out.spheresTested = out.lodDistances = 0;
@@ -79,7 +82,7 @@ BoundingSphere boundOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, ActorId
     // Every Skeleton node: local matrix, model matrix and world matrix, on the CPU.
     const std::span<Affine> model(w.model.data() + base, n);
     computeModelTransforms(t, dofsOf(s, id), {}, model, nodeOps);
-    for (std::size_t i = 0; i < n; ++i) w.world[base + i] = composeAffine(s.sklsWorld[id], model[i].toDMat4(), nodeOps);
+    for (std::size_t i = 0; i < n; ++i) detail::nodeWorldMatrix(s.sklsWorld[id], model[i], w.world[base + i], nodeOps);
     countOperations(c, OpCategory::SkeletonMatrix, n);
     out.matrices.localMatricesBuilt += n;
     out.matrices.worldMatricesComposed += n + 2;
@@ -127,8 +130,9 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
     if (testSphere(frustum, w.whole[id], mask, out, c) == Containment::Outside) return;
     const Mat4& skls = s.sklsWorld[id];
     const detail::ActorItemBase a = detail::actorItemBase(s, id, &node, member, time);
-    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level) {
-        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world);
+    // Items are written in place, each with a copy of its world matrix (the list must outlive the workspace).
+    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level, std::size_t paletteSize = 0) -> DrawItem& {
+        return detail::addActorPart(*out.items, a, d, part, level, out.items->copyMatrix(world), paletteSize);
     };
     const auto nodes = t.nodes();
     const std::uint32_t n = static_cast<std::uint32_t>(t.nodeCount());
@@ -148,9 +152,9 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
                            out, c) != Containment::Outside) {
                 if (lv.skin >= 0) {
                     const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-                    const std::span<glm::mat4> palette = out.items.addSkinned(
-                        detail::actorPartItem(a, *lv.drawable, n, level), lv.drawable->primitiveCount(), skls, skin.joints.size());
-                    computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {}, palette,
+                    const DrawItem& item = emit(*lv.drawable, skls, n, level, skin.joints.size());
+                    computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {},
+                                       std::span<glm::mat4>(const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize),
                                        tallyFor(c, OpCategory::SkeletonMatrix));
                 } else {
                     emit(*lv.drawable, skls, n, level);
@@ -202,7 +206,7 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
 
 void traditionalApp(Crowd& crowd, std::span<const ActorId> ids, const FrameContext& context) {
     Crowd::State& s = crowd.state();
-    const std::size_t chunks = inChunks(crowd, ids.size(), context.counter != nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
+    const std::size_t chunks = inChunks(crowd, ids.size(), context.counter != nullptr, nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
         FrameContext local = context;
         local.counter = context.counter ? &out.ops : nullptr;
         for (std::size_t k = begin; k < end; ++k) appOne(s, ids[k], local);
@@ -217,7 +221,7 @@ BoundingSphere traditionalBound(Crowd& crowd, std::span<const ActorId> ids, Matr
     OpCounter* counter = visitor.counter();
     const Mat4& parent = visitor.parentWorld();
     const bool identity = visitor.parentIsIdentity();
-    const std::size_t chunks = inChunks(crowd, ids.size(), counter != nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
+    const std::size_t chunks = inChunks(crowd, ids.size(), counter != nullptr, nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
         OpCounter* c = counter ? &out.ops : nullptr;
         for (std::size_t k = begin; k < end; ++k) out.bound.expandBy(boundOne(s, w, ids[k], parent, identity, out, c));
     });
@@ -239,7 +243,7 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
     Crowd::TraditionalWorkspace& w = crowd.traditionalWorkspace();
     OpCounter* counter = visitor.counter();
     const double time = visitor.frameTime();
-    const std::size_t chunks = inChunks(crowd, ids.size(), counter != nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
+    const std::size_t chunks = inChunks(crowd, ids.size(), counter != nullptr, &visitor, [&](Chunk& out, std::size_t begin, std::size_t end) {
         OpCounter* c = counter ? &out.ops : nullptr;
         for (std::size_t k = begin; k < end; ++k)
             cullOne(s, w, node, static_cast<std::uint32_t>(k), ids[k], visitor, testEach, out, c, time);
@@ -247,7 +251,8 @@ void traditionalCull(Crowd& crowd, const Node& node, std::span<const ActorId> id
     CullStatistics& stats = visitor.statistics();
     for (std::size_t c = 0; c < chunks; ++c) {
         Chunk& out = w.chunks[c];
-        visitor.spliceDrawItems(out.items);
+        stats.drawItems += out.items->size();
+        stats.primitives += out.items->primitiveCount();
         stats.spheresTested += out.spheresTested;
         stats.lodDistances += out.lodDistances;
         if (counter) counter->add(out.ops);

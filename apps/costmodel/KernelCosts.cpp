@@ -71,6 +71,17 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
     const AnimationClip& clip = *tmpl.clips()[0];
     double channels = 0;
     for (const ClipChannel& c : clip.channels()) channels += c.target == ClipChannel::Target::NodeDof;
+    // Key searches of a sample: one per run of channels (active ones only) sharing key times.
+    auto keySearches = [&](std::span<const std::uint8_t> active) {
+        double searches = 0;
+        std::uint32_t searched = ~std::uint32_t{0};
+        for (std::size_t i = 0; i < clip.channels().size(); ++i) {
+            const ClipChannel& c = clip.channels()[i];
+            if (c.target != ClipChannel::Target::NodeDof || (!active.empty() && !active[c.node])) continue;
+            if (clip.timeSources()[i] != searched) searched = clip.timeSources()[i], searches += 1;
+        }
+        return searches;
+    };
     std::size_t roots = 0, geometryNodes = 0;
     for (const SkeletonNode& n : tmpl.nodes()) roots += n.parent < 0, geometryNodes += n.geometrySphere.valid();
     for (ActorId id = 0; id < crowd.size(); ++id) {
@@ -88,8 +99,13 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
                 if (c.target != ClipChannel::Target::NodeDof) continue;
                 const DofKind kind = tmpl.nodes()[c.node].dofs[c.dof].kind;
                 std::vector<float> out(4);
+                // The key search is shared by a run of channels with the same key times (see
+                // detail::sampleClip): priced apart from the sample that follows it.
+                const std::size_t upper = detail::keyAfter(c.times, ft, nullptr);
+                uniform(k, "clipKeySearch", tallyOf([&](OpTally* t) { detail::keyAfter(c.times, ft, t); }));
                 uniform(k, "clipChannel" + held, tallyOf([&](OpTally* t) {
-                            detail::sampleChannel(c, dofValueCount(kind), kind == DofKind::Orientation, ft, out.data(), t, hold);
+                            detail::sampleChannelAt(c, dofValueCount(kind), kind == DofKind::Orientation, ft, upper, out.data(), t,
+                                                    hold);
                         }));
             }
         }
@@ -104,6 +120,7 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
     tr["nodesPerActor"] = double(tmpl.nodeCount());
     tr["rootNodesPerActor"] = double(roots);
     tr["channelsPerActor"] = channels;
+    tr["keySearchesPerActor"] = keySearches({});
     tr["lodDistances"] = double(traditionalStats.lodDistances);
     // At least: every node's geometry sphere and the actor-level bound, placed in the world.
     tr["sphereTransformsAtLeast"] = double(traditionalStats.actorsInScene) * double(geometryNodes + (tmpl.rootGeometry().bound().valid() ? 1 : 0));
@@ -112,7 +129,8 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
     auto& ac = f.actor;
     ac["actors"] = double(actorStats.actorsInScene);
     ac["lodDistances"] = double(actorStats.lodDistances);
-    double survivorsAt[3] = {0, 0, 0}, posedAt[3] = {0, 0, 0}, nodes = 0, rootsPosed = 0, channelsAt[3] = {0, 0, 0};
+    double survivorsAt[3] = {0, 0, 0}, posedAt[3] = {0, 0, 0}, nodes = 0, rootsPosed = 0, channelsAt[3] = {0, 0, 0},
+           searchesAt[3] = {0, 0, 0};
     double c3Transforms = 0;
     for (ActorId id = 0; id < crowd.size(); ++id) {
         const ActorClass c = s.actorClass[id];
@@ -135,12 +153,14 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
             if (c == ActorClass::C3_1 || c == ActorClass::C3_2) c3Transforms += tmpl.nodes()[i].geometrySphere.valid();
         }
         for (const ClipChannel& ch : clip.channels()) channelsAt[level] += ch.target == ClipChannel::Target::NodeDof && active[ch.node];
+        searchesAt[level] += keySearches(active);
         if (c == ActorClass::C3_1 || c == ActorClass::C3_2) c3Transforms += 1;  // the whole internal bound, placed in the world
     }
     for (int level = 0; level < 3; ++level) {
         ac["survivorsAtLevel" + std::to_string(level)] = survivorsAt[level];
         ac["posedAtLevel" + std::to_string(level)] = posedAt[level];
         ac["channelsAtLevel" + std::to_string(level)] = channelsAt[level];
+        ac["keySearchesAtLevel" + std::to_string(level)] = searchesAt[level];
     }
     ac["posedNodes"] = nodes;
     ac["posedRootNodes"] = rootsPosed;

@@ -160,6 +160,7 @@ struct GlRenderer::Impl {
     Vec3 eye{0.0};
 
     // Scratch reused by every draw(): no allocation once the crowd's size has been seen.
+    std::vector<const DrawItem*> items;                     // the list's items, indexable
     std::vector<std::uint32_t> itemGroup;
     std::vector<std::uint32_t> order;                       // items in drawing order
     std::vector<std::pair<float, std::uint32_t>> byDistance;  // (nearest distance, item) when sorting
@@ -436,7 +437,7 @@ struct GlRenderer::Impl {
 
     // Fills `order` with the items' indices, nearest first when options.frontToBack (by the nearest
     // point of each item's bounding sphere; ties keep list order), else in list order.
-    void orderItems(const std::vector<DrawItem>& items) {
+    void orderItems() {
         order.resize(items.size());
         if (!options.frontToBack) {
             for (std::size_t i = 0; i < items.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
@@ -445,7 +446,7 @@ struct GlRenderer::Impl {
         byDistance.resize(items.size());
         band.assign(items.size(), 0);
         for (std::size_t i = 0; i < items.size(); ++i) {
-            const DrawItem& item = items[i];
+            const DrawItem& item = *items[i];
             float key = 0.0f;
             if (item.drawable && item.worldMatrix) {
                 const Mat4& w = *item.worldMatrix;
@@ -626,7 +627,9 @@ void GlRenderer::draw(const DrawList& list) {
         if (!r.fragmentQuery) gl.GenQueries(1, &r.fragmentQuery);
         gl.BeginQuery(GL_SAMPLES_PASSED, r.fragmentQuery);
     }
-    const std::vector<DrawItem>& items = list.items();
+    r.items.clear();  // the list's segments, flattened once so that items are found by index
+    for (const DrawItem& item : list.items()) r.items.push_back(&item);
+    const std::vector<const DrawItem*>& items = r.items;
     ++r.drawStamp;
     r.lastMesh = nullptr;
     r.itemGroup.resize(items.size());
@@ -636,10 +639,10 @@ void GlRenderer::draw(const DrawList& list) {
 
     // 1. Check every item and sort it into a group (first appearance in drawing order: with
     // frontToBack, groups by their nearest item), before any drawing.
-    r.orderItems(items);
+    r.orderItems();
     std::size_t paletteMatrices = 0, cpuVertices = 0;
     for (const std::uint32_t i : r.order) {
-        const DrawItem& item = items[i];
+        const DrawItem& item = *items[i];
         if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
         const auto* meshDrawable = dynamic_cast<const MeshDrawable*>(item.drawable);
         if (!meshDrawable) {
@@ -723,7 +726,7 @@ void GlRenderer::draw(const DrawList& list) {
     const Vec3 eye = r.eye;
     for (const std::uint32_t i : r.order) {
         if (r.itemGroup[i] == kNone) continue;
-        const DrawItem& item = items[i];
+        const DrawItem& item = *items[i];
         Group& g = r.groups[r.itemGroup[i]];
         InstanceData& d = r.instances[g.first + g.filled++];
         const Mat4& w = *item.worldMatrix;

@@ -52,12 +52,6 @@ void CullVisitor::addDrawItem(const DrawItem& item, std::uint64_t primitives, co
     stats_.primitives += primitives;
 }
 
-void CullVisitor::spliceDrawItems(DrawList& items) {
-    stats_.drawItems += items.size();
-    stats_.primitives += items.primitiveCount();
-    drawList_.splice(items);
-}
-
 bool CullVisitor::enter(const Node& node) {
     ++stats_.nodesVisited;
     rejectedByOcclusion_ = false;

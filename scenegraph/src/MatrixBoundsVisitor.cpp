@@ -28,7 +28,9 @@ void MatrixBoundsVisitor::mergeChildren(Group& group) {
     BoundingSphere bound;
     bool occluders = false;
     for (const auto& child : group.children()) {
-        bound.expandBy(child->worldBound(), ops);
+        // A child well inside the bound so far leaves it unchanged: no square root (when counting,
+        // every child goes through expandBy as the cost model prices it).
+        if (ops || !bound.clearlyContains(child->worldBound())) bound.expandBy(child->worldBound(), ops);
         occluders = occluders || child->mayHoldOccluders_;
     }
     group.worldBound_ = bound;

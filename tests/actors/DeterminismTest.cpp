@@ -41,7 +41,8 @@ void expectSameWithThreads(Processing processing, bool counting) {
         for (std::size_t k = 0; k < processors.size(); ++k) processors[k]->processFrame(*worlds[k]->root, camera, t);
         const ActorFrameStatistics& s1 = processors[0]->statistics();
         const Crowd::State& a = worlds[0]->crowd.state();
-        const auto& l1 = processors[0]->drawList().items();
+        const auto listed = processors[0]->drawList().items();
+        const std::vector<DrawItem> l1(listed.begin(), listed.end());
         ASSERT_GT(l1.size(), 0u);
         for (std::size_t k = 1; k < processors.size(); ++k) {
             SCOPED_TRACE(::testing::Message() << threads[k] << " threads, frame " << f);
@@ -57,7 +58,8 @@ void expectSameWithThreads(Processing processing, bool counting) {
             ASSERT_TRUE(sameBytes(a.refWorld, b.refWorld));
             ASSERT_TRUE(sameBytes(a.sklsWorld, b.sklsWorld));
             ASSERT_TRUE(sameBytes(a.dofs, b.dofs));
-            const auto& lk = processors[k]->drawList().items();
+            const auto listedK = processors[k]->drawList().items();
+            const std::vector<DrawItem> lk(listedK.begin(), listedK.end());
             ASSERT_EQ(l1.size(), lk.size());
             for (std::size_t i = 0; i < l1.size(); ++i) {
                 ASSERT_EQ(l1[i].instance, lk[i].instance);

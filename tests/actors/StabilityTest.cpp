@@ -25,7 +25,8 @@ TEST(ActorStability, TheTable2SceneAMillionMetresAwayClassifiesAndDrawsAsTraditi
     const CostModelScene nearScene = buildCostModelScene(nearCrowd, table3, std::make_shared<KeyframeBehaviour>(), nearOptions);
     ActorProcessor nearProcessor(nearCrowd);
     nearProcessor.processFrame(*nearScene.root, nearScene.camera, nearScene.time);
-    const std::vector<DrawItem> nearItems = nearProcessor.drawList().items();
+    const auto listed = nearProcessor.drawList().items();
+    const std::vector<DrawItem> nearItems(listed.begin(), listed.end());
     for (const Vec3 origin : {Vec3(1e6, 0, -1e6), Vec3(-3e6, 2e5, 7e6)}) {
         Crowd crowd;
         CostModelSceneOptions options;

@@ -137,7 +137,8 @@ def check_against_kernels(m, expect):
             n, nodes, roots = s["actors"], s["nodesPerActor"], s["rootNodesPerActor"]
             # Every actor at level 0: the whole clip, every node's local matrix, its product with the
             # parent and with the Skeleton Root's world matrix.
-            p["CO_01a"] = n * (k["clipLocalTime"] + s["channelsPerActor"] * k["clipChannel"])
+            p["CO_01a"] = n * (k["clipLocalTime"] + s["keySearchesPerActor"] * k["clipKeySearch"]
+                               + s["channelsPerActor"] * k["clipChannel"])
             p["NO_01"] = n * (nodes * k["nodeLocalTransform"] + (nodes - roots) * k["compose"] + nodes * k["composeAffine"])
             p["CO_03a"] = n * k["clipRoot"]
             p["NO_05"] = s["lodDistances"] * k["detailDistanceSquared"]
@@ -145,10 +146,11 @@ def check_against_kernels(m, expect):
             n = s["actors"]
             posed = [s[f"posedAtLevel{level}"] for level in range(3)]
             channels = [s[f"channelsAtLevel{level}"] for level in range(3)]
+            searches = [s[f"keySearchesAtLevel{level}"] for level in range(3)]
             # Level 0 samples every active channel, level 1 holds keys, beyond the last band the rest
-            # pose is copied (no arithmetic).
-            p["CO_01a"] = ((posed[0] + posed[1]) * k["clipLocalTime"] + channels[0] * k["clipChannel"]
-                           + channels[1] * k["clipChannelHeld"])
+            # pose is copied (no arithmetic). Channels sharing key times share one key search.
+            p["CO_01a"] = ((posed[0] + posed[1]) * k["clipLocalTime"] + (searches[0] + searches[1]) * k["clipKeySearch"]
+                           + channels[0] * k["clipChannel"] + channels[1] * k["clipChannelHeld"])
             p["NO_01"] = (s["posedNodes"] * k["nodeLocalTransform"] + (s["posedNodes"] - s["posedRootNodes"]) * k["compose"]
                           + s["nodeDrawItems"] * k["composeAffine"])
             survivors = [s[f"survivorsAtLevel{level}"] for level in range(3)]

@@ -204,14 +204,15 @@ TEST(Traversal, UnchangedSubtreesAreNotRecomputedAndResultsMatchAFullRecompute) 
     // A processor recomputing everything reaches the same bounds and draw list.
     std::vector<BoundingSphere> incremental;
     for (const auto& c : scene->children()) incremental.push_back(c->worldBound());
-    const auto incrementalItems = proc.drawList().items();
+    const auto listed = proc.drawList().items();
+    const std::vector<DrawItem> incrementalItems(listed.begin(), listed.end());
     TraditionalProcessor full;
     full.setFullRecompute(true);
     full.processFrame(*scene, cam, 0.3);
     for (std::size_t i = 0; i < scene->childCount(); ++i) EXPECT_EQ(scene->child(i).worldBound(), incremental[i]);
     ASSERT_EQ(full.drawList().size(), incrementalItems.size());
-    for (std::size_t i = 0; i < incrementalItems.size(); ++i)
-        EXPECT_EQ(full.drawList().items()[i].node, incrementalItems[i].node);
+    std::size_t i = 0;
+    for (const DrawItem& item : full.drawList().items()) EXPECT_EQ(item.node, incrementalItems[i++].node);
 }
 
 namespace {

@@ -41,9 +41,10 @@ void CascadeFrame::prepareChunks(std::size_t count) {
     for (std::size_t c = 0; c < count; ++c) {
         ChunkOutput& out = chunks[c];
         out.counts = ActorFrameStatistics{};
-        out.ops.reset();
+        // Tallies are only written while the frame counts (counterOf gives null otherwise).
+        if (context.counter) out.ops.reset();
         out.ops.setEnabled(context.counter != nullptr);
-        out.items.clear();
+        out.items = nullptr;
         out.bound = BoundingSphere();
     }
 }

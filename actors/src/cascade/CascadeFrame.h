@@ -95,7 +95,7 @@ struct Settings {
 struct ChunkOutput {
     ActorFrameStatistics counts;      ///< counters only (no times)
     OpCounter ops;                    ///< FMULT tallies, enabled when the frame counts
-    DrawList items;                   ///< draw items (phase 7)
+    DrawSegment* items = nullptr;     ///< where its draw items go (phase 7): its own segment of the frame's list
     BoundingSphere bound;             ///< a group's bound, merged from its chunk's Refpoint Bspheres
 };
 
@@ -167,6 +167,17 @@ struct CascadeFrame {
     void parallel(std::size_t n, std::size_t grain, Body&& body) {
         const std::size_t count = chunkCount(n, grain);
         prepareChunks(count);
+        forEachChunk(n, grain, [&](std::size_t c, std::size_t begin, std::size_t end) { body(chunks[c], begin, end); });
+        joinChunks(count);
+    }
+    /// parallel(), each chunk writing its draw items into a segment of the frame's list of its
+    /// own, opened in chunk order: the items are written once, where DRAW reads them.
+    template <class Body>
+    void parallelDrawing(std::size_t n, std::size_t grain, Body&& body) {
+        const std::size_t count = chunkCount(n, grain);
+        prepareChunks(count);
+        const std::size_t first = drawList->openSegments(count);
+        for (std::size_t c = 0; c < count; ++c) chunks[c].items = &drawList->segment(first + c);
         forEachChunk(n, grain, [&](std::size_t c, std::size_t begin, std::size_t end) { body(chunks[c], begin, end); });
         joinChunks(count);
     }

@@ -1,6 +1,6 @@
 // Phase 7 of actor processing: the draw list. Impostors are placed at their Reference Point; posed
 // actors give their actor-level geometry (skinned with its palette) and each visible active node's
-// geometry at its vaLod level, and their held objects. Chunks build their own lists, joined in order.
+// geometry at its vaLod level, and their held objects. Each chunk writes its own segment of the list.
 
 #include "../ActorDrawItem.h"
 #include "CascadeFrame.h"
@@ -8,6 +8,7 @@
 #include "throng/actors/Crowd.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/actors/detail/PoseKernels.h"
 #include "throng/scenegraph/Drawable.h"
 
 namespace throng::cascade {
@@ -17,6 +18,14 @@ const Drawable* impostorOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
     for (const auto& [t, d] : *f.settings.impostors)
         if (t == &tmpl) return d.get();
     return nullptr;
+}
+
+// Appends the item drawing `d` for part `part` of the actor `a`, written in place and counted.
+DrawItem& emit(ChunkOutput& out, const detail::ActorItemBase& a, const Drawable& d, const Mat4* world, std::uint32_t part,
+               int level, std::size_t paletteSize = 0, Representation representation = Representation::Mesh) {
+    ++out.counts.drawItems;
+    out.counts.primitives += d.primitiveCount();
+    return detail::addActorPart(*out.items, a, d, part, level, world, paletteSize, representation);
 }
 
 // The items of posed actor j (its index among the posed).
@@ -32,24 +41,17 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
     const Mat4& skls = s.sklsWorld[id];
     const double d2 = f.detail2[f.posed[j]];
     const bool all = f.visibility[j] == kAllVisible;
-    auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level) {
-        out.items.add(detail::actorPartItem(a, d, part, level), d.primitiveCount(), world);
-        ++out.counts.drawItems;
-        out.counts.primitives += d.primitiveCount();
-    };
+    const auto self = static_cast<std::uint32_t>(n);  // the part number of the actor-level geometry
     const int rootLevel = t.rootGeometry().selectSquared(d2);
     if (rootLevel >= 0 && (all || f.rootVisible[j])) {
         const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
         if (lv.drawable && lv.skin >= 0) {  // the palette is computed straight into the list
             const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-            const std::span<glm::mat4> palette =
-                out.items.addSkinned(detail::actorPartItem(a, *lv.drawable, static_cast<std::uint32_t>(n), rootLevel),
-                                     lv.drawable->primitiveCount(), skls, skin.joints.size());
-            computeSkinPalette(t, skin, model, active, palette, nodeOps);
-            ++out.counts.drawItems;
-            out.counts.primitives += lv.drawable->primitiveCount();
+            const DrawItem& item = emit(out, a, *lv.drawable, out.items->copyMatrix(skls), self, rootLevel, skin.joints.size());
+            computeSkinPalette(t, skin, model, active,
+                               std::span<glm::mat4>(const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize), nodeOps);
         } else if (lv.drawable) {
-            emit(*lv.drawable, skls, static_cast<std::uint32_t>(n), rootLevel);
+            emit(out, a, *lv.drawable, out.items->copyMatrix(skls), self, rootLevel);
         }
     }
     const auto tnodes = t.nodes();
@@ -63,7 +65,10 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
         if (level < 0) continue;
         const auto& d = tnodes[i].geometry.levels()[static_cast<std::size_t>(level)].drawable;
         if (!d) continue;
-        emit(*d, composeAffine(skls, model[i].toDMat4(), nodeOps), static_cast<std::uint32_t>(i), level);
+        // The part's world matrix is composed once, straight into the list.
+        Mat4* world = out.items->matrixRoom();
+        detail::nodeWorldMatrix(skls, model[i], *world, nodeOps);
+        emit(out, a, *d, world, static_cast<std::uint32_t>(i), level);
     }
     if (s.held[id] < 0) return;
     const auto& held = s.heldObjects[static_cast<std::size_t>(s.held[id])];
@@ -76,7 +81,7 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
             ++out.counts.spheresTested;
             if (f.frustum.classify(held[k].drawable->localBound().transformed(world), m) == Containment::Outside) continue;
         }
-        emit(*held[k].drawable, world, static_cast<std::uint32_t>(n + 1 + k), 0);
+        emit(out, a, *held[k].drawable, out.items->copyMatrix(world), self + 1 + k, 0);
     }
 }
 
@@ -90,14 +95,12 @@ void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, c
     const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(level)];
     if (!lv.drawable) return;
     const std::uint32_t part = static_cast<std::uint32_t>(t.nodeCount());
-    DrawItem item = detail::actorPartItem(a, *lv.drawable, part, level, lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
+    DrawItem& item = emit(out, a, *lv.drawable, out.items->copyMatrix(s.sklsWorld[a.id]), part, level, 0,
+                          lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
     if (lv.skin >= 0) {
         item.keyPose = f.keyPoseOf[survivor];
         item.keyPose.skin = static_cast<std::uint32_t>(lv.skin);
     }
-    out.items.add(item, lv.drawable->primitiveCount(), s.sklsWorld[a.id]);
-    ++out.counts.drawItems;
-    out.counts.primitives += lv.drawable->primitiveCount();
 }
 
 }  // namespace
@@ -105,7 +108,7 @@ void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, c
 void buildDrawList(CascadeFrame& f) {
     const Crowd::State& s = f.crowd->state();
     const double time = f.context.time;
-    f.parallel(f.shown.size(), kHeavyGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+    f.parallelDrawing(f.shown.size(), kHeavyGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         OpTally* nodeOps = tallyFor(f.counterOf(out), OpCategory::SkeletonMatrix);
         for (std::size_t k = begin; k < end; ++k) {
             const std::uint32_t j = f.posedOf[k];
@@ -123,14 +126,10 @@ void buildDrawList(CascadeFrame& f) {
             // An impostor: one item at the Reference Point, no Skeleton node processed.
             const ActorTemplate& t = *s.tmpl[cand.id];
             const Drawable& impostor = *impostorOf(f, t);
-            out.items.add(detail::actorPartItem(a, impostor, static_cast<std::uint32_t>(t.nodeCount()), 0, Representation::Impostor),
-                          impostor.primitiveCount(), s.refWorld[cand.id]);
-            ++out.counts.drawItems;
-            out.counts.primitives += impostor.primitiveCount();
+            emit(out, a, impostor, out.items->copyMatrix(s.refWorld[cand.id]), static_cast<std::uint32_t>(t.nodeCount()), 0, 0,
+                 Representation::Impostor);
         }
     });
-    // The chunks' items join the frame's list in chunk order, with their storage (no copy).
-    for (std::size_t c = 0; c < chunkCount(f.shown.size(), kHeavyGrain); ++c) f.drawList->splice(f.chunks[c].items);
 }
 
 }  // namespace throng::cascade

@@ -64,10 +64,15 @@ public:
 
     /// Local time used for `t`: wrapped or clamped into [0, duration].
     double localTime(double t, bool loop) const;
+    /// Per channel, the first channel with the very same key times (itself when none): channels
+    /// that share a time source share the key search when sampled (glTF samplers often share
+    /// their input accessor; procedural clips key every channel alike).
+    std::span<const std::uint32_t> timeSources() const { return timeSources_; }
 
 private:
     std::string name_;
     std::vector<ClipChannel> channels_;
+    std::vector<std::uint32_t> timeSources_;
     double duration_ = 0.0;
 };
 

@@ -102,7 +102,7 @@ public:
         /// What one chunk of a parallel loop produced, joined in chunk order.
         struct Chunk {
             OpCounter ops;                           ///< FMULT tallies (enabled when counting)
-            DrawList items;                          ///< draw items
+            DrawSegment* items = nullptr;            ///< where its draw items go (CULL only)
             BoundingSphere bound;                    ///< union of the chunk's actors' bounds
             std::vector<PlaneMask> masks;            ///< scratch: plane mask per node while culling
             MatrixBoundsStatistics matrices;         ///< matrix and sphere work

@@ -39,6 +39,11 @@ double eyeDistance(const Mat4& skeletonRootWorld, const Vec3& eye, OpTally* ops 
 /// The Skeleton Root's transform relative to the Reference Point as a matrix (18 mults, 15 adds).
 Mat4 rootPoseMatrix(const RootPose& root, OpTally* ops = nullptr);
 
+/// World matrix of a node: the Skeleton Root's world matrix times the node's `model` transform,
+/// written into `world` (the same product as composeAffine(skeletonRootWorld, model.toDMat4()),
+/// without building either 4x4 operand or the result apart).
+void nodeWorldMatrix(const Mat4& skeletonRootWorld, const Affine& model, Mat4& world, OpTally* ops = nullptr);
+
 /// World sphere of a part: `local` (in its node's frame) placed by the node's `model` transform,
 /// then by the Skeleton Root's world matrix. Both processing methods test parts with it.
 BoundingSphere partWorldSphere(const BoundingSphere& local, const Affine& model, const Mat4& skeletonRootWorld,

@@ -82,9 +82,11 @@ public:
     /// skin palette kept by the list.
     void addDrawItem(const DrawItem& item, std::uint64_t primitives, const Mat4& world,
                      std::span<const glm::mat4> palette = {});
-    /// Moves every item of `items` (made apart, for example by a chunk of a parallel loop) to the end
-    /// of the draw list, in order, with their storage (DrawList::splice); `items` is left empty.
-    void spliceDrawItems(DrawList& items);
+    /// Opens `count` segments at the end of the draw list for writers that fill them apart (the
+    /// chunks of a parallel loop, see DrawList::openSegments); returns the index of the first.
+    std::size_t openDrawSegments(std::size_t count) { return drawList_.openSegments(count); }
+    /// Segment `i` of the draw list, opened by openDrawSegments().
+    DrawSegment& drawSegment(std::size_t i) { return drawList_.segment(i); }
     /// Work counters, for nodes that cull parts themselves.
     CullStatistics& statistics() { return stats_; }
 

@@ -3,9 +3,17 @@
 // A list owns copies of the matrices and skin palettes its items use, so it describes its frame
 // completely: DRAW may render it while the next frame is stepped and culled (Performer's
 // multiprocess mode), and nothing at draw time needs to look back into the scene or the crowd.
+//
+// A list is a sequence of segments. Writers that work apart (the chunks of a parallel loop) each
+// fill a segment of their own, opened in the order their items must appear, so their items are
+// written once, straight where DRAW reads them, and are never moved to join the list. Segments,
+// their items and their matrices are kept from frame to frame: a list warm from a frame of a given
+// size builds another such frame without allocating.
 
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -50,102 +58,227 @@ struct DrawItem {
     KeyPoseRef keyPose;                  ///< Representation::KeyPose: the cached poses shown
 };
 
-/// An ordered list of draw items with running totals, reused from frame to frame without reallocating.
-class DrawList {
+/// A run of consecutive items of a DrawList, with the matrices and palettes they point to, filled
+/// by one writer. Its memory is kept when it is cleared.
+class DrawSegment {
 public:
-    /// Empties the list and its matrix storage, keeping their capacity.
-    void clear() {
-        items_.clear();
-        primitives_ = 0;
-        own_.clear();
-        for (Storage& s : adopted_) {
-            s.clear();
-            spares_.push_back(std::move(s));
-        }
-        adopted_.clear();
-    }
-    /// Reserves room for `n` items.
-    void reserve(std::size_t n) { items_.reserve(n); }
     /// Appends `item` as it is: its matrix and palette pointers must stay valid while the list is
     /// drawn (tests and hand-made lists). `primitives` is added to primitiveCount().
     void add(const DrawItem& item, std::uint64_t primitives) {
         items_.push_back(item);
         primitives_ += primitives;
     }
-    /// Appends `item` with copies of `world` and `palette` kept by the list (the item's pointers
+    /// Appends `item` with copies of `world` and `palette` kept by the segment (the item's pointers
     /// are set to the copies), so the list stays valid whatever happens to the scene.
     void add(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
         const std::span<glm::mat4> room = addSkinned(item, primitives, world, palette.size());
         std::copy(palette.begin(), palette.end(), room.begin());
     }
     /// Appends `item` with a copy of `world` and room for a skin palette of `paletteSize` matrices,
-    /// both kept by the list; returns the room, for the caller to fill before the list is drawn.
+    /// both kept by the segment; returns the room, for the caller to fill before the list is drawn.
     std::span<glm::mat4> addSkinned(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
-        glm::mat4* palette = paletteSize ? own_.palettes.allocate(paletteSize) : nullptr;
-        const Mat4* matrix = own_.matrices.push(world);
-        // The item is copied once, into the list, and its pointers set there: crowds add thousands
-        // of items a frame, and each extra copy of a just-built item stalls on its stores.
-        DrawItem& added = items_.emplace_back(item);
+        const Mat4* matrix = copyMatrix(world);
+        DrawItem& added = emplace(primitives, matrix, paletteSize);
+        const glm::mat4* palette = added.skinPalette;
+        added = item;
         added.worldMatrix = matrix;
         added.skinPalette = palette;
         added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
+        return {const_cast<glm::mat4*>(palette), paletteSize};
+    }
+    /// Appends an item with default fields but `worldMatrix` (`world`) and, when `paletteSize` is
+    /// not 0, `skinPalette` (room for that many matrices, kept by the segment, to be filled before
+    /// the list is drawn), and returns it for the caller to fill in place. Hot loops make their
+    /// items so: an item built elsewhere and copied in stalls on reading back its own stores.
+    DrawItem& emplace(std::uint64_t primitives, const Mat4* world, std::size_t paletteSize = 0) {
+        DrawItem& added = items_.emplace_back();
+        added.worldMatrix = world;
+        if (paletteSize) {
+            added.skinPalette = palettes_.allocate(paletteSize);
+            added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
+        }
         primitives_ += primitives;
-        return {palette, paletteSize};
+        return added;
     }
-    /// Appends every item of `other` in order, with copies of their matrices and palettes.
-    void append(const DrawList& other) {
-        for (const DrawItem& item : other.items_) {
-            if (!item.worldMatrix) {
-                items_.push_back(item);
-                continue;
-            }
-            add(item, 0, *item.worldMatrix,
-                item.skinPalette ? std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize)
-                                 : std::span<const glm::mat4>());
-        }
-        primitives_ += other.primitives_;
+    /// Room for a world matrix kept by the segment, for a caller that composes the matrix there
+    /// once instead of building it apart and having it copied.
+    Mat4* matrixRoom() { return matrices_.allocate(1); }
+    /// A copy of `world` kept by the segment.
+    const Mat4* copyMatrix(const Mat4& world) {
+        Mat4* room = matrixRoom();
+        *room = world;
+        return room;
     }
-    /// Moves every item of `other` to the end of this list, in order, together with the storage
-    /// their matrices and palettes live in (nothing is copied but the items). `other` is left empty
-    /// with storage this list no longer needs, so lists that splice into each other frame after
-    /// frame stop allocating once warm. Items `other` holds with outside pointers keep them.
-    void splice(DrawList& other) {
-        items_.insert(items_.end(), other.items_.begin(), other.items_.end());
-        primitives_ += other.primitives_;
-        other.items_.clear();
-        other.primitives_ = 0;
-        for (Storage& s : other.adopted_) adopted_.push_back(std::move(s));
-        other.adopted_.clear();
-        adopted_.push_back(std::move(other.own_));
-        if (spares_.empty()) {
-            other.own_ = Storage{};
-        } else {
-            other.own_ = std::move(spares_.back());
-            spares_.pop_back();
-        }
-    }
-    /// The items, in the order CULL produced them.
-    const std::vector<DrawItem>& items() const { return items_; }
+    /// The items, in the order they were added.
+    std::span<const DrawItem> items() const { return items_; }
     /// Number of items.
     std::size_t size() const { return items_.size(); }
-    /// Total primitives of all items.
+    /// Total primitives of the items.
     std::uint64_t primitiveCount() const { return primitives_; }
+    /// Reserves room for `n` items.
+    void reserve(std::size_t n) { items_.reserve(n); }
+    /// Empties the segment, keeping its memory.
+    void clear() {
+        items_.clear();
+        matrices_.clear();
+        palettes_.clear();
+        primitives_ = 0;
+    }
 
 private:
-    // Where the list's own copies of matrices and palettes live.
-    struct Storage {
-        FrameArena<Mat4> matrices;
-        FrameArena<glm::mat4> palettes;
-        void clear() {
-            matrices.clear();
-            palettes.clear();
-        }
-    };
+    friend class DrawList;
     std::vector<DrawItem> items_;
+    FrameArena<Mat4> matrices_;
+    FrameArena<glm::mat4> palettes_;
     std::uint64_t primitives_ = 0;
-    Storage own_;                    // what add() writes into
-    std::vector<Storage> adopted_;   // storage spliced in with other lists' items
-    std::vector<Storage> spares_;    // cleared storage, handed to lists that splice into this one
+};
+
+/// An ordered list of draw items, made of segments, reused from frame to frame without reallocating.
+class DrawList {
+public:
+    /// Every item of a list in order, across its segments (a forward range). Valid until the list
+    /// is next changed.
+    class Items {
+    public:
+        /// Walks the items segment by segment.
+        class iterator {
+        public:
+            using iterator_category = std::forward_iterator_tag;
+            using value_type = DrawItem;
+            using difference_type = std::ptrdiff_t;
+            using pointer = const DrawItem*;
+            using reference = const DrawItem&;
+            iterator() = default;
+            reference operator*() const { return (*segment_)->items()[index_]; }
+            pointer operator->() const { return &**this; }
+            iterator& operator++() {
+                ++index_;
+                skipEnded();
+                return *this;
+            }
+            iterator operator++(int) {
+                iterator before = *this;
+                ++*this;
+                return before;
+            }
+            bool operator==(const iterator& other) const { return segment_ == other.segment_ && index_ == other.index_; }
+
+        private:
+            friend class Items;
+            using Segments = const std::unique_ptr<DrawSegment>*;
+            iterator(Segments segment, Segments end) : segment_(segment), end_(end) { skipEnded(); }
+            void skipEnded() {
+                while (segment_ != end_ && index_ == (*segment_)->size()) {
+                    ++segment_;
+                    index_ = 0;
+                }
+            }
+            Segments segment_ = nullptr, end_ = nullptr;
+            std::size_t index_ = 0;
+        };
+        /// The first item.
+        iterator begin() const { return iterator(first_, last_); }
+        /// Past the last item.
+        iterator end() const { return iterator(last_, last_); }
+        /// Number of items.
+        std::size_t size() const { return size_; }
+        /// Whether there is no item.
+        bool empty() const { return size_ == 0; }
+        /// Item `i` (walks the segments: for tests and occasional lookups, not for loops over the list).
+        const DrawItem& operator[](std::size_t i) const {
+            for (auto s = first_;; ++s) {
+                if (i < (*s)->size()) return (*s)->items()[i];
+                i -= (*s)->size();
+            }
+        }
+        /// The first item (the list must not be empty).
+        const DrawItem& front() const { return *begin(); }
+
+    private:
+        friend class DrawList;
+        Items(const std::unique_ptr<DrawSegment>* first, const std::unique_ptr<DrawSegment>* last, std::size_t size)
+            : first_(first), last_(last), size_(size) {}
+        const std::unique_ptr<DrawSegment>* first_;
+        const std::unique_ptr<DrawSegment>* last_;
+        std::size_t size_;
+    };
+
+    /// Empties the list, keeping its segments and their memory.
+    void clear() {
+        for (std::size_t s = 0; s < used_; ++s) segments_[s]->clear();
+        used_ = 0;
+        serialOpen_ = false;
+    }
+    /// Reserves room for `n` items in the segment add() writes into next.
+    void reserve(std::size_t n) { serial().reserve(n); }
+    /// Appends `item` as it is (see DrawSegment::add).
+    void add(const DrawItem& item, std::uint64_t primitives) { serial().add(item, primitives); }
+    /// Appends `item` with copies of `world` and `palette` (see DrawSegment::add).
+    void add(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
+        serial().add(item, primitives, world, palette);
+    }
+    /// Appends `item` with a copy of `world` and room for its palette (see DrawSegment::addSkinned).
+    std::span<glm::mat4> addSkinned(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
+        return serial().addSkinned(item, primitives, world, paletteSize);
+    }
+    /// Opens `count` empty segments at the end of the list, for writers that fill them apart (each
+    /// chunk of a parallel loop its own); their items appear in segment order, whatever order they
+    /// are filled in. Returns the index of the first; segment(i) gives each. Items added with add()
+    /// afterwards go after them.
+    std::size_t openSegments(std::size_t count) {
+        const std::size_t first = used_;
+        used_ += count;
+        while (segments_.size() < used_) segments_.push_back(std::make_unique<DrawSegment>());
+        serialOpen_ = false;
+        return first;
+    }
+    /// Segment `i` (opened this frame).
+    DrawSegment& segment(std::size_t i) { return *segments_[i]; }
+    /// Appends every item of `other` in order, with copies of their matrices and palettes (items
+    /// `other` holds with outside pointers keep them).
+    void append(const DrawList& other) {
+        DrawSegment& into = serial();
+        for (const DrawItem& item : other.items()) {
+            if (!item.worldMatrix) {
+                into.add(item, 0);
+                continue;
+            }
+            into.add(item, 0, *item.worldMatrix,
+                     item.skinPalette ? std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize)
+                                      : std::span<const glm::mat4>());
+        }
+        into.primitives_ += other.primitiveCount();  // as the other list counted them
+    }
+    /// The items, in the order CULL produced them.
+    Items items() const { return Items(segments_.data(), segments_.data() + used_, size()); }
+    /// Number of items.
+    std::size_t size() const {
+        std::size_t n = 0;
+        for (std::size_t s = 0; s < used_; ++s) n += segments_[s]->size();
+        return n;
+    }
+    /// Total primitives of all items.
+    std::uint64_t primitiveCount() const {
+        std::uint64_t n = 0;
+        for (std::size_t s = 0; s < used_; ++s) n += segments_[s]->primitiveCount();
+        return n;
+    }
+    /// The segments in use, in order (a renderer may walk them instead of the items).
+    std::span<const std::unique_ptr<DrawSegment>> segments() const { return {segments_.data(), used_}; }
+
+private:
+    // The segment add() writes into: the last one, unless segments were opened for other writers
+    // since, in which case a new one after them.
+    DrawSegment& serial() {
+        if (!serialOpen_) {
+            openSegments(1);
+            serialOpen_ = true;
+        }
+        return *segments_[used_ - 1];
+    }
+    std::vector<std::unique_ptr<DrawSegment>> segments_;  // kept across frames; the first used_ are in use
+    std::size_t used_ = 0;
+    bool serialOpen_ = false;
 };
 
 }  // namespace throng

@@ -1,6 +1,8 @@
 #pragma once
 // Storage for what a frame's draw items point to (model matrices, skin palettes): addresses stay
-// valid until clear(), and memory is reused from frame to frame (no allocation once warmed up).
+// valid until clear(), and memory is reused from frame to frame. An arena that needed several
+// blocks in a frame is merged into one block of their total size when it is cleared, so once warm
+// it holds one block that every later frame of the same size fills without allocating or faulting.
 
 #include <algorithm>
 #include <memory>
@@ -23,7 +25,7 @@ public:
         while (current_ < chunks_.size() && chunks_[current_].size - chunks_[current_].used < n) ++current_;
         if (current_ == chunks_.size()) {
             // Blocks grow geometrically: small lists stay small, large ones need few blocks.
-            const std::size_t size = std::max(n, chunks_.empty() ? kFirstChunk : std::min(kLargestChunk, 2 * chunks_.back().size));
+            const std::size_t size = std::max(n, chunks_.empty() ? kFirstChunk : 2 * chunks_.back().size);
             chunks_.push_back(Chunk{std::make_unique_for_overwrite<T[]>(size), size, 0});  // written before read: no zeroing
         }
         Chunk& c = chunks_[current_];
@@ -32,18 +34,29 @@ public:
         size_ += n;
         return out;
     }
-    /// Forgets every value (keeps the memory).
+    /// Forgets every value. Keeps the memory: merged into one block when it was spread over several.
     void clear() {
+        if (chunks_.size() > 1) {
+            std::size_t total = 0;
+            for (const Chunk& c : chunks_) total += c.size;
+            chunks_.clear();
+            chunks_.push_back(Chunk{std::make_unique_for_overwrite<T[]>(total), total, 0});
+        }
         for (Chunk& c : chunks_) c.used = 0;
         current_ = 0;
         size_ = 0;
     }
     /// Number of values stored.
     std::size_t size() const { return size_; }
+    /// Values the arena holds room for without allocating.
+    std::size_t capacity() const {
+        std::size_t total = 0;
+        for (const Chunk& c : chunks_) total += c.size;
+        return total;
+    }
 
 private:
     static constexpr std::size_t kFirstChunk = 64;
-    static constexpr std::size_t kLargestChunk = 16384;
     struct Chunk {
         std::unique_ptr<T[]> data;
         std::size_t size = 0;

@@ -87,15 +87,23 @@ W clipLocalTime(W duration, W t, bool loop, OpTally* ops) {
     return std::clamp(t, W(0), duration);
 }
 
-/// Writes channel `c`'s value at local time `t` into `out` (`width` values).
+/// The index of the first key of `times` after local time `t` (key k = result - 1 holds
+/// times[k] <= t < times[k+1]), found by binary search.
 template <class S>
-void sampleChannel(const ClipChannel& c, int width, bool orientation, S t, S* out, OpTally* ops, bool holdKeys) {
+std::size_t keyAfter(const std::vector<float>& times, S t, OpTally* ops) {
+    const auto it = std::upper_bound(times.begin(), times.end(), t);
+    const std::size_t upper = static_cast<std::size_t>(it - times.begin());
+    THRONG_TALLY(ops, 0, upperBoundComparisons(times.size(), upper), 0, 0);
+    return upper;
+}
+
+/// Writes channel `c`'s value at local time `t` into `out` (`width` values), its key found by
+/// keyAfter (`upper`): channels sharing their key times share one search.
+template <class S>
+void sampleChannelAt(const ClipChannel& c, int width, bool orientation, S t, std::size_t upper, S* out, OpTally* ops,
+                     bool holdKeys) {
     const std::size_t stride = valuesPerKey(c.interpolation, width);
     const std::size_t keys = c.times.size();
-    // Key k with times[k] <= t < times[k+1], found by binary search.
-    const auto it = std::upper_bound(c.times.begin(), c.times.end(), t);
-    const std::size_t upper = static_cast<std::size_t>(it - c.times.begin());
-    THRONG_TALLY(ops, 0, upperBoundComparisons(keys, upper), 0, 0);
     const std::size_t valueIndex = c.interpolation == Interpolation::CubicSpline ? 1 : 0;  // skip in-tangent
     if (upper == 0 || upper == keys || c.interpolation == Interpolation::Step || holdKeys) {
         const std::size_t k = upper == 0 ? 0 : upper - 1;
@@ -142,19 +150,35 @@ void sampleChannel(const ClipChannel& c, int width, bool orientation, S t, S* ou
     }
 }
 
-/// Samples the node channels of `clip` (see AnimationClip::sample).
+/// Writes channel `c`'s value at local time `t` into `out` (`width` values).
+template <class S>
+void sampleChannel(const ClipChannel& c, int width, bool orientation, S t, S* out, OpTally* ops, bool holdKeys) {
+    sampleChannelAt(c, width, orientation, t, keyAfter(c.times, t, ops), out, ops, holdKeys);
+}
+
+/// Samples the node channels of `clip` (see AnimationClip::sample). A run of channels with the
+/// same key times (AnimationClip::timeSources) searches them once.
 template <class S>
 std::size_t sampleClip(const AnimationClip& clip, const ActorTemplate& tmpl, Wide<S> t, bool loop,
                        std::span<const std::uint8_t> active, std::span<S> dofs, OpTally* ops, bool holdKeys) {
     const S ft = static_cast<S>(clipLocalTime(Wide<S>(clip.duration()), t, loop, ops));
+    const auto channels = std::span<const ClipChannel>(clip.channels());
+    const auto sources = clip.timeSources();
     std::size_t written = 0;
-    for (const ClipChannel& c : clip.channels()) {
+    std::uint32_t searched = ~std::uint32_t{0};  // the time source of the last search
+    std::size_t upper = 0;
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+        const ClipChannel& c = channels[i];
         if (c.target != ClipChannel::Target::NodeDof) continue;
         if (!active.empty() && !active[c.node]) continue;  // inactive nodes are never evaluated
+        if (sources[i] != searched) {
+            searched = sources[i];
+            upper = keyAfter(c.times, ft, ops);
+        }
         const DofKind kind = tmpl.nodes()[c.node].dofs[c.dof].kind;
         const int width = dofValueCount(kind);
-        sampleChannel(c, width, kind == DofKind::Orientation, ft, dofs.data() + tmpl.dofValueOffset(c.node, c.dof), ops,
-                      holdKeys);
+        sampleChannelAt(c, width, kind == DofKind::Orientation, ft, upper, dofs.data() + tmpl.dofValueOffset(c.node, c.dof),
+                        ops, holdKeys);
         written += static_cast<std::size_t>(width);
     }
     return written;
