@@ -7,7 +7,7 @@
 namespace throng {
 
 KeyPoseRows::KeyPoseRows(std::uint32_t rows, std::uint32_t poseCount)
-    : poseRow_(poseCount, kNone), rowPose_(rows, kNone), rowUsed_(rows, 0), wantedNow_(rows, 0) {
+    : poseRow_(poseCount, kNone), rowPose_(rows, kNone), rowUsed_(rows, 0), wantedNow_(rows, 0), poseSeen_(poseCount, 0) {
     if (rows == 0) throw std::invalid_argument("KeyPoseRows: a cache needs at least one row");
 }
 
@@ -19,11 +19,14 @@ std::uint32_t KeyPoseRows::hold(std::span<const std::uint32_t> wanted, std::uint
         if (p >= poseRow_.size())
             throw std::invalid_argument("KeyPoseRows::hold: pose " + std::to_string(p) + " is out of range (the cache knows " +
                                         std::to_string(poseRow_.size()) + " poses)");
-    std::vector<std::uint32_t> sorted(wanted.begin(), wanted.end());
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-        throw std::invalid_argument("KeyPoseRows::hold: pose " + std::to_string(*std::adjacent_find(sorted.begin(), sorted.end())) +
-                                    " is wanted twice");
+    // Duplicates found with per-pose marks (no copy to sort), cleared again before returning or throwing.
+    std::uint32_t twice = kNone;
+    for (const std::uint32_t p : wanted) {
+        if (poseSeen_[p]) twice = p;
+        poseSeen_[p] = 1;
+    }
+    for (const std::uint32_t p : wanted) poseSeen_[p] = 0;
+    if (twice != kNone) throw std::invalid_argument("KeyPoseRows::hold: pose " + std::to_string(twice) + " is wanted twice");
     std::fill(wantedNow_.begin(), wantedNow_.end(), std::uint8_t{0});
     for (const std::uint32_t p : wanted)
         if (poseRow_[p] != kNone) {
@@ -60,9 +63,14 @@ void KeyPoseRows::touch(std::uint32_t pose, std::uint64_t frame) {
 
 std::vector<std::uint32_t> KeyPoseRows::held() const {
     std::vector<std::uint32_t> poses;
+    held(poses);
+    return poses;
+}
+
+void KeyPoseRows::held(std::vector<std::uint32_t>& poses) const {
+    poses.clear();
     for (const std::uint32_t p : rowPose_)
         if (p != kNone) poses.push_back(p);
-    return poses;
 }
 
 void KeyPoseRows::clear() {

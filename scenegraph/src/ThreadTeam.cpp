@@ -14,7 +14,7 @@
 
 namespace throng {
 
-void forEachChunk(std::size_t n, std::size_t grain, const ChunkBody& body) {
+void forEachChunk(std::size_t n, std::size_t grain, ChunkBody body) {
     if (grain == 0) throw std::invalid_argument("forEachChunk: argument 'grain' must be at least 1");
     const std::size_t chunks = chunkCount(n, grain);
     if (chunks == 0) return;
@@ -48,6 +48,6 @@ ThreadTeam::ThreadTeam(unsigned threads) : threads_(threads) {
 
 ThreadTeam::~ThreadTeam() = default;
 
-void ThreadTeam::run(const std::function<void()>& work) { impl_->arena.execute(work); }
+void ThreadTeam::run(CallableRef<void()> work) { impl_->arena.execute([work] { work(); }); }
 
 }  // namespace throng

@@ -154,6 +154,9 @@ struct CascadeFrame {
     std::vector<std::uint32_t> secondPose;  ///< per pose of the cache being selected: the second pose its actors need
     std::vector<std::uint8_t> poseNeeded;   ///< per pose of the cache being selected: some actor needs it
     std::vector<KeyPoseDemand> demand;      ///< the demands of the cache being selected
+    std::vector<std::uint32_t> resident;    ///< the poses its rows held before the selection
+    std::vector<std::uint32_t> chosen;      ///< the poses selected
+    KeyPoseSelectionWorkspace selection;    ///< the selection's scratch
 
     std::vector<ChunkOutput> chunks;        ///< one per chunk of the current parallel loop
 

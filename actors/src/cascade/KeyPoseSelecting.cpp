@@ -45,9 +45,9 @@ void selectKeyPoses(CascadeFrame& f) {
         for (const std::uint8_t x : needed) stats.keyPosesWanted += x;
         cache.recordDemand(demand);
         KeyPoseRows& rows = cache.rows();
-        const std::vector<std::uint32_t> resident = rows.held();
-        const std::vector<std::uint32_t> chosen = selectKeyPosesGreedy(demand, rows.rowCount(), resident);
-        stats.keyPoseUpdates += rows.hold(chosen, f.context.frame);
+        rows.held(f.resident);
+        selectKeyPosesGreedy(demand, rows.rowCount(), f.resident, f.selection, f.chosen);
+        stats.keyPoseUpdates += rows.hold(f.chosen, f.context.frame);
         for (std::size_t k = 0; k < n; ++k) {
             if (f.outcome[k] != kCached || f.cacheOf[k] != ci) continue;
             KeyPoseRef& ref = f.keyPoseOf[k];

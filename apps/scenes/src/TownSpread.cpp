@@ -1,5 +1,6 @@
 #include "throng/scenes/TownSpread.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -10,11 +11,13 @@
 
 namespace throng::scenes {
 
-TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, double blockSize, std::uint64_t seed) {
+TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, double blockSize, std::uint64_t seed,
+                           std::shared_ptr<const ActorTemplate> figure) {
     TownSpread town;
     town.root = std::make_shared<Group>();
     town.root->setName("town");
-    const auto humanoid = makeSeedHumanoid();
+    const auto humanoid = figure ? std::move(figure) : makeSeedHumanoid();
+    const int walkClip = humanoid->findClip("walk");
     auto walk = std::make_shared<KeyframeBehaviour>();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -23,7 +26,7 @@ TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, doub
     for (std::size_t i = 0; i < actors; ++i) {
         KeyframeBehaviour::Actor a;
         a.tmpl = humanoid;
-        a.clip = humanoid->findClip("walk");
+        a.clip = std::max(walkClip, 0);
         a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
         a.heading = 6.283 * u(rng);
         a.pathRadius = 3.0 + 10.0 * u(rng);

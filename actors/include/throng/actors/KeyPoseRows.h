@@ -37,6 +37,8 @@ public:
     std::uint32_t poseCount() const { return static_cast<std::uint32_t>(poseRow_.size()); }
     /// Poses currently held, in row order.
     std::vector<std::uint32_t> held() const;
+    /// Writes the poses currently held, in row order, into `poses` (emptied first; its memory kept).
+    void held(std::vector<std::uint32_t>& poses) const;
     /// Number of rows holding a pose.
     std::uint32_t heldCount() const {
         return static_cast<std::uint32_t>(rowPose_.size() - static_cast<std::size_t>(std::count(rowPose_.begin(), rowPose_.end(), kNone)));
@@ -49,6 +51,7 @@ private:
     std::vector<std::uint32_t> rowPose_;   // per row: its pose or kNone
     std::vector<std::uint64_t> rowUsed_;   // per row: last frame its pose was used
     std::vector<std::uint8_t> wantedNow_;  // scratch: per row, wanted in the current hold()
+    std::vector<std::uint8_t> poseSeen_;   // scratch: per pose, met in `wanted` (all 0 between calls)
 };
 
 }  // namespace throng

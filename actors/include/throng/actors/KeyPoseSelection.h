@@ -27,6 +27,20 @@ struct KeyPoseDemand {
 std::vector<std::uint32_t> selectKeyPosesGreedy(std::span<const KeyPoseDemand> demand, std::uint32_t capacity,
                                                 std::span<const std::uint32_t> resident = {});
 
+/// Scratch of the greedy selection, kept by the caller from frame to frame: once it has seen a
+/// frame's demands and poses, selecting again allocates nothing.
+struct KeyPoseSelectionWorkspace {
+    std::vector<std::uint32_t> order;    ///< demands, best first
+    std::vector<std::uint8_t> resident;  ///< per pose: held before this selection
+    std::vector<std::uint8_t> chosen;    ///< per pose: chosen so far
+};
+
+/// selectKeyPosesGreedy writing the chosen poses into `chosen` (emptied first), with its scratch in
+/// `workspace`; the same result.
+void selectKeyPosesGreedy(std::span<const KeyPoseDemand> demand, std::uint32_t capacity,
+                          std::span<const std::uint32_t> resident, KeyPoseSelectionWorkspace& workspace,
+                          std::vector<std::uint32_t>& chosen);
+
 /// Actors whose every pose is in `poses`.
 std::uint64_t actorsServed(std::span<const KeyPoseDemand> demand, std::span<const std::uint32_t> poses);
 

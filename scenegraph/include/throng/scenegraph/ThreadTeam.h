@@ -6,13 +6,15 @@
 // A ThreadTeam bounds how many threads the loops started inside its run() may use.
 
 #include <cstddef>
-#include <functional>
 #include <memory>
+
+#include "throng/scenegraph/CallableRef.h"
 
 namespace throng {
 
-/// body(chunk, begin, end): one chunk of a loop over [0, n).
-using ChunkBody = std::function<void(std::size_t chunk, std::size_t begin, std::size_t end)>;
+/// body(chunk, begin, end): one chunk of a loop over [0, n) (referred to, never copied: a loop
+/// allocates nothing to call it).
+using ChunkBody = CallableRef<void(std::size_t chunk, std::size_t begin, std::size_t end)>;
 
 /// Number of chunks of `grain` elements covering [0, n) (the last may be shorter).
 inline std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain == 0 ? 0 : (n + grain - 1) / grain; }
@@ -20,7 +22,7 @@ inline std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain =
 /// Calls body for every chunk of [0, n), in parallel on the threads of the enclosing
 /// ThreadTeam::run() (all of the machine's outside one). Returns when every chunk is done; the
 /// first exception a chunk throws is rethrown here. Throws std::invalid_argument if `grain` is 0.
-void forEachChunk(std::size_t n, std::size_t grain, const ChunkBody& body);
+void forEachChunk(std::size_t n, std::size_t grain, ChunkBody body);
 
 /// A bounded set of threads (a oneTBB task arena).
 class ThreadTeam {
@@ -35,7 +37,7 @@ public:
     /// Number of threads.
     unsigned threads() const { return threads_; }
     /// Runs `work` on the calling thread with the team's threads serving every forEachChunk inside.
-    void run(const std::function<void()>& work);
+    void run(CallableRef<void()> work);
 
 private:
     struct Impl;

@@ -18,7 +18,9 @@ struct TownSpread {
 };
 
 /// Adds `actors` walking seed humanoids, spread over a square of side `extent` metres, to `crowd`.
+/// Given `figure`, they are of that template instead, playing its clip "walk" (its first clip when
+/// it has none by that name).
 TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent = 1000.0, double blockSize = 50.0,
-                           std::uint64_t seed = 1);
+                           std::uint64_t seed = 1, std::shared_ptr<const ActorTemplate> figure = nullptr);
 
 }  // namespace throng::scenes
