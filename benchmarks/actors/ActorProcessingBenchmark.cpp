@@ -1,16 +1,25 @@
 // Traditional against actor processing (seed 002 §4.2): wall-clock APP+CULL time of the same frame
-// of the same scene, for 100 to 100,000 actors, with Table 2's proportions (the cost model's
-// example scene scaled up) and with a town-like spread. Each iteration runs one frame of each
-// method back to back, so noise touches both alike; the counters give their times and the ratio.
+// of the same scene, with Table 2's proportions (the cost model's example scene scaled up) and with
+// a town-like spread, from 1,000 to 1,000,000 actors. Each iteration runs one frame of each method
+// back to back on the same state, so noise touches both alike; the counters give their times, the
+// ratio, the cost per posed actor and the pipeline's FMULT rate relative to a fixed scalar kernel
+// timed in the same process (so a figure can be compared across machines and commits:
+// benchmarks/check-baseline does). At 1M Table-2 actors traditional processing would need more
+// memory than a 24 GB machine has, so that size runs actor processing alone.
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/CostModelScene.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/Table3Template.h"
+#include "throng/scenegraph/Stopwatch.h"
+#include "throng/scenegraph/Transform.h"
 #include "throng/scenes/TownSpread.h"
 
 using namespace throng;
@@ -44,37 +53,113 @@ Scene townScene(std::size_t actors) {
     return s;
 }
 
-void compare(benchmark::State& state, Scene scene) {
+// Frames of each method run before timing: both draw lists of the double buffer grown and their
+// storage merged into one block, so timed frames neither allocate nor fault (see FrameArena).
+constexpr int kWarmupFrames = 4;
+
+// FMULT per microsecond of a fixed scalar kernel (double affine products over a small set of
+// matrices, in cache), timed in this process: the yardstick of the machine's arithmetic speed.
+double referenceFmultPerUs() {
+    std::vector<Mat4> m(64, Mat4(1.0));
+    for (std::size_t i = 0; i < m.size(); ++i) {  // small turns about +Y and moves: the products stay finite
+        const double a = 0.01 * double(i);
+        m[i][0] = Vec4(std::cos(a), 0.0, -std::sin(a), 0.0);
+        m[i][2] = Vec4(std::sin(a), 0.0, std::cos(a), 0.0);
+        m[i][3] = Vec4(0.001 * double(i), 0.0, -0.002, 1.0);
+    }
+    OpTally tally;
+    composeAffine(m[0], m[1], &tally);
+    const double perProduct = double(tally.fmult());
+    double best = 0.0;
+    for (int round = 0; round < 5; ++round) {
+        constexpr int kProducts = 200000;
+        Mat4 acc(1.0);
+        Stopwatch watch;
+        for (int k = 0; k < kProducts; ++k) acc = composeAffine(m[static_cast<std::size_t>(k) & 63], acc);
+        const double us = watch.elapsedMs() * 1000.0;
+        benchmark::DoNotOptimize(acc);
+        best = std::max(best, perProduct * kProducts / us);
+    }
+    return best;
+}
+
+// FMULT one frame of the current method does (counted in an untimed frame at the same time: the
+// count does not depend on the frame).
+double countedFmult(ActorProcessor& processor, Scene& scene) {
+    processor.counter().setEnabled(true);
+    const double fmult = double(processor.processFrame(*scene.root, scene.camera, scene.time).fmultTotal);
+    processor.counter().setEnabled(false);
+    return fmult;
+}
+
+void compare(benchmark::State& state, Scene scene, bool withTraditional) {
     ActorProcessor processor(*scene.crowd);
-    double traditionalMs = 0.0, actorMs = 0.0, visible = 0.0;
-    std::int64_t frames = 0;
-    // One untimed frame of each: first-touch allocations are not what is compared.
-    processor.setProcessing(Processing::Traditional);
-    processor.processFrame(*scene.root, scene.camera, scene.time);
+    const double reference = referenceFmultPerUs();
     processor.setProcessing(Processing::Actor);
-    processor.processFrame(*scene.root, scene.camera, scene.time);
+    const double actorFmult = countedFmult(processor, scene);
+    double traditionalFmult = 0.0;
+    if (withTraditional) {
+        processor.setProcessing(Processing::Traditional);
+        traditionalFmult = countedFmult(processor, scene);
+    }
+    for (int k = 0; k < kWarmupFrames; ++k)
+        for (const Processing p : {Processing::Traditional, Processing::Actor}) {
+            if (p == Processing::Traditional && !withTraditional) continue;
+            processor.setProcessing(p);
+            processor.processFrame(*scene.root, scene.camera, scene.time + double(k % 2) * 1e-9);
+        }
+    double traditionalMs = 0.0, actorMs = 0.0, posed = 0.0;
+    double phase[7] = {};
+    std::int64_t frames = 0;
     for (auto _ : state) {
         const double t = scene.time + double(frames % 2) * 1e-9;  // Table 2 holds at its own time
-        processor.setProcessing(Processing::Traditional);
-        traditionalMs += processor.processFrame(*scene.root, scene.camera, t).appCullMs();
+        if (withTraditional) {
+            processor.setProcessing(Processing::Traditional);
+            traditionalMs += processor.processFrame(*scene.root, scene.camera, t).appCullMs();
+        }
         processor.setProcessing(Processing::Actor);
         const ActorFrameStatistics& s = processor.processFrame(*scene.root, scene.camera, t);
         actorMs += s.appCullMs();
-        visible += double(s.actorsPosed);
+        posed += double(s.actorsPosed);
+        const double phases[7] = {s.refpointMs + s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms,
+                                  s.drawListMs};
+        for (int k = 0; k < 7; ++k) phase[k] += phases[k];
         ++frames;
     }
+    const double n = double(frames);
     state.counters["actors"] = double(scene.crowd->size());
-    state.counters["posed"] = visible / double(frames);
-    state.counters["traditional_ms"] = traditionalMs / double(frames);
-    state.counters["actor_ms"] = actorMs / double(frames);
-    state.counters["speedup"] = traditionalMs / actorMs;
+    state.counters["posed"] = posed / n;
+    state.counters["actor_ms"] = actorMs / n;
+    // Per actor posed (what grows with the visible crowd) and per actor in the scene (what every
+    // actor costs, seen or not: its Reference Point).
+    state.counters["actor_us_per_posed"] = posed > 0 ? 1000.0 * actorMs / posed : 0.0;
+    state.counters["actor_ns_per_actor"] = 1e6 * actorMs / n / double(scene.crowd->size());
+    // The pipeline's arithmetic rate over the yardstick's (1 = as fast per FMULT as the scalar kernel).
+    state.counters["actor_fmult_rate"] = actorFmult / (1000.0 * actorMs / n) / reference;
+    const char* names[7] = {"refpoint_ms", "cull1_ms", "sklsroot_ms", "cull2_ms", "pose_ms", "cull3_ms", "drawlist_ms"};
+    for (int k = 0; k < 7; ++k) state.counters[names[k]] = phase[k] / n;
+    if (withTraditional) {
+        state.counters["traditional_ms"] = traditionalMs / n;
+        state.counters["speedup"] = traditionalMs / actorMs;
+        state.counters["traditional_fmult_rate"] = traditionalFmult / (1000.0 * traditionalMs / n) / reference;
+    }
 }
 
-void BM_Table2Proportions(benchmark::State& state) { compare(state, table2Scene(std::size_t(state.range(0)))); }
-void BM_TownSpread(benchmark::State& state) { compare(state, townScene(std::size_t(state.range(0)))); }
+void BM_Table2Proportions(benchmark::State& state) {
+    const auto actors = std::size_t(state.range(0));
+    compare(state, table2Scene(actors), actors <= 100000);
+}
+void BM_TownSpread(benchmark::State& state) { compare(state, townScene(std::size_t(state.range(0))), true); }
 
-BENCHMARK(BM_Table2Proportions)->Arg(100)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK(BM_TownSpread)->Arg(100)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+// Enough frames for a steady mean at every size, in a few seconds each.
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(1000)->MinTime(1.0);
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(2.0);
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(5);
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(1000000)->Iterations(3);
+BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(1000)->MinTime(1.0);
+BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(2.0);
+BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(10);
+BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(1000000)->Iterations(3);
 
 }  // namespace
 
