@@ -27,8 +27,8 @@ inline ActorItemBase actorItemBase(const Crowd::State& s, ActorId id, const Node
     return ActorItemBase{node, member, id, s.tint[id], b.mainClip(s.slot[id]), b.clipTime(s.slot[id], time)};
 }
 
-/// Fills `item` (fresh from DrawSegment::emplace, whose matrix and palette it keeps) to draw
-/// `drawable` for part `part` of the actor `a`, at vaLod level `level`.
+/// Fills `item` (fresh from DrawSegment::emplace, whose palette it keeps) to draw `drawable` for
+/// part `part` of the actor `a`, at vaLod level `level`; its transform is left to the caller.
 inline void setActorPart(DrawItem& item, const ActorItemBase& a, const Drawable& drawable, std::uint32_t part, int level,
                          Representation representation = Representation::Mesh) {
     item.node = a.node;
@@ -44,12 +44,11 @@ inline void setActorPart(DrawItem& item, const ActorItemBase& a, const Drawable&
 }
 
 /// Appends to `segment` the item drawing `drawable` for part `part` of the actor `a` at vaLod level
-/// `level`, placed by `world` (a matrix the segment keeps), with room for a skin palette of
-/// `paletteSize` matrices; returns it. The item is written once, in place.
+/// `level`, with room for a skin palette of `paletteSize` matrices; returns it for the caller to
+/// place (DrawItem::world). The item is written once, in place.
 inline DrawItem& addActorPart(DrawSegment& segment, const ActorItemBase& a, const Drawable& drawable, std::uint32_t part,
-                              int level, const Mat4* world, std::size_t paletteSize = 0,
-                              Representation representation = Representation::Mesh) {
-    DrawItem& item = segment.emplace(drawable.primitiveCount(), world, paletteSize);
+                              int level, std::size_t paletteSize = 0, Representation representation = Representation::Mesh) {
+    DrawItem& item = segment.emplace(drawable.primitiveCount(), paletteSize);
     setActorPart(item, a, drawable, part, level, representation);
     return item;
 }

@@ -17,10 +17,10 @@ void DrawnJoints::collect(const DrawList& list, const Crowd& crowd) {
     byActor_.clear();
     const Crowd::State& s = crowd.state();
     for (const DrawItem& item : list.items()) {
-        if (item.actor == kNoActor || item.actor >= crowd.size() || !item.worldMatrix) continue;
+        if (item.actor == kNoActor || item.actor >= crowd.size()) continue;
         const ActorTemplate& t = *s.tmpl[item.actor];
         const std::vector<Vec3>& bind = bindPositions(t);
-        const Mat4& world = *item.worldMatrix;
+        const Mat4 world = item.world.toMat4();
         auto place = [&](Joints& j, const Skin& skin, std::span<const glm::mat4> palette, std::span<const glm::mat4> second, float blend) {
             for (std::size_t k = 0; k < skin.joints.size() && k < palette.size(); ++k) {
                 const std::uint32_t n = skin.joints[k];

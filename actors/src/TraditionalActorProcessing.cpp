@@ -82,7 +82,7 @@ BoundingSphere boundOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, ActorId
     // Every Skeleton node: local matrix, model matrix and world matrix, on the CPU.
     const std::span<Affine> model(w.model.data() + base, n);
     computeModelTransforms(t, dofsOf(s, id), {}, model, nodeOps);
-    for (std::size_t i = 0; i < n; ++i) detail::nodeWorldMatrix(s.sklsWorld[id], model[i], w.world[base + i], nodeOps);
+    for (std::size_t i = 0; i < n; ++i) detail::nodeWorldMatrix<float>(s.sklsWorld[id], model[i], w.world[base + i], nodeOps);
     countOperations(c, OpCategory::SkeletonMatrix, n);
     out.matrices.localMatricesBuilt += n;
     out.matrices.worldMatricesComposed += n + 2;
@@ -130,9 +130,11 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
     if (testSphere(frustum, w.whole[id], mask, out, c) == Containment::Outside) return;
     const Mat4& skls = s.sklsWorld[id];
     const detail::ActorItemBase a = detail::actorItemBase(s, id, &node, member, time);
-    // Items are written in place, each with a copy of its world matrix (the list must outlive the workspace).
+    // Items are written in place, each with its own transform (the list must outlive the workspace).
     auto emit = [&](const Drawable& d, const Mat4& world, std::uint32_t part, int level, std::size_t paletteSize = 0) -> DrawItem& {
-        return detail::addActorPart(*out.items, a, d, part, level, out.items->copyMatrix(world), paletteSize);
+        DrawItem& item = detail::addActorPart(*out.items, a, d, part, level, paletteSize);
+        item.world = ItemTransform(world);
+        return item;
     };
     const auto nodes = t.nodes();
     const std::uint32_t n = static_cast<std::uint32_t>(t.nodeCount());

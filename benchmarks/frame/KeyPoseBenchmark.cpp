@@ -130,7 +130,7 @@ void worldVertices(const DrawItem& item, std::span<const glm::mat4> palette, std
     std::vector<glm::vec3> local(mesh.vertexCount());
     skinMesh(mesh, palette, local, {});
     out.resize(local.size());
-    for (std::size_t i = 0; i < local.size(); ++i) out[i] = glm::vec3(*item.worldMatrix * Vec4(Vec3(local[i]), 1.0));
+    for (std::size_t i = 0; i < local.size(); ++i) out[i] = glm::vec3(item.world.toMat4() * Vec4(Vec3(local[i]), 1.0));
 }
 
 // The palette of skin `skin` of `tmpl` playing `clip` at `clipTime` at full detail: what the

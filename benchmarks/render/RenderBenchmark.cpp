@@ -124,7 +124,7 @@ struct InstanceGrid {
         for (int i = 0; i < n; ++i) {
             DrawItem item;
             item.drawable = model.drawable.get();
-            item.worldMatrix = &matrices[std::size_t(i)];
+            item.world = ItemTransform(matrices[std::size_t(i)]);
             if (skinned) {
                 item.skinPalette = palettes[std::size_t(i)].data();
                 item.skinPaletteSize = static_cast<std::uint32_t>(palettes[std::size_t(i)].size());

@@ -448,12 +448,11 @@ struct GlRenderer::Impl {
         for (std::size_t i = 0; i < items.size(); ++i) {
             const DrawItem& item = *items[i];
             float key = 0.0f;
-            if (item.drawable && item.worldMatrix) {
-                const Mat4& w = *item.worldMatrix;
+            if (item.drawable) {
+                const glm::dmat3 l(item.world.linear);
                 const BoundingSphere& b = item.drawable->localBound();
-                const Vec3 centre = Vec3(w * Vec4(b.center(), 1.0));
-                const double scale = std::sqrt(std::max({glm::dot(Vec3(w[0]), Vec3(w[0])), glm::dot(Vec3(w[1]), Vec3(w[1])),
-                                                         glm::dot(Vec3(w[2]), Vec3(w[2]))}));
+                const Vec3 centre = item.world.transformPoint(b.center());
+                const double scale = std::sqrt(std::max({glm::dot(l[0], l[0]), glm::dot(l[1], l[1]), glm::dot(l[2], l[2])}));
                 key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
                 if (std::isnan(key)) key = 0.0f;  // a NaN would break the sort's ordering
             }
@@ -650,12 +649,12 @@ void GlRenderer::draw(const DrawList& list) {
             ++r.stats.skippedItems;
             continue;
         }
-        if (!item.worldMatrix)
-            throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + " has no world matrix");
+        if (!isFinite(item.world))
+            throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + " has a non-finite transform");
         MeshEntry& e = r.entryFor(meshDrawable->meshPtr());
         // A mirroring matrix turns counter-clockwise triangles clockwise: such items are drawn
         // apart with the front face flipped, so culling and two-sided lighting stay right.
-        const bool mirrored = glm::determinant(glm::dmat3(*item.worldMatrix)) < 0.0;
+        const bool mirrored = glm::determinant(glm::dmat3(item.world.linear)) < 0.0;
         // Front to back, a mesh's instances are split by distance band, so that an instanced
         // draw covering the whole town does not put far instances before near ones of other meshes.
         const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
@@ -729,14 +728,20 @@ void GlRenderer::draw(const DrawList& list) {
         const DrawItem& item = *items[i];
         Group& g = r.groups[r.itemGroup[i]];
         InstanceData& d = r.instances[g.first + g.filled++];
-        const Mat4& w = *item.worldMatrix;
-        for (int c = 0; c < 4; ++c) {  // T(-eye) * world, in double, then rounded
-            const Vec4& col = w[c];
-            d.model[4 * c + 0] = static_cast<float>(col.x - eye.x * col.w);
-            d.model[4 * c + 1] = static_cast<float>(col.y - eye.y * col.w);
-            d.model[4 * c + 2] = static_cast<float>(col.z - eye.z * col.w);
-            d.model[4 * c + 3] = static_cast<float>(col.w);
+        // T(-eye) * world: the linear part as it is (already float), the translation made
+        // eye-relative in double, then rounded.
+        const glm::mat3& l = item.world.linear;
+        for (int c = 0; c < 3; ++c) {
+            d.model[4 * c + 0] = l[c].x;
+            d.model[4 * c + 1] = l[c].y;
+            d.model[4 * c + 2] = l[c].z;
+            d.model[4 * c + 3] = 0.0f;
         }
+        const Vec3 t = item.world.translation - eye;
+        d.model[12] = static_cast<float>(t.x);
+        d.model[13] = static_cast<float>(t.y);
+        d.model[14] = static_cast<float>(t.z);
+        d.model[15] = 1.0f;
         std::memcpy(d.tint, &item.tint[0], sizeof d.tint);
         d.paletteBase = 0;
         d.row1Base = 0;

@@ -36,7 +36,6 @@ struct ImpostorBaker::Impl {
     std::vector<float> dofs;
     std::vector<Affine> model;
     std::vector<BoundingSphere> geometry, subtree;
-    std::vector<Mat4> worlds;
     std::vector<std::vector<glm::mat4>> palettes;
     Mat4 rootMatrix{1.0};
 
@@ -177,16 +176,13 @@ Image ImpostorBaker::renderCell(double time, const glm::vec3& toEye) {
     const ActorTemplate& t = *s.tmpl;
     s.pose(time);
     DrawList list;
-    s.worlds.clear();
-    s.worlds.reserve(t.nodeCount() + 1);
     s.palettes.clear();
     s.palettes.reserve(t.rootGeometry().levels().size() + 1);
     const auto addItem = [&](const VaLodLevel& level, const Mat4& world, std::uint32_t part) {
         if (!level.drawable) return;
-        s.worlds.push_back(world);
         DrawItem item;
         item.drawable = level.drawable.get();
-        item.worldMatrix = &s.worlds.back();
+        item.world = ItemTransform(world);
         item.part = part;
         if (level.skin >= 0) {
             const Skin& skin = t.skins()[static_cast<std::size_t>(level.skin)];

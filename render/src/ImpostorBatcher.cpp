@@ -20,11 +20,11 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
     if (cache_) cache_->beginFrame();
     const Vec3 eye = camera.eye();
     for (const DrawItem& item : list.items()) {
-        if (item.representation != Representation::Impostor || !item.worldMatrix) continue;
+        if (item.representation != Representation::Impostor) continue;
         const auto* d = dynamic_cast<const ImpostorDrawable*>(item.drawable);
         if (!d) continue;
         const ImpostorAtlas& atlas = d->atlas();
-        const Mat4& world = *item.worldMatrix;
+        const Mat4 world = item.world.toMat4();
         ImpostorInstance inst;
         inst.drawable = d;
         inst.tint = item.tint;

@@ -15,7 +15,7 @@ void RecordingBackend::beginFrame(const Camera&) {
 void RecordingBackend::draw(const DrawList& list) {
     for (const DrawItem& item : list.items()) {
         records_.push_back(Record{item.drawable, item.node, item.instance, item.part, item.lodLevel,
-                                  item.worldMatrix ? *item.worldMatrix : Mat4(1.0)});
+                                  item.world.toMat4()});
         ++drawCalls_;
         primitives_ += item.drawable ? item.drawable->primitiveCount() : 0;
     }

@@ -384,7 +384,7 @@ TEST(Cascade, AHeldObjectEnlargesBothSpheresAndIsDrawnWithTheActor) {
         processor.processFrame(*root, camera, t);
         for (const DrawItem& item : processor.drawList().items())
             if (item.drawable == pole.get()) {
-                const BoundingSphere world = pole->localBound().transformed(*item.worldMatrix);
+                const BoundingSphere world = pole->localBound().transformed(item.world.toMat4());
                 EXPECT_TRUE(BoundingSphere(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]).contains(world)) << t;
             }
     }

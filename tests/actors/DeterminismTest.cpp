@@ -66,7 +66,8 @@ void expectSameWithThreads(Processing processing, bool counting) {
                 ASSERT_EQ(l1[i].part, lk[i].part);
                 ASSERT_EQ(l1[i].actor, lk[i].actor);
                 ASSERT_EQ(l1[i].drawable, lk[i].drawable);  // templates are shared between the crowds
-                ASSERT_EQ(0, std::memcmp(l1[i].worldMatrix, lk[i].worldMatrix, sizeof(Mat4))) << "item " << i;
+                ASSERT_EQ(0, std::memcmp(&l1[i].world.translation, &lk[i].world.translation, sizeof(Vec3))) << "item " << i;
+                ASSERT_EQ(0, std::memcmp(&l1[i].world.linear, &lk[i].world.linear, sizeof(glm::mat3))) << "item " << i;
                 ASSERT_EQ(l1[i].skinPaletteSize, lk[i].skinPaletteSize);
                 if (l1[i].skinPaletteSize) {
                     ASSERT_EQ(0, std::memcmp(l1[i].skinPalette, lk[i].skinPalette, l1[i].skinPaletteSize * sizeof(glm::mat4)));

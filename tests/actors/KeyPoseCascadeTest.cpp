@@ -192,7 +192,7 @@ TEST(KeyPoseCascade, TheSameWhateverTheThreads) {
             ASSERT_EQ(x.keyPose.row[0], y.keyPose.row[0]);
             ASSERT_EQ(x.keyPose.row[1], y.keyPose.row[1]);
             ASSERT_EQ(x.keyPose.blend, y.keyPose.blend);
-            ASSERT_EQ(*x.worldMatrix, *y.worldMatrix);
+            ASSERT_EQ(x.world, y.world);
         }
     }
 }

@@ -51,8 +51,8 @@ TEST(ActorStability, TheTable2SceneAMillionMetresAwayClassifiesAndDrawsAsTraditi
         for (std::size_t i = 0; i < items.size(); ++i) {
             ASSERT_EQ(items[i].drawable, nearItems[i].drawable) << "item " << i;
             ASSERT_EQ(items[i].part, nearItems[i].part) << "item " << i;
-            const Mat4& far = *items[i].worldMatrix;
-            const Mat4& near = *nearItems[i].worldMatrix;
+            const Mat4 far = items[i].world.toMat4();
+            const Mat4 near = nearItems[i].world.toMat4();
             worst = std::max(worst, glm::length(Vec3(far[3]) - origin - Vec3(near[3])));
             for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(Vec3(far[c]) - Vec3(near[c])), 1e-9) << "item " << i;
         }

@@ -179,7 +179,7 @@ TEST_P(PoseOracleTest, SkinnedVerticesAgreeWithVtk) {
             const DrawList& list = stage.processor.drawList();
             ASSERT_EQ(list.size(), 1u) << "one skinned mesh expected";
             // The Skeleton Root of an actor at the origin is the world origin: the frames agree.
-            EXPECT_EQ(*list.items()[0].worldMatrix, Mat4(1.0));
+            EXPECT_EQ(list.items()[0].world.toMat4(), Mat4(1.0));
             const std::vector<glm::mat4> clamped = s.looped ? std::vector<glm::mat4>{} : clampedPalette(*tmpl, clip, s.throngTime);
             const std::vector<glm::dvec3> throng = test::drawnPositions(list, clamped);
             const test::VtkPosedMesh posed = vtk.pose(animation, s.vtkTime);

@@ -140,7 +140,6 @@ TEST_F(SilhouetteOracleTest, HeadTurnedByTenDegreesIsDetected) {
         const Image unperturbed = view.stage.render(renderer, camera, c.time);
         ASSERT_EQ(view.stage.processor.drawList().size(), 1u);
         DrawItem item = view.stage.processor.drawList().items()[0];
-        const Mat4 world = *item.worldMatrix;
         std::vector<glm::mat4> palette(item.skinPalette, item.skinPalette + item.skinPaletteSize);
         const int head = tmpl.findNode(kHeadJoint.at(c.file));
         ASSERT_GE(head, 0);
@@ -149,7 +148,6 @@ TEST_F(SilhouetteOracleTest, HeadTurnedByTenDegreesIsDetected) {
         ASSERT_LT(k, joints.size());
         palette[k] = test::rotatedAboutJoint(palette[k], tmpl.nodes()[std::size_t(head)].inverseBind, 10.0 * kDeg, glm::dvec3(1, 0, 0));
         item.skinPalette = palette.data();
-        item.worldMatrix = &world;
         DrawList list;
         list.add(item, item.drawable->primitiveCount());
         renderer.beginFrame(camera);

@@ -38,7 +38,7 @@ std::vector<glm::dvec3> drawnPositions(const DrawList& list, std::span<const glm
             if (!replaced) used = palette, replaced = true;
             skinMesh(mesh, used, positions, {});
         }
-        for (const glm::vec3& p : positions) out.emplace_back(*item.worldMatrix * Vec4(Vec3(p), 1.0));
+        for (const glm::vec3& p : positions) out.emplace_back(item.world.toMat4() * Vec4(Vec3(p), 1.0));
     }
     return out;
 }

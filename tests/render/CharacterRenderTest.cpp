@@ -200,7 +200,6 @@ TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinn
     DrawItem fullItem = stage.processor.drawList().items()[0];
     ASSERT_EQ(fullItem.skinPaletteSize, skin.joints.size());
     const std::vector<glm::mat4> fullPalette(fullItem.skinPalette, fullItem.skinPalette + fullItem.skinPaletteSize);
-    const Mat4 world = *fullItem.worldMatrix;
 
     stage.processor.setLodScale(10.0);
     const Image lod = stage.render(renderer, camera, time);
@@ -218,7 +217,6 @@ TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinn
     EXPECT_GT(compareImages(full, lod, 8).pixelsOverThreshold, 30u) << "deactivating the knee did not move the leg";
     // And the renderer draws exactly what the ancestor's matrix gives.
     fullItem.skinPalette = expected.data();
-    fullItem.worldMatrix = &world;
     DrawList list;
     list.add(fullItem, fullItem.drawable->primitiveCount());
     renderer.beginFrame(camera);

@@ -62,7 +62,7 @@ struct Stage {
             std::vector<glm::vec3> positions(mesh.positions);
             if (item.skinPalette) skinMesh(mesh, std::span(item.skinPalette, item.skinPaletteSize), positions, {});
             for (const glm::vec3& p : positions) {
-                const Vec3 w(*item.worldMatrix * Vec4(Vec3(p), 1.0));
+                const Vec3 w(item.world.toMat4() * Vec4(Vec3(p), 1.0));
                 lo = glm::min(lo, w);
                 hi = glm::max(hi, w);
             }

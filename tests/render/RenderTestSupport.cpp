@@ -21,10 +21,9 @@ Camera makeCamera(const Vec3& eye, const Vec3& target) {
 
 void Scene::add(std::shared_ptr<const Drawable> drawable, const Mat4& world, const glm::vec4& tint,
                 const std::vector<glm::mat4>* palette) {
-    matrices_.push_back(world);
     DrawItem item;
     item.drawable = drawable.get();
-    item.worldMatrix = &matrices_.back();
+    item.world = ItemTransform(world);
     item.tint = tint;
     if (palette) {
         palettes_.push_back(*palette);

@@ -47,7 +47,6 @@ public:
 
 private:
     std::vector<std::shared_ptr<const Drawable>> drawables_;
-    std::deque<Mat4> matrices_;
     std::deque<std::vector<glm::mat4>> palettes_;
     DrawList list_;
 };

@@ -336,10 +336,11 @@ TEST_F(RendererTest, MisuseIsAClearError) {
     DrawList list;
     auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(1.0f)));
     DrawItem item;
-    item.drawable = box.get();  // but no world matrix
+    item.drawable = box.get();
+    item.world.translation.y = std::nan("");  // but nowhere
     list.add(item, 12);
     renderer.beginFrame(test::makeCamera(Vec3(0, 0, 3), Vec3(0.0)));
-    EXPECT_NE(errorOf([&] { renderer.draw(list); }).find("item 0 (drawable 'box') has no world matrix"),
+    EXPECT_NE(errorOf([&] { renderer.draw(list); }).find("item 0 (drawable 'box') has a non-finite transform"),
               std::string::npos);
     renderer.endFrame();
 }

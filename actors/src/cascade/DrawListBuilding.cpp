@@ -20,12 +20,13 @@ const Drawable* impostorOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
     return nullptr;
 }
 
-// Appends the item drawing `d` for part `part` of the actor `a`, written in place and counted.
-DrawItem& emit(ChunkOutput& out, const detail::ActorItemBase& a, const Drawable& d, const Mat4* world, std::uint32_t part,
-               int level, std::size_t paletteSize = 0, Representation representation = Representation::Mesh) {
+// Appends the item drawing `d` for part `part` of the actor `a`, written in place and counted; the
+// caller places it.
+DrawItem& emit(ChunkOutput& out, const detail::ActorItemBase& a, const Drawable& d, std::uint32_t part, int level,
+               std::size_t paletteSize = 0, Representation representation = Representation::Mesh) {
     ++out.counts.drawItems;
     out.counts.primitives += d.primitiveCount();
-    return detail::addActorPart(*out.items, a, d, part, level, world, paletteSize, representation);
+    return detail::addActorPart(*out.items, a, d, part, level, paletteSize, representation);
 }
 
 // The items of posed actor j (its index among the posed).
@@ -47,11 +48,12 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
         const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
         if (lv.drawable && lv.skin >= 0) {  // the palette is computed straight into the list
             const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-            const DrawItem& item = emit(out, a, *lv.drawable, out.items->copyMatrix(skls), self, rootLevel, skin.joints.size());
+            DrawItem& item = emit(out, a, *lv.drawable, self, rootLevel, skin.joints.size());
+            item.world = ItemTransform(skls);
             computeSkinPalette(t, skin, model, active,
                                std::span<glm::mat4>(const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize), nodeOps);
         } else if (lv.drawable) {
-            emit(out, a, *lv.drawable, out.items->copyMatrix(skls), self, rootLevel);
+            emit(out, a, *lv.drawable, self, rootLevel).world = ItemTransform(skls);
         }
     }
     const auto tnodes = t.nodes();
@@ -65,10 +67,8 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
         if (level < 0) continue;
         const auto& d = tnodes[i].geometry.levels()[static_cast<std::size_t>(level)].drawable;
         if (!d) continue;
-        // The part's world matrix is composed once, straight into the list.
-        Mat4* world = out.items->matrixRoom();
-        detail::nodeWorldMatrix(skls, model[i], *world, nodeOps);
-        emit(out, a, *d, world, static_cast<std::uint32_t>(i), level);
+        // The part's world transform is composed once, straight into its item.
+        detail::nodeWorldTransform(skls, model[i], emit(out, a, *d, static_cast<std::uint32_t>(i), level).world, nodeOps);
     }
     if (s.held[id] < 0) return;
     const auto& held = s.heldObjects[static_cast<std::size_t>(s.held[id])];
@@ -81,7 +81,7 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
             ++out.counts.spheresTested;
             if (f.frustum.classify(held[k].drawable->localBound().transformed(world), m) == Containment::Outside) continue;
         }
-        emit(out, a, *held[k].drawable, out.items->copyMatrix(world), self + 1 + k, 0);
+        emit(out, a, *held[k].drawable, self + 1 + k, 0).world = ItemTransform(world);
     }
 }
 
@@ -95,8 +95,8 @@ void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, c
     const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(level)];
     if (!lv.drawable) return;
     const std::uint32_t part = static_cast<std::uint32_t>(t.nodeCount());
-    DrawItem& item = emit(out, a, *lv.drawable, out.items->copyMatrix(s.sklsWorld[a.id]), part, level, 0,
-                          lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
+    DrawItem& item = emit(out, a, *lv.drawable, part, level, 0, lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
+    item.world = ItemTransform(s.sklsWorld[a.id]);
     if (lv.skin >= 0) {
         item.keyPose = f.keyPoseOf[survivor];
         item.keyPose.skin = static_cast<std::uint32_t>(lv.skin);
@@ -126,8 +126,8 @@ void buildDrawList(CascadeFrame& f) {
             // An impostor: one item at the Reference Point, no Skeleton node processed.
             const ActorTemplate& t = *s.tmpl[cand.id];
             const Drawable& impostor = *impostorOf(f, t);
-            emit(out, a, impostor, out.items->copyMatrix(s.refWorld[cand.id]), static_cast<std::uint32_t>(t.nodeCount()), 0, 0,
-                 Representation::Impostor);
+            emit(out, a, impostor, static_cast<std::uint32_t>(t.nodeCount()), 0, 0, Representation::Impostor).world =
+                ItemTransform(s.refWorld[cand.id]);
         }
     });
 }

@@ -73,7 +73,7 @@ void CrowdProp::buildMeshes() {
     for (const DrawItem& item : cascade_->processor().drawList().items()) {
         if (item.actor == kNoActor) continue;  // the scene's own geometry is the application's to draw
         const auto* mesh = item.representation == Representation::Mesh ? dynamic_cast<const MeshDrawable*>(item.drawable) : nullptr;
-        if (!mesh || !item.worldMatrix) {
+        if (!mesh) {
             ++skipped_;
             continue;
         }
@@ -105,7 +105,7 @@ void CrowdProp::buildMeshes() {
                 scratch_[v] = glm::vec3(blend * glm::vec4(m->positions[v], 1.0f));
             }
         }
-        const Mat4& world = *item->worldMatrix;
+        const Mat4 world = item->world.toMat4();
         const glm::vec4 c = glm::clamp(m->baseColor * item->tint, 0.0f, 1.0f) * 255.0f;
         const unsigned char colour[3] = {static_cast<unsigned char>(c.r), static_cast<unsigned char>(c.g), static_cast<unsigned char>(c.b)};
         for (const glm::vec3& p : scratch_) {

@@ -78,7 +78,7 @@ public:
     /// Tests `sphere` against the planes in `mask`, clearing those it is inside, and accounts the
     /// test (NO_04b) unless `mask` is already empty.
     Containment testSphere(const BoundingSphere& sphere, PlaneMask& mask);
-    /// Appends an item to the draw list and to the statistics, with copies of its world matrix and
+    /// Appends an item to the draw list and to the statistics, placed by `world`, with a copy of its
     /// skin palette kept by the list.
     void addDrawItem(const DrawItem& item, std::uint64_t primitives, const Mat4& world,
                      std::span<const glm::mat4> palette = {});

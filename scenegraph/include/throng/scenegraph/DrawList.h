@@ -1,13 +1,13 @@
 #pragma once
-// The output of CULL and the input of DRAW: what to draw, with which matrix, in traversal order.
-// A list owns copies of the matrices and skin palettes its items use, so it describes its frame
+// The output of CULL and the input of DRAW: what to draw, where, in traversal order. Items hold
+// their transforms, and a list owns copies of the skin palettes its items use, so it describes its frame
 // completely: DRAW may render it while the next frame is stepped and culled (Performer's
 // multiprocess mode), and nothing at draw time needs to look back into the scene or the crowd.
 //
 // A list is a sequence of segments. Writers that work apart (the chunks of a parallel loop) each
 // fill a segment of their own, opened in the order their items must appear, so their items are
 // written once, straight where DRAW reads them, and are never moved to join the list. Segments,
-// their items and their matrices are kept from frame to frame: a list warm from a frame of a given
+// their items and their palettes are kept from frame to frame: a list warm from a frame of a given
 // size builds another such frame without allocating.
 
 #include <algorithm>
@@ -21,6 +21,7 @@
 #include <glm/vec4.hpp>
 
 #include "throng/scenegraph/FrameArena.h"
+#include "throng/scenegraph/ItemTransform.h"
 #include "throng/scenegraph/KeyPoseSource.h"
 #include "throng/scenegraph/Math.h"
 
@@ -39,75 +40,69 @@ enum class Representation : std::uint8_t {
 /// Marks an item that belongs to no actor (generic scene geometry).
 inline constexpr std::uint32_t kNoActor = ~std::uint32_t{0};
 
-/// One thing to draw.
+/// One thing to draw. Fields are ordered so that the item packs without holes (176 bytes): a crowd
+/// writes one per drawn part every frame.
 struct DrawItem {
+    /// Every field at its default. Written out (not defaulted) so that a list appending a fresh item
+    /// stores each field once, which the compiler can merge with the caller's own stores, instead of
+    /// clearing the whole item first (value-initialisation, a slow `rep stos` per item).
+    DrawItem() noexcept {}
     const Drawable* drawable = nullptr;  ///< the shared drawable data
-    const Mat4* worldMatrix = nullptr;   ///< its model matrix (owned by the list when added with one)
+    ItemTransform world;                 ///< where it stands (its model transform)
     const Node* node = nullptr;          ///< the node that produced it (a Geometry leaf, or an actor)
+    const glm::mat4* skinPalette = nullptr;  ///< for skinned meshes: joint matrices (joint-to-model times
+                                             ///< inverse bind), in the frame of `world`; else null
+    double clipTime = 0.0;               ///< seconds into `clip` the actor shows this frame
     std::uint32_t instance = 0;          ///< which of the node's instances (an actor of an actor group)
     std::uint32_t part = 0;              ///< index of the part within the instance (0 for a Geometry leaf)
     std::uint32_t lodLevel = 0;          ///< level of detail chosen (0 = highest)
-    const glm::mat4* skinPalette = nullptr;  ///< for skinned meshes: joint matrices (joint-to-model times
-                                             ///< inverse bind), in the frame of `worldMatrix`; else null
     std::uint32_t skinPaletteSize = 0;   ///< number of matrices in `skinPalette`
-    glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
     std::uint32_t actor = kNoActor;      ///< the actor (its id in its crowd), or kNoActor
-    Representation representation = Representation::Mesh;  ///< how it is shown
     std::int32_t clip = -1;              ///< the clip the actor plays (its main clip for impostors), or -1
-    double clipTime = 0.0;               ///< seconds into `clip` the actor shows this frame
+    glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
+    Representation representation = Representation::Mesh;  ///< how it is shown
     KeyPoseRef keyPose;                  ///< Representation::KeyPose: the cached poses shown
 };
 
-/// A run of consecutive items of a DrawList, with the matrices and palettes they point to, filled
-/// by one writer. Its memory is kept when it is cleared.
+/// A run of consecutive items of a DrawList, with the palettes they point to, filled by one
+/// writer. Its memory is kept when it is cleared.
 class DrawSegment {
 public:
-    /// Appends `item` as it is: its matrix and palette pointers must stay valid while the list is
-    /// drawn (tests and hand-made lists). `primitives` is added to primitiveCount().
+    /// Appends `item` as it is: its palette pointer must stay valid while the list is drawn (tests
+    /// and hand-made lists). `primitives` is added to primitiveCount().
     void add(const DrawItem& item, std::uint64_t primitives) {
         items_.push_back(item);
         primitives_ += primitives;
     }
-    /// Appends `item` with copies of `world` and `palette` kept by the segment (the item's pointers
-    /// are set to the copies), so the list stays valid whatever happens to the scene.
+    /// Appends `item` placed by `world`, with a copy of `palette` kept by the segment (the item's
+    /// pointer is set to the copy), so the list stays valid whatever happens to the scene.
     void add(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::span<const glm::mat4> palette = {}) {
         const std::span<glm::mat4> room = addSkinned(item, primitives, world, palette.size());
         std::copy(palette.begin(), palette.end(), room.begin());
     }
-    /// Appends `item` with a copy of `world` and room for a skin palette of `paletteSize` matrices,
-    /// both kept by the segment; returns the room, for the caller to fill before the list is drawn.
+    /// Appends `item` placed by `world`, with room for a skin palette of `paletteSize` matrices kept
+    /// by the segment; returns the room, for the caller to fill before the list is drawn.
     std::span<glm::mat4> addSkinned(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
-        const Mat4* matrix = copyMatrix(world);
-        DrawItem& added = emplace(primitives, matrix, paletteSize);
+        DrawItem& added = emplace(primitives, paletteSize);
         const glm::mat4* palette = added.skinPalette;
         added = item;
-        added.worldMatrix = matrix;
+        added.world = ItemTransform(world);
         added.skinPalette = palette;
         added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
         return {const_cast<glm::mat4*>(palette), paletteSize};
     }
-    /// Appends an item with default fields but `worldMatrix` (`world`) and, when `paletteSize` is
-    /// not 0, `skinPalette` (room for that many matrices, kept by the segment, to be filled before
-    /// the list is drawn), and returns it for the caller to fill in place. Hot loops make their
-    /// items so: an item built elsewhere and copied in stalls on reading back its own stores.
-    DrawItem& emplace(std::uint64_t primitives, const Mat4* world, std::size_t paletteSize = 0) {
+    /// Appends an item with default fields but, when `paletteSize` is not 0, `skinPalette` (room for
+    /// that many matrices, kept by the segment, to be filled before the list is drawn), and returns
+    /// it for the caller to fill in place, its transform included. Hot loops make their items so:
+    /// an item built elsewhere and copied in stalls on reading back its own stores.
+    DrawItem& emplace(std::uint64_t primitives, std::size_t paletteSize = 0) {
         DrawItem& added = items_.emplace_back();
-        added.worldMatrix = world;
         if (paletteSize) {
             added.skinPalette = palettes_.allocate(paletteSize);
             added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
         }
         primitives_ += primitives;
         return added;
-    }
-    /// Room for a world matrix kept by the segment, for a caller that composes the matrix there
-    /// once instead of building it apart and having it copied.
-    Mat4* matrixRoom() { return matrices_.allocate(1); }
-    /// A copy of `world` kept by the segment.
-    const Mat4* copyMatrix(const Mat4& world) {
-        Mat4* room = matrixRoom();
-        *room = world;
-        return room;
     }
     /// The items, in the order they were added.
     std::span<const DrawItem> items() const { return items_; }
@@ -120,7 +115,6 @@ public:
     /// Empties the segment, keeping its memory.
     void clear() {
         items_.clear();
-        matrices_.clear();
         palettes_.clear();
         primitives_ = 0;
     }
@@ -128,7 +122,6 @@ public:
 private:
     friend class DrawList;
     std::vector<DrawItem> items_;
-    FrameArena<Mat4> matrices_;
     FrameArena<glm::mat4> palettes_;
     std::uint64_t primitives_ = 0;
 };
@@ -234,18 +227,19 @@ public:
     }
     /// Segment `i` (opened this frame).
     DrawSegment& segment(std::size_t i) { return *segments_[i]; }
-    /// Appends every item of `other` in order, with copies of their matrices and palettes (items
-    /// `other` holds with outside pointers keep them).
+    /// Appends every item of `other` in order, with copies of their palettes.
     void append(const DrawList& other) {
         DrawSegment& into = serial();
         for (const DrawItem& item : other.items()) {
-            if (!item.worldMatrix) {
+            if (!item.skinPalette) {
                 into.add(item, 0);
                 continue;
             }
-            into.add(item, 0, *item.worldMatrix,
-                     item.skinPalette ? std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize)
-                                      : std::span<const glm::mat4>());
+            DrawItem& added = into.emplace(0, item.skinPaletteSize);
+            glm::mat4* palette = const_cast<glm::mat4*>(added.skinPalette);
+            added = item;
+            added.skinPalette = palette;
+            std::copy_n(item.skinPalette, item.skinPaletteSize, palette);
         }
         into.primitives_ += other.primitiveCount();  // as the other list counted them
     }

@@ -15,6 +15,7 @@
 #include "throng/actors/Affine.h"
 #include "throng/actors/RootPose.h"
 #include "throng/scenegraph/BoundingSphere.h"
+#include "throng/scenegraph/ItemTransform.h"
 #include "throng/scenegraph/OpTally.h"
 #include "throng/scenegraph/detail/ScalarMath.h"
 #include "throng/scenegraph/detail/TransformKernels.h"
@@ -82,6 +83,20 @@ void nodeWorldMatrix(const glm::mat<4, 4, Wide<S>, glm::defaultp>& skeletonRootW
     const W t0 = W(model.translation[0]), t1 = W(model.translation[1]), t2 = W(model.translation[2]);
     for (int row = 0; row < 3; ++row) world[3][row] = a[0][row] * t0 + a[1][row] * t1 + a[2][row] * t2 + a[3][row];
     world[3][3] = W(1);
+    THRONG_TALLY(ops, 36, 27, 0, 0);
+}
+
+/// The same product written as a draw item's transform: the linear part computed in double as
+/// nodeWorldMatrix does, then rounded to float, and the translation in double (36 mults, 27 adds).
+/// Computed in registers straight into `world` (a matrix built apart and read back would stall).
+inline void nodeWorldTransform(const Mat4& skeletonRootWorld, const Affine& model, ItemTransform& world, OpTally* ops) {
+    const Mat4& a = skeletonRootWorld;
+    for (int c = 0; c < 3; ++c) {
+        const double b0 = model.linear[c][0], b1 = model.linear[c][1], b2 = model.linear[c][2];
+        for (int row = 0; row < 3; ++row) world.linear[c][row] = static_cast<float>(a[0][row] * b0 + a[1][row] * b1 + a[2][row] * b2);
+    }
+    const double t0 = model.translation[0], t1 = model.translation[1], t2 = model.translation[2];
+    for (int row = 0; row < 3; ++row) world.translation[row] = a[0][row] * t0 + a[1][row] * t1 + a[2][row] * t2 + a[3][row];
     THRONG_TALLY(ops, 36, 27, 0, 0);
 }
 
