@@ -3,7 +3,7 @@
 // a town-like spread, from 1,000 to 1,000,000 actors. Each iteration runs one frame of each method
 // back to back on the same state, so noise touches both alike; the counters give their times, the
 // ratio, the cost per posed actor and the pipeline's FMULT rate relative to a fixed scalar kernel
-// timed in the same process (so a figure can be compared across machines and commits:
+// timed in every iteration (so a figure can be compared across machines and commits:
 // benchmarks/check-baseline does). At 1M Table-2 actors traditional processing would need more
 // memory than a 24 GB machine has, so that size runs actor processing alone.
 
@@ -57,31 +57,39 @@ Scene townScene(std::size_t actors) {
 // storage merged into one block, so timed frames neither allocate nor fault (see FrameArena).
 constexpr int kWarmupFrames = 4;
 
-// FMULT per microsecond of a fixed scalar kernel (double affine products over a small set of
-// matrices, in cache), timed in this process: the yardstick of the machine's arithmetic speed.
-double referenceFmultPerUs() {
-    std::vector<Mat4> m(64, Mat4(1.0));
-    for (std::size_t i = 0; i < m.size(); ++i) {  // small turns about +Y and moves: the products stay finite
-        const double a = 0.01 * double(i);
-        m[i][0] = Vec4(std::cos(a), 0.0, -std::sin(a), 0.0);
-        m[i][2] = Vec4(std::sin(a), 0.0, std::cos(a), 0.0);
-        m[i][3] = Vec4(0.001 * double(i), 0.0, -0.002, 1.0);
+// A fixed scalar kernel, the yardstick of the machine's arithmetic speed: double affine products over
+// a small set of matrices (in cache). Timed inside every iteration, beside the frames, so that a
+// slower or faster spell of a shared machine touches both alike.
+class Yardstick {
+public:
+    Yardstick() : m_(64, Mat4(1.0)) {
+        for (std::size_t i = 0; i < m_.size(); ++i) {  // small turns about +Y and moves: the products stay finite
+            const double a = 0.01 * double(i);
+            m_[i][0] = Vec4(std::cos(a), 0.0, -std::sin(a), 0.0);
+            m_[i][2] = Vec4(std::sin(a), 0.0, std::cos(a), 0.0);
+            m_[i][3] = Vec4(0.001 * double(i), 0.0, -0.002, 1.0);
+        }
+        OpTally tally;
+        composeAffine(m_[0], m_[1], &tally);
+        perProduct_ = double(tally.fmult());
     }
-    OpTally tally;
-    composeAffine(m[0], m[1], &tally);
-    const double perProduct = double(tally.fmult());
-    double best = 0.0;
-    for (int round = 0; round < 5; ++round) {
-        constexpr int kProducts = 200000;
+    // Runs the kernel once (a fixed number of products) and adds its FMULT and microseconds.
+    void run() {
+        constexpr int kProducts = 20000;
         Mat4 acc(1.0);
         Stopwatch watch;
-        for (int k = 0; k < kProducts; ++k) acc = composeAffine(m[static_cast<std::size_t>(k) & 63], acc);
-        const double us = watch.elapsedMs() * 1000.0;
+        for (int k = 0; k < kProducts; ++k) acc = composeAffine(m_[static_cast<std::size_t>(k) & 63], acc);
+        us_ += watch.elapsedMs() * 1000.0;
         benchmark::DoNotOptimize(acc);
-        best = std::max(best, perProduct * kProducts / us);
+        fmult_ += perProduct_ * kProducts;
     }
-    return best;
-}
+    // FMULT per microsecond over every run.
+    double rate() const { return fmult_ / us_; }
+
+private:
+    std::vector<Mat4> m_;
+    double perProduct_ = 0.0, fmult_ = 0.0, us_ = 0.0;
+};
 
 // FMULT one frame of the current method does (counted in an untimed frame at the same time: the
 // count does not depend on the frame).
@@ -94,7 +102,7 @@ double countedFmult(ActorProcessor& processor, Scene& scene) {
 
 void compare(benchmark::State& state, Scene scene, bool withTraditional) {
     ActorProcessor processor(*scene.crowd);
-    const double reference = referenceFmultPerUs();
+    Yardstick yardstick;
     processor.setProcessing(Processing::Actor);
     const double actorFmult = countedFmult(processor, scene);
     double traditionalFmult = 0.0;
@@ -119,6 +127,7 @@ void compare(benchmark::State& state, Scene scene, bool withTraditional) {
         }
         processor.setProcessing(Processing::Actor);
         const ActorFrameStatistics& s = processor.processFrame(*scene.root, scene.camera, t);
+        yardstick.run();
         actorMs += s.appCullMs();
         posed += double(s.actorsPosed);
         const double phases[7] = {s.refpointMs + s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms,
@@ -135,13 +144,13 @@ void compare(benchmark::State& state, Scene scene, bool withTraditional) {
     state.counters["actor_us_per_posed"] = posed > 0 ? 1000.0 * actorMs / posed : 0.0;
     state.counters["actor_ns_per_actor"] = 1e6 * actorMs / n / double(scene.crowd->size());
     // The pipeline's arithmetic rate over the yardstick's (1 = as fast per FMULT as the scalar kernel).
-    state.counters["actor_fmult_rate"] = actorFmult / (1000.0 * actorMs / n) / reference;
+    state.counters["actor_fmult_rate"] = actorFmult / (1000.0 * actorMs / n) / yardstick.rate();
     const char* names[7] = {"refpoint_ms", "cull1_ms", "sklsroot_ms", "cull2_ms", "pose_ms", "cull3_ms", "drawlist_ms"};
     for (int k = 0; k < 7; ++k) state.counters[names[k]] = phase[k] / n;
     if (withTraditional) {
         state.counters["traditional_ms"] = traditionalMs / n;
         state.counters["speedup"] = traditionalMs / actorMs;
-        state.counters["traditional_fmult_rate"] = traditionalFmult / (1000.0 * traditionalMs / n) / reference;
+        state.counters["traditional_fmult_rate"] = traditionalFmult / (1000.0 * traditionalMs / n) / yardstick.rate();
     }
 }
 
