@@ -163,8 +163,8 @@ void BM_TownSpread(benchmark::State& state) { compare(state, townScene(std::size
 // Enough frames for a steady mean at every size, in a few seconds each.
 BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(1000)->MinTime(1.0);
 BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(3.0);
-BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(5);
-BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(1000000)->Iterations(3);
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(10);
+BENCHMARK(BM_Table2Proportions)->Unit(benchmark::kMillisecond)->Arg(1000000)->Iterations(6);
 BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(1000)->MinTime(1.0);
 BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(3.0);
 BENCHMARK(BM_TownSpread)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(10);
