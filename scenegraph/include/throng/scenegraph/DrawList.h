@@ -40,7 +40,7 @@ enum class Representation : std::uint8_t {
 /// Marks an item that belongs to no actor (generic scene geometry).
 inline constexpr std::uint32_t kNoActor = ~std::uint32_t{0};
 
-/// One thing to draw. Fields are ordered so that the item packs without holes (176 bytes): a crowd
+/// One thing to draw. Fields are ordered largest first to keep the item small (176 bytes): a crowd
 /// writes one per drawn part every frame.
 struct DrawItem {
     /// Every field at its default. Written out (not defaulted) so that a list appending a fresh item

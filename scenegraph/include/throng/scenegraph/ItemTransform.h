@@ -2,7 +2,7 @@
 // Where a draw item stands in the world: an affine transform kept as DRAW uploads it, its linear
 // part (rotation and scale) in float and its translation in double. The translation keeps the
 // precision of world positions 10^7 m from the origin; the linear part loses nothing DRAW would
-// keep (it is rounded to float there anyway). 60 bytes where a double 4x4 matrix takes 128: a
+// keep (it is rounded to float there anyway). 64 bytes where a double 4x4 matrix takes 128: a
 // crowd writes one per drawn part every frame, and DRAW reads each once.
 
 #include <cmath>
