@@ -168,19 +168,23 @@ struct CascadeFrame {
     /// chunk's counts and tallies to the frame's, in chunk order.
     template <class Body>
     void parallel(std::size_t n, std::size_t grain, Body&& body) {
-        const std::size_t count = chunkCount(n, grain);
-        prepareChunks(count);
-        forEachChunk(n, grain, [&](std::size_t c, std::size_t begin, std::size_t end) { body(chunks[c], begin, end); });
-        joinChunks(count);
+        inChunks(n, grain, false, body);
     }
     /// parallel(), each chunk writing its draw items into a segment of the frame's list of its
     /// own, opened in chunk order: the items are written once, where DRAW reads them.
     template <class Body>
     void parallelDrawing(std::size_t n, std::size_t grain, Body&& body) {
+        inChunks(n, grain, true, body);
+    }
+    /// What parallel() and parallelDrawing() do.
+    template <class Body>
+    void inChunks(std::size_t n, std::size_t grain, bool drawing, Body& body) {
         const std::size_t count = chunkCount(n, grain);
         prepareChunks(count);
-        const std::size_t first = drawList->openSegments(count);
-        for (std::size_t c = 0; c < count; ++c) chunks[c].items = &drawList->segment(first + c);
+        if (drawing) {
+            const std::size_t first = drawList->openSegments(count);
+            for (std::size_t c = 0; c < count; ++c) chunks[c].items = &drawList->segment(first + c);
+        }
         forEachChunk(n, grain, [&](std::size_t c, std::size_t begin, std::size_t end) { body(chunks[c], begin, end); });
         joinChunks(count);
     }
