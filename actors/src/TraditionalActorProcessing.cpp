@@ -154,9 +154,8 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
                            out, c) != Containment::Outside) {
                 if (lv.skin >= 0) {
                     const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
-                    const DrawItem& item = emit(*lv.drawable, skls, n, level, skin.joints.size());
-                    computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {},
-                                       std::span<glm::mat4>(const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize),
+                    DrawItem& item = emit(*lv.drawable, skls, n, level, skin.joints.size());
+                    computeSkinPalette(t, skin, std::span<const Affine>(w.model.data() + base, n), {}, DrawSegment::paletteRoom(item),
                                        tallyFor(c, OpCategory::SkeletonMatrix));
                 } else {
                     emit(*lv.drawable, skls, n, level);

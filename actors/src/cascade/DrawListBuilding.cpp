@@ -50,8 +50,7 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
             const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
             DrawItem& item = emit(out, a, *lv.drawable, self, rootLevel, skin.joints.size());
             item.world = ItemTransform(skls);
-            computeSkinPalette(t, skin, model, active,
-                               std::span<glm::mat4>(const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize), nodeOps);
+            computeSkinPalette(t, skin, model, active, DrawSegment::paletteRoom(item), nodeOps);
         } else if (lv.drawable) {
             emit(out, a, *lv.drawable, self, rootLevel).world = ItemTransform(skls);
         }

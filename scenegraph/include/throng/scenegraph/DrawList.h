@@ -83,13 +83,9 @@ public:
     /// Appends `item` placed by `world`, with room for a skin palette of `paletteSize` matrices kept
     /// by the segment; returns the room, for the caller to fill before the list is drawn.
     std::span<glm::mat4> addSkinned(const DrawItem& item, std::uint64_t primitives, const Mat4& world, std::size_t paletteSize) {
-        DrawItem& added = emplace(primitives, paletteSize);
-        const glm::mat4* palette = added.skinPalette;
-        added = item;
+        DrawItem& added = copyIn(item, primitives, paletteSize);
         added.world = ItemTransform(world);
-        added.skinPalette = palette;
-        added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
-        return {const_cast<glm::mat4*>(palette), paletteSize};
+        return paletteRoom(added);
     }
     /// Appends an item with default fields but, when `paletteSize` is not 0, `skinPalette` (room for
     /// that many matrices, kept by the segment, to be filled before the list is drawn), and returns
@@ -103,6 +99,10 @@ public:
         }
         primitives_ += primitives;
         return added;
+    }
+    /// The palette of `item` (an item of this segment), for its writer to fill.
+    static std::span<glm::mat4> paletteRoom(DrawItem& item) {
+        return {const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize};  // the segment's own memory
     }
     /// The items, in the order they were added.
     std::span<const DrawItem> items() const { return items_; }
@@ -121,6 +121,15 @@ public:
 
 private:
     friend class DrawList;
+    // Appends a copy of `item` whose palette pointer is fresh room for `paletteSize` matrices.
+    DrawItem& copyIn(const DrawItem& item, std::uint64_t primitives, std::size_t paletteSize) {
+        DrawItem& added = emplace(primitives, paletteSize);
+        const glm::mat4* palette = added.skinPalette;
+        added = item;
+        added.skinPalette = palette;
+        added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
+        return added;
+    }
     std::vector<DrawItem> items_;
     FrameArena<glm::mat4> palettes_;
     std::uint64_t primitives_ = 0;
@@ -235,11 +244,8 @@ public:
                 into.add(item, 0);
                 continue;
             }
-            DrawItem& added = into.emplace(0, item.skinPaletteSize);
-            glm::mat4* palette = const_cast<glm::mat4*>(added.skinPalette);
-            added = item;
-            added.skinPalette = palette;
-            std::copy_n(item.skinPalette, item.skinPaletteSize, palette);
+            DrawItem& added = into.copyIn(item, 0, item.skinPaletteSize);
+            std::copy_n(item.skinPalette, item.skinPaletteSize, DrawSegment::paletteRoom(added).begin());
         }
         into.primitives_ += other.primitiveCount();  // as the other list counted them
     }
@@ -257,8 +263,6 @@ public:
         for (std::size_t s = 0; s < used_; ++s) n += segments_[s]->primitiveCount();
         return n;
     }
-    /// The segments in use, in order (a renderer may walk them instead of the items).
-    std::span<const std::unique_ptr<DrawSegment>> segments() const { return {segments_.data(), used_}; }
 
 private:
     // The segment add() writes into: the last one, unless segments were opened for other writers

@@ -48,12 +48,6 @@ public:
     }
     /// Number of values stored.
     std::size_t size() const { return size_; }
-    /// Values the arena holds room for without allocating.
-    std::size_t capacity() const {
-        std::size_t total = 0;
-        for (const Chunk& c : chunks_) total += c.size;
-        return total;
-    }
 
 private:
     static constexpr std::size_t kFirstChunk = 64;
