@@ -3,6 +3,7 @@
 #include "ActorDrawItem.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/actors/detail/PoseBatch.h"
 #include "throng/actors/detail/PoseKernels.h"
 #include "throng/scenegraph/CullVisitor.h"
 #include "throng/scenegraph/FrameContext.h"
@@ -64,7 +65,27 @@ void appOne(Crowd::State& s, ActorId id, const FrameContext& context) {
     b.pose(slot, context.time, 0, *s.tmpl[id], {}, dofsOf(s, id), tallyFor(c, OpCategory::SkeletonDofValues));
 }
 
-// Matrices and spheres of one actor under `parent`, all on the CPU; returns its whole bound.
+// Model transforms of every node of the actors ids[begin, end), up to kPoseLanes consecutive actors
+// of one template at a time (the pose job actor processing runs, on every node).
+void poseModels(Crowd::State& s, Crowd::TraditionalWorkspace& w, std::span<const ActorId> ids, std::size_t begin,
+                std::size_t end, Chunk& out, OpCounter* c) {
+    OpTally* nodeOps = tallyFor(c, OpCategory::SkeletonMatrix);
+    for (std::size_t k = begin; k < end;) {
+        const ActorTemplate& t = *s.tmpl[ids[k]];
+        detail::PoseLane lanes[detail::kPoseLanes];
+        std::size_t count = 0;
+        for (; count < detail::kPoseLanes && k + count < end && s.tmpl[ids[k + count]] == &t; ++count) {
+            const ActorId id = ids[k + count];
+            lanes[count] = {s.dofs.data() + s.dofOffset[id], nullptr, w.model.data() + s.nodeOffset[id]};
+        }
+        std::uint32_t evaluated[detail::kPoseLanes];
+        detail::computeModelTransformsBatch(t, std::span(lanes, count), out.pose, std::span(evaluated, count), nodeOps);
+        k += count;
+    }
+}
+
+// Matrices and spheres of one actor under `parent`, all on the CPU, its model transforms posed
+// (poseModels); returns its whole bound.
 BoundingSphere boundOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, ActorId id, const Mat4& parent, bool identity,
                         Chunk& out, OpCounter* c) {
     OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
@@ -81,7 +102,6 @@ BoundingSphere boundOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, ActorId
     countOperations(c, OpCategory::SkeletonRootMatrix);
     // Every Skeleton node: local matrix, model matrix and world matrix, on the CPU.
     const std::span<Affine> model(w.model.data() + base, n);
-    computeModelTransforms(t, dofsOf(s, id), {}, model, nodeOps);
     for (std::size_t i = 0; i < n; ++i) detail::nodeWorldMatrix<float>(s.sklsWorld[id], model[i], w.world[base + i], nodeOps);
     countOperations(c, OpCategory::SkeletonMatrix, n);
     out.matrices.localMatricesBuilt += n;
@@ -224,6 +244,7 @@ BoundingSphere traditionalBound(Crowd& crowd, std::span<const ActorId> ids, Matr
     const bool identity = visitor.parentIsIdentity();
     const std::size_t chunks = inChunks(crowd, ids.size(), counter != nullptr, nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
         OpCounter* c = counter ? &out.ops : nullptr;
+        poseModels(s, w, ids, begin, end, out, c);
         for (std::size_t k = begin; k < end; ++k) out.bound.expandBy(boundOne(s, w, ids[k], parent, identity, out, c));
     });
     BoundingSphere bound;

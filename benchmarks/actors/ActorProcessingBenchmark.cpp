@@ -116,7 +116,7 @@ void compare(benchmark::State& state, Scene scene, bool withTraditional) {
             processor.setProcessing(p);
             processor.processFrame(*scene.root, scene.camera, scene.time + double(k % 2) * 1e-9);
         }
-    double traditionalMs = 0.0, actorMs = 0.0, posed = 0.0;
+    double traditionalMs = 0.0, actorMs = 0.0, posed = 0.0, items = 0.0;
     double phase[7] = {};
     std::int64_t frames = 0;
     for (auto _ : state) {
@@ -130,6 +130,7 @@ void compare(benchmark::State& state, Scene scene, bool withTraditional) {
         yardstick.run();
         actorMs += s.appCullMs();
         posed += double(s.actorsPosed);
+        items += double(s.drawItems);
         const double phases[7] = {s.refpointMs + s.matricesBoundsMs, s.cullMs, s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms,
                                   s.drawListMs};
         for (int k = 0; k < 7; ++k) phase[k] += phases[k];
@@ -138,6 +139,7 @@ void compare(benchmark::State& state, Scene scene, bool withTraditional) {
     const double n = double(frames);
     state.counters["actors"] = double(scene.crowd->size());
     state.counters["posed"] = posed / n;
+    state.counters["draw_items"] = items / n;
     state.counters["actor_ms"] = actorMs / n;
     // Per actor posed (what grows with the visible crowd) and per actor in the scene (what every
     // actor costs, seen or not: its Reference Point).

@@ -15,18 +15,31 @@ void evaluateBehaviours(CascadeFrame& f) {
         OpCounter* c = f.counterOf(out);
         OpTally* nodeOps = tallyFor(c, OpCategory::SkeletonMatrix);
         OpTally* valueOps = tallyFor(c, OpCategory::SkeletonDofValues);
+        auto idOf = [&](std::size_t j) { return f.candidates[f.survivors[f.posed[j]]].id; };
         for (std::size_t j = begin; j < end; ++j) {
-            const ActorId id = f.candidates[f.survivors[f.posed[j]]].id;
+            const ActorId id = idOf(j);
             const ActorTemplate& t = *s.tmpl[id];
-            const std::size_t n = t.nodeCount();
-            const std::span<const std::uint8_t> active(f.active.data() + f.nodeBase[j], n);
+            const std::span<const std::uint8_t> active(f.active.data() + f.nodeBase[j], t.nodeCount());
             const std::span<float> dofs = std::span<float>(s.dofs).subspan(s.dofOffset[id], t.dofValueCount());
             s.behaviour[id]->pose(s.slot[id], time, f.level[j], t, active, dofs, valueOps);
-            const std::size_t evaluated =
-                computeModelTransforms(t, dofs, active, std::span<Affine>(f.model.data() + f.nodeBase[j], n), nodeOps);
-            f.evaluated[j] = static_cast<std::uint32_t>(evaluated);
-            countOperations(c, OpCategory::SkeletonMatrix, evaluated);
-            out.counts.skeletonNodesEvaluated += evaluated;
+        }
+        // Model transforms, up to kPoseLanes consecutive actors of one template at a time.
+        for (std::size_t j = begin; j < end;) {
+            const ActorTemplate& t = *s.tmpl[idOf(j)];
+            detail::PoseLane lanes[detail::kPoseLanes];
+            std::size_t count = 0;
+            for (; count < detail::kPoseLanes && j + count < end && s.tmpl[idOf(j + count)] == &t; ++count) {
+                const ActorId id = idOf(j + count);
+                lanes[count] = {s.dofs.data() + s.dofOffset[id], f.active.data() + f.nodeBase[j + count],
+                                f.model.data() + f.nodeBase[j + count]};
+            }
+            std::uint32_t evaluated[detail::kPoseLanes];
+            detail::computeModelTransformsBatch(t, std::span(lanes, count), out.pose, std::span(evaluated, count), nodeOps);
+            for (std::size_t k = 0; k < count; ++k, ++j) {
+                f.evaluated[j] = evaluated[k];
+                countOperations(c, OpCategory::SkeletonMatrix, evaluated[k]);
+                out.counts.skeletonNodesEvaluated += evaluated[k];
+            }
         }
     });
     f.stats->actorsPosed = f.posed.size();

@@ -18,6 +18,7 @@
 #include "throng/actors/ActorId.h"
 #include "throng/actors/Affine.h"
 #include "throng/actors/KeyPoseSelection.h"
+#include "throng/actors/detail/PoseBatch.h"
 #include "throng/scenegraph/BoundingSphere.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/FrameContext.h"
@@ -97,6 +98,7 @@ struct ChunkOutput {
     OpCounter ops;                    ///< FMULT tallies, enabled when the frame counts
     DrawSegment* items = nullptr;     ///< where its draw items go (phase 7): its own segment of the frame's list
     BoundingSphere bound;             ///< a group's bound, merged from its chunk's Refpoint Bspheres
+    detail::PoseBatchWorkspace pose;  ///< scratch of the pose batches (phase 5)
 };
 
 /// One frame of actor processing and the workspace of its phases.

@@ -19,6 +19,7 @@
 #include "throng/actors/Affine.h"
 #include "throng/actors/Behaviour.h"
 #include "throng/actors/RootPose.h"
+#include "throng/actors/detail/PoseBatch.h"
 #include "throng/scenegraph/BoundingSphere.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/FrameContext.h"
@@ -108,6 +109,7 @@ public:
             MatrixBoundsStatistics matrices;         ///< matrix and sphere work
             std::uint64_t spheresTested = 0;         ///< sphere-frustum tests
             std::uint64_t lodDistances = 0;          ///< eye distances computed by LOD nodes
+            detail::PoseBatchWorkspace pose;         ///< scratch of the pose batches
         };
         std::vector<Chunk> chunks;                   ///< one per chunk of the current loop
     };
