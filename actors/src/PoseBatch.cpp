@@ -114,6 +114,31 @@ Affine4 load(const PoseBatchWorkspace::Lanes* from) {
     return a;
 }
 
+// Lanes (a[k], b[k], c[k], d[k]) as four vectors, k = 0..3: a 4x4 transpose.
+void transpose(F4& a, F4& b, F4& c, F4& d) {
+    const F4 t0 = __builtin_shufflevector(a, b, 0, 4, 1, 5), t1 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+    const F4 t2 = __builtin_shufflevector(c, d, 0, 4, 1, 5), t3 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+    a = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+    b = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+    c = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+    d = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// Writes node i's transform of each live lane into that lane's model array: an Affine is 12
+// consecutive floats (linear by columns, then translation), so three transposes turn the 12
+// lane vectors into three stores per lane instead of twelve.
+void scatter(const Affine4& a, std::span<const PoseLane> lanes, std::uint8_t live, std::size_t i) {
+    static_assert(sizeof(Affine) == 12 * sizeof(float), "an Affine is 12 packed floats");
+    F4 v[12] = {a.m[0][0], a.m[0][1], a.m[0][2], a.m[1][0], a.m[1][1], a.m[1][2],
+                a.m[2][0], a.m[2][1], a.m[2][2], a.t[0],    a.t[1],    a.t[2]};
+    for (int g = 0; g < 12; g += 4) transpose(v[g], v[g + 1], v[g + 2], v[g + 3]);
+    for (std::size_t k = 0; k < lanes.size(); ++k) {
+        if (!(live & (1u << k))) continue;
+        auto* out = reinterpret_cast<unsigned char*>(&lanes[k].model[i]);
+        for (std::size_t g = 0; g < 3; ++g) std::memcpy(out + 16 * g, &v[4 * g + k], sizeof(F4));
+    }
+}
+
 // The operations computeModelTransforms tallies for one node (see detail::nodeLocalTransform).
 void tallyNode(const SkeletonNode& node, std::uint64_t lanes, OpTally* ops) {
 #if THRONG_OP_COUNTING
@@ -163,14 +188,8 @@ void computeModelTransformsBatch(const ActorTemplate& tmpl, std::span<const Pose
         const Affine4 model = p < 0 ? local : compose(load(&w.model[12 * static_cast<std::size_t>(p)]), local);
         store(&w.model[12 * i], model);
         tallyNode(nodes[i], static_cast<std::uint64_t>(std::popcount(live)), ops);
-        for (std::size_t k = 0; k < count; ++k) {
-            if (!(live & (1u << k))) continue;
-            Affine& out = lanes[k].model[i];
-            for (int c = 0; c < 3; ++c)
-                for (int row = 0; row < 3; ++row) out.linear[c][row] = model.m[c][row][k];
-            for (int row = 0; row < 3; ++row) out.translation[row] = model.t[row][k];
-            ++evaluated[k];
-        }
+        scatter(model, lanes, live, i);
+        for (std::size_t k = 0; k < count; ++k) evaluated[k] += (live >> k) & 1u;
     }
 }
 
