@@ -322,6 +322,24 @@ TEST(Gltf, UnskinnedMeshesAreInWorldSpaceAndBelowJointsTheyAreRigidGeometry) {
     EXPECT_TRUE(t.nodes()[2].geometry.bound().contains(Vec3(0, 0.25, 0)));
 }
 
+// Found by the fuzzer: a finite vertex that a node's scale carries beyond float range. The error
+// names the positions and the node, instead of a bad vertex found later.
+TEST(Gltf, AVertexPlacedBeyondFloatRangeIsAnErrorNamingItsPositions) {
+    GltfTestFile f = twoJointRig();
+    const int pos = f.floats({0, 0, 0, 1e37f, 0, 0, 0, 1, 0}, "VEC3");
+    f.push("meshes", {{"name", "hat"}, {"primitives", J::array({J{{"attributes", {{"POSITION", pos}}}}})}});
+    const int hat = f.push("nodes", {{"name", "hat"}, {"mesh", 1}, {"scale", {100, 100, 100}}});
+    f.doc["nodes"][1]["children"] = J::array({hat});
+    try {
+        (void)load(f);
+        FAIL() << "a vertex beyond float range loaded";
+    } catch (const GltfError& e) {
+        EXPECT_EQ(e.where(), "/meshes/1/primitives/0/attributes/POSITION");
+        EXPECT_NE(e.problem().find("vertex 1 lies beyond float range once placed by node " + std::to_string(hat)), std::string::npos)
+            << e.problem();
+    }
+}
+
 // A primitive below a joint is drawn by the skin's template only: the static template takes the
 // unskinned primitives no skin claimed, each exactly once.
 TEST(Gltf, EachUnskinnedPrimitiveIsDrawnByExactlyOneTemplate) {

@@ -427,7 +427,13 @@ ReadPrimitive ContentReader::readPrimitive(int nodeIndex, int meshIndex, int p) 
         auto w = std::make_shared<MeshData>(*mesh);
         const dmat4& mw = c_.world[static_cast<std::size_t>(nodeIndex)];
         const glm::dmat3 nm = glm::inverseTranspose(glm::dmat3(mw));
-        for (auto& p3 : w->positions) p3 = glm::vec3(mw * glm::dvec4(dvec3(p3), 1.0));
+        for (std::size_t v = 0; v < w->positions.size(); ++v) {
+            glm::vec3& p3 = w->positions[v];
+            p3 = glm::vec3(mw * glm::dvec4(dvec3(p3), 1.0));
+            if (!std::isfinite(p3.x) || !std::isfinite(p3.y) || !std::isfinite(p3.z))
+                doc_.fail(at + "POSITION", "vertex " + std::to_string(v) + " lies beyond float range once placed by node " +
+                                               std::to_string(nodeIndex) + "'s world transform");
+        }
         for (auto& n3 : w->normals) {
             const dvec3 d = nm * dvec3(n3);
             const double len = glm::length(d);
