@@ -59,7 +59,7 @@ std::size_t ActorTemplate::sharedBytes() const {
         countDrawables(n.geometry);
     }
     countDrawables(rootGeometry_);
-    bytes += (subtreeEnd_.size() + dofOffset_.size() + firstDof_.size() + dofValueOffset_.size()) * sizeof(std::uint32_t) +
+    bytes += (subtreeEnd_.size() + dofOffset_.size() + firstDof_.size() + dofValueOffset_.size()) * sizeof(std::uint32_t) + dofKind_.size() * sizeof(DofKind) +
              restDofs_.size() * sizeof(float);
     for (const auto& c : clips_)
         for (const ClipChannel& ch : c->channels())
@@ -211,6 +211,7 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
         t->firstDof_[i] = dofs;
         for (const Dof& d : nodes_[i].dofs) {
             t->dofValueOffset_.push_back(values);
+            t->dofKind_.push_back(d.kind);
             for (int k = 0; k < dofValueCount(d.kind); ++k) t->restDofs_.push_back(d.rest[static_cast<std::size_t>(k)]);
             values += static_cast<std::uint32_t>(dofValueCount(d.kind));
             ++dofs;

@@ -43,6 +43,9 @@ public:
     std::uint32_t dofOffset(std::size_t i) const { return dofOffset_[i]; }
     /// Offset of the first value of DOF `dof` of node `node` in a pose's DOF array.
     std::uint32_t dofValueOffset(std::size_t node, std::size_t dof) const { return dofValueOffset_[firstDof_[node] + dof]; }
+    /// Kind of DOF `dof` of node `node` (what nodes()[node].dofs[dof].kind says, from a flat table
+    /// that sampling a clip reads once per channel).
+    DofKind dofKind(std::size_t node, std::size_t dof) const { return dofKind_[firstDof_[node] + dof]; }
     /// Number of DOF values of the whole skeleton.
     std::uint32_t dofValueCount() const { return dofValueCount_; }
     /// Number of DOFs (not values) of the whole skeleton (19 for the seed's humanoid).
@@ -89,6 +92,7 @@ private:
     std::vector<std::uint32_t> dofOffset_;
     std::vector<std::uint32_t> firstDof_;
     std::vector<std::uint32_t> dofValueOffset_;
+    std::vector<DofKind> dofKind_;
     std::uint32_t dofValueCount_ = 0;
     std::uint32_t dofCount_ = 0;
     std::vector<float> restDofs_;

@@ -107,7 +107,13 @@ void sampleChannelAt(const ClipChannel& c, int width, bool orientation, S t, std
     const std::size_t valueIndex = c.interpolation == Interpolation::CubicSpline ? 1 : 0;  // skip in-tangent
     if (upper == 0 || upper == keys || c.interpolation == Interpolation::Step || holdKeys) {
         const std::size_t k = upper == 0 ? 0 : upper - 1;
-        std::copy_n(c.values.data() + k * stride + valueIndex * static_cast<std::size_t>(width), width, out);
+        const float* held = c.values.data() + k * stride + valueIndex * static_cast<std::size_t>(width);
+        switch (width) {  // the widths DOFs have, copied in registers (std::copy_n calls memmove)
+            case 4: out[3] = held[3]; [[fallthrough]];
+            case 3: out[2] = held[2]; out[1] = held[1]; [[fallthrough]];
+            case 1: out[0] = held[0]; break;
+            default: std::copy_n(held, width, out);
+        }
         return;
     }
     const std::size_t k0 = upper - 1, k1 = upper;
@@ -175,7 +181,7 @@ std::size_t sampleClip(const AnimationClip& clip, const ActorTemplate& tmpl, Wid
             searched = sources[i];
             upper = keyAfter(c.times, ft, ops);
         }
-        const DofKind kind = tmpl.nodes()[c.node].dofs[c.dof].kind;
+        const DofKind kind = tmpl.dofKind(c.node, c.dof);
         const int width = dofValueCount(kind);
         sampleChannelAt(c, width, kind == DofKind::Orientation, ft, upper, dofs.data() + tmpl.dofValueOffset(c.node, c.dof),
                         ops, holdKeys);
