@@ -135,7 +135,8 @@ void scatter(const Affine4& a, std::span<const PoseLane> lanes, std::uint8_t liv
     for (std::size_t k = 0; k < lanes.size(); ++k) {
         if (!(live & (1u << k))) continue;
         auto* out = reinterpret_cast<unsigned char*>(&lanes[k].model[i]);
-        __builtin_prefetch(out + 4 * sizeof(Affine), 1);  // the lane's transforms a few nodes on: written soon
+        // The lane's transforms a few nodes on, written soon (an integer address: it may lie past the array).
+        __builtin_prefetch(reinterpret_cast<const void*>(reinterpret_cast<std::uintptr_t>(out) + 4 * sizeof(Affine)), 1);
         for (std::size_t g = 0; g < 3; ++g) std::memcpy(out + 16 * g, &v[4 * g + k], sizeof(F4));
     }
 }

@@ -96,9 +96,11 @@ public:
         // Items are written once and not read again this frame: the lines of the item eight items
         // ahead are fetched for writing now, so that its stores do not wait for them (the draw list
         // of 10k Table-2 actors -25 % side by side). A prefetch never faults, past the end included.
-        const char* ahead = reinterpret_cast<const char*>(&added) + 8 * sizeof(DrawItem);
-        for (std::size_t line = 0; line < sizeof(DrawItem); line += 64) __builtin_prefetch(ahead + line, 1);
-        __builtin_prefetch(ahead + sizeof(DrawItem) - 1, 1);
+        // (Addresses as integers: a pointer past the storage's end would not be a valid pointer.)
+        const std::uintptr_t ahead = reinterpret_cast<std::uintptr_t>(&added) + 8 * sizeof(DrawItem);
+        for (std::size_t line = 0; line < sizeof(DrawItem); line += 64)
+            __builtin_prefetch(reinterpret_cast<const void*>(ahead + line), 1);
+        __builtin_prefetch(reinterpret_cast<const void*>(ahead + sizeof(DrawItem) - 1), 1);
         if (paletteSize) {
             added.skinPalette = palettes_.allocate(paletteSize);
             added.skinPaletteSize = static_cast<std::uint32_t>(paletteSize);
