@@ -69,19 +69,12 @@ void appOne(Crowd::State& s, ActorId id, const FrameContext& context) {
 // of one template at a time (the pose job actor processing runs, on every node).
 void poseModels(Crowd::State& s, Crowd::TraditionalWorkspace& w, std::span<const ActorId> ids, std::size_t begin,
                 std::size_t end, Chunk& out, OpCounter* c) {
-    OpTally* nodeOps = tallyFor(c, OpCategory::SkeletonMatrix);
-    for (std::size_t k = begin; k < end;) {
-        const ActorTemplate& t = *s.tmpl[ids[k]];
-        detail::PoseLane lanes[detail::kPoseLanes];
-        std::size_t count = 0;
-        for (; count < detail::kPoseLanes && k + count < end && s.tmpl[ids[k + count]] == &t; ++count) {
-            const ActorId id = ids[k + count];
-            lanes[count] = {s.dofs.data() + s.dofOffset[id], nullptr, w.model.data() + s.nodeOffset[id]};
-        }
-        std::uint32_t evaluated[detail::kPoseLanes];
-        detail::computeModelTransformsBatch(t, std::span(lanes, count), out.pose, std::span(evaluated, count), nodeOps);
-        k += count;
-    }
+    detail::poseInBatches(
+        begin, end, [&](std::size_t k) -> const ActorTemplate& { return *s.tmpl[ids[k]]; },
+        [&](std::size_t k) {
+            return detail::PoseLane{s.dofs.data() + s.dofOffset[ids[k]], nullptr, w.model.data() + s.nodeOffset[ids[k]]};
+        },
+        out.pose, tallyFor(c, OpCategory::SkeletonMatrix), [](std::size_t, std::uint32_t) {});
 }
 
 // Matrices and spheres of one actor under `parent`, all on the CPU, its model transforms posed

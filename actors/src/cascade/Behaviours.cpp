@@ -24,23 +24,18 @@ void evaluateBehaviours(CascadeFrame& f) {
             s.behaviour[id]->pose(s.slot[id], time, f.level[j], t, active, dofs, valueOps);
         }
         // Model transforms, up to kPoseLanes consecutive actors of one template at a time.
-        for (std::size_t j = begin; j < end;) {
-            const ActorTemplate& t = *s.tmpl[idOf(j)];
-            detail::PoseLane lanes[detail::kPoseLanes];
-            std::size_t count = 0;
-            for (; count < detail::kPoseLanes && j + count < end && s.tmpl[idOf(j + count)] == &t; ++count) {
-                const ActorId id = idOf(j + count);
-                lanes[count] = {s.dofs.data() + s.dofOffset[id], f.active.data() + f.nodeBase[j + count],
-                                f.model.data() + f.nodeBase[j + count]};
-            }
-            std::uint32_t evaluated[detail::kPoseLanes];
-            detail::computeModelTransformsBatch(t, std::span(lanes, count), out.pose, std::span(evaluated, count), nodeOps);
-            for (std::size_t k = 0; k < count; ++k, ++j) {
-                f.evaluated[j] = evaluated[k];
-                countOperations(c, OpCategory::SkeletonMatrix, evaluated[k]);
-                out.counts.skeletonNodesEvaluated += evaluated[k];
-            }
-        }
+        detail::poseInBatches(
+            begin, end, [&](std::size_t j) -> const ActorTemplate& { return *s.tmpl[idOf(j)]; },
+            [&](std::size_t j) {
+                return detail::PoseLane{s.dofs.data() + s.dofOffset[idOf(j)], f.active.data() + f.nodeBase[j],
+                                        f.model.data() + f.nodeBase[j]};
+            },
+            out.pose, nodeOps,
+            [&](std::size_t j, std::uint32_t evaluated) {
+                f.evaluated[j] = evaluated;
+                countOperations(c, OpCategory::SkeletonMatrix, evaluated);
+                out.counts.skeletonNodesEvaluated += evaluated;
+            });
     });
     f.stats->actorsPosed = f.posed.size();
 }

@@ -44,4 +44,21 @@ struct PoseBatchWorkspace {
 void computeModelTransformsBatch(const ActorTemplate& tmpl, std::span<const PoseLane> lanes, PoseBatchWorkspace& workspace,
                                  std::span<std::uint32_t> evaluated, OpTally* ops);
 
+/// Poses actors [begin, end) in batches of up to kPoseLanes consecutive actors of one template:
+/// `templateOf(k)` is actor k's template (a reference), `laneOf(k)` its PoseLane; `posed(k, n)` is
+/// told that actor k had n nodes computed.
+template <class TemplateOf, class LaneOf, class Posed>
+void poseInBatches(std::size_t begin, std::size_t end, TemplateOf&& templateOf, LaneOf&& laneOf, PoseBatchWorkspace& workspace,
+                   OpTally* ops, Posed&& posed) {
+    for (std::size_t k = begin; k < end;) {
+        const ActorTemplate& t = templateOf(k);
+        PoseLane lanes[kPoseLanes];
+        std::size_t count = 0;
+        for (; count < kPoseLanes && k + count < end && &templateOf(k + count) == &t; ++count) lanes[count] = laneOf(k + count);
+        std::uint32_t evaluated[kPoseLanes];
+        computeModelTransformsBatch(t, std::span(lanes, count), workspace, std::span(evaluated, count), ops);
+        for (std::size_t l = 0; l < count; ++l, ++k) posed(k, evaluated[l]);
+    }
+}
+
 }  // namespace throng::detail
