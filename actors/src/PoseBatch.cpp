@@ -180,10 +180,8 @@ void computeModelTransformsBatch(const ActorTemplate& tmpl, std::span<const Pose
         for (std::size_t k = 0; k < count; ++k)
             if (lanes[k].active && !lanes[k].active[i]) live &= std::uint8_t(~(1u << k));
         w.live[i] = live;
-        if (!live) {  // no lane computes it: its subtree is skipped (marked for the children's test)
-            const std::size_t end = tmpl.subtreeEnd(i);
-            std::fill(w.live.begin() + static_cast<std::ptrdiff_t>(i), w.live.begin() + static_cast<std::ptrdiff_t>(end), 0);
-            i = end - 1;
+        if (!live) {  // no lane computes it: its subtree is never visited
+            i = tmpl.subtreeEnd(i) - 1;
             continue;
         }
         const Affine4 local = localTransform(nodes[i], lanes, tmpl.dofOffset(i));
