@@ -1,6 +1,7 @@
 #include "throng/actors/TraditionalActorProcessing.h"
 
 #include "ActorDrawItem.h"
+#include "ReferencePointRuns.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/actors/detail/PoseBatch.h"
@@ -55,12 +56,12 @@ Containment testSphere(const Frustum& frustum, const BoundingSphere& sphere, Pla
     return frustum.classify(sphere, mask, tallyFor(c, OpCategory::BsphereFrustumTest));
 }
 
-// Every actor, every DOF, at full precision: behaviour does not know what the camera sees.
+// Every actor, every DOF, at full precision: behaviour does not know what the camera sees (the
+// Reference Point came before, with its neighbours').
 void appOne(Crowd::State& s, ActorId id, const FrameContext& context) {
     OpCounter* c = context.counter;
     Behaviour& b = *s.behaviour[id];
     const std::uint32_t slot = s.slot[id];
-    s.refLocal[id] = b.referencePoint(slot, context, tallyFor(c, OpCategory::RefpointDofValues));
     s.root[id] = b.skeletonRoot(slot, context.time, 0, tallyFor(c, OpCategory::SkeletonRootDofValues));
     b.pose(slot, context.time, 0, *s.tmpl[id], {}, dofsOf(s, id), tallyFor(c, OpCategory::SkeletonDofValues));
 }
@@ -223,6 +224,8 @@ void traditionalApp(Crowd& crowd, std::span<const ActorId> ids, const FrameConte
     const std::size_t chunks = inChunks(crowd, ids.size(), context.counter != nullptr, nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
         FrameContext local = context;
         local.counter = context.counter ? &out.ops : nullptr;
+        detail::computeReferencePointRuns(s, begin, end, [&](std::size_t k) { return ids[k]; }, local,
+                                          tallyFor(local.counter, OpCategory::RefpointDofValues));
         for (std::size_t k = begin; k < end; ++k) appOne(s, ids[k], local);
     });
     if (context.counter)

@@ -21,6 +21,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "throng/actors/detail/SinCos.h"
 #include "throng/scenegraph/OpTally.h"
 #include "throng/scenegraph/detail/ScalarMath.h"
 
@@ -121,6 +122,14 @@ public:
     friend Counted cos(Counted a) {
         ++sqrts();
         return Counted(std::cos(a.v_));
+    }
+    /// Both at once, with the bits of the production kernels' detail::sinCos (two priced roots).
+    friend void sinCos(Counted a, Counted& sine, Counted& cosine) {
+        sqrts() += 2;
+        double s, c;
+        throng::detail::sinCos(double(a.v_), s, c);
+        sine = Counted(T(s));
+        cosine = Counted(T(c));
     }
     friend Counted acos(Counted a) {
         ++sqrts();

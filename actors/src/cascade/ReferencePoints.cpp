@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "../ReferencePointRuns.h"
 #include "CascadeFrame.h"
 #include "throng/actors/Crowd.h"
 #include "throng/scenegraph/Transform.h"
@@ -16,8 +17,8 @@ void computeReferencePoints(CascadeFrame& f) {
         FrameContext context = f.context;
         context.counter = f.counterOf(out);
         OpTally* ops = tallyFor(context.counter, OpCategory::RefpointDofValues);
+        detail::computeReferencePointRuns(s, begin, end, [](std::size_t id) { return ActorId(id); }, context, ops);
         for (std::size_t id = begin; id < end; ++id) {
-            s.refLocal[id] = s.behaviour[id]->referencePoint(s.slot[id], context, ops);
             s.eyeDistance[id] = std::numeric_limits<double>::infinity();
             const bool inScene = s.owner[id] != nullptr;
             s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;

@@ -35,6 +35,13 @@ public:
     /// Phase 1: the actor's Reference Point in its parent's frame for the frame `context`.
     /// Called exactly once per frame for every actor, before anything depends on the camera.
     virtual Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) = 0;
+    /// Phase 1 for several actors: out[k] = referencePoint(slots[k], context, ops), the same bits,
+    /// for every k < slots.size() (`out` holds at least as many). Behaviours whose Reference Points
+    /// share work (a batch of sines) override it. Default: one referencePoint call each.
+    virtual void referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
+                                 std::span<Mat4> out) {
+        for (std::size_t k = 0; k < slots.size(); ++k) out[k] = referencePoint(slots[k], context, ops);
+    }
     /// Phase 3: the Skeleton Root relative to the Reference Point at `time`, at `level`.
     virtual RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) = 0;
     /// Phase 5: writes the DOF values of the nodes flagged in `active` (every node when empty) at

@@ -2,6 +2,8 @@
 // Closed-form Reference Point motion shared by behaviours: standing, or walking a circle facing
 // along it. Being a function of time, it never drifts however long the run.
 
+#include <span>
+
 #include "throng/scenegraph/Math.h"
 #include "throng/scenegraph/OpTally.h"
 
@@ -17,6 +19,9 @@ struct RefpointPath {
 
     /// The Reference Point's matrix at `time` (local +Z faces the walking direction).
     Mat4 at(double time, OpTally* ops = nullptr) const;
+    /// out[k] = paths[k].at(time, ops), the same bits, for every path, their sines and cosines
+    /// taken together (detail::sinCos). Throws std::invalid_argument if `out` is shorter.
+    static void atEach(std::span<const RefpointPath> paths, double time, std::span<Mat4> out, OpTally* ops = nullptr);
 };
 
 }  // namespace throng

@@ -47,6 +47,11 @@ public:
     Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override {
         return base_->referencePoint(slot, context, ops);
     }
+    /// The base behaviour's, batched as it batches them.
+    void referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
+                         std::span<Mat4> out) override {
+        base_->referencePoints(slots, context, ops, out);
+    }
     RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override {
         return base_->skeletonRoot(slot, time, baseLevel_[std::size_t(level)], ops);
     }

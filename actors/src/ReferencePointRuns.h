@@ -1,0 +1,42 @@
+#pragma once
+// Internal to actors: phase 1 over a range of actors, as both processing methods run it. Each
+// behaviour is asked for the Reference Points of up to kRun consecutive actors it drives at once
+// (Behaviour::referencePoints), so one virtual call serves many actors and a behaviour can share
+// work between them; every actor gets the bits a call of its own would give.
+
+#include <cstddef>
+
+#include "throng/actors/Crowd.h"
+
+namespace throng::detail {
+
+/// Writes the local Reference Point of actors idOf(begin) … idOf(end - 1) into s.refLocal.
+template <class IdOf>
+void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t end, IdOf&& idOf, const FrameContext& context,
+                               OpTally* ops) {
+    constexpr std::size_t kRun = 32;
+    std::uint32_t slots[kRun];
+    ActorId ids[kRun];
+    Mat4 out[kRun];
+    for (std::size_t k = begin; k < end;) {
+        Behaviour* behaviour = s.behaviour[idOf(k)];
+        std::size_t n = 0;
+        bool consecutive = true;  // ids[j] = ids[0] + j: the matrices go straight into place
+        for (; n < kRun && k + n < end; ++n) {
+            const ActorId id = idOf(k + n);
+            if (s.behaviour[id] != behaviour) break;
+            ids[n] = id;
+            slots[n] = s.slot[id];
+            consecutive = consecutive && id == ids[0] + n;
+        }
+        if (consecutive) {
+            behaviour->referencePoints({slots, n}, context, ops, {s.refLocal.data() + ids[0], n});
+        } else {
+            behaviour->referencePoints({slots, n}, context, ops, {out, n});
+            for (std::size_t j = 0; j < n; ++j) s.refLocal[ids[j]] = out[j];
+        }
+        k += n;
+    }
+}
+
+}  // namespace throng::detail
