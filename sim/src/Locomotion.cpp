@@ -11,6 +11,7 @@
 
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/actors/detail/SinCos.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/ClipBlend.h"
@@ -627,15 +628,37 @@ double Locomotion::clipTime(std::uint32_t slot, double) const {
     return state_[slot].phase * a.tmpl->clips()[std::size_t(a.walkClip)]->duration();
 }
 
-Mat4 Locomotion::referencePoint(std::uint32_t slot, const FrameContext&, OpTally* ops) {
-    const State& s = state_[slot];
-    const double c = std::cos(double(s.heading)), sn = std::sin(double(s.heading));
-    THRONG_TALLY(ops, 0, 0, 0, 2);
+namespace {
+// A walker's Reference Point: at its position, facing its heading, given the heading's sine and cosine.
+Mat4 walkerRefpoint(const Vec3& position, double sn, double c) {
     Mat4 m(1.0);
     m[0] = Vec4(c, 0.0, -sn, 0.0);
     m[2] = Vec4(sn, 0.0, c, 0.0);
-    m[3] = Vec4(Vec3(s.position), 1.0);
+    m[3] = Vec4(position, 1.0);
     return m;
+}
+}  // namespace
+
+Mat4 Locomotion::referencePoint(std::uint32_t slot, const FrameContext&, OpTally* ops) {
+    const State& s = state_[slot];
+    double sn, c;
+    detail::sinCos(double(s.heading), sn, c);
+    THRONG_TALLY(ops, 0, 0, 0, 2);
+    return walkerRefpoint(Vec3(s.position), sn, c);
+}
+
+void Locomotion::referencePoints(std::span<const std::uint32_t> slots, const FrameContext&, OpTally* ops, std::span<Mat4> out) {
+    constexpr std::size_t kBlock = 16;
+    double headings[kBlock], sines[kBlock], cosines[kBlock];
+    for (std::size_t first = 0; first < slots.size(); first += kBlock) {
+        const std::size_t n = std::min(kBlock, slots.size() - first);
+        for (std::size_t k = 0; k < n; ++k) headings[k] = double(state_[slots[first + k]].heading);
+        detail::sinCos(headings, sines, cosines, n);
+        for (std::size_t k = 0; k < n; ++k) {
+            THRONG_TALLY(ops, 0, 0, 0, 2);
+            out[first + k] = walkerRefpoint(Vec3(state_[slots[first + k]].position), sines[k], cosines[k]);
+        }
+    }
 }
 
 RootPose Locomotion::skeletonRoot(std::uint32_t slot, double, int level, OpTally* ops) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "throng/actors/Actor.h"
@@ -141,4 +142,24 @@ TEST(Locomotion, TrajectoriesAreDeterministicAndViewIndependent) {
     // ... the same whatever the camera looks at and whatever the number of threads.
     EXPECT_EQ(0, std::memcmp(looking.data(), away.data(), looking.size() * sizeof(Mat4)));
     EXPECT_EQ(0, std::memcmp(looking.data(), threaded.data(), looking.size() * sizeof(Mat4)));
+}
+
+// Phase 1 asks the walkers for runs of Reference Points at once (Behaviour::referencePoints): each
+// must carry the bits of the walker's own referencePoint call, whatever run it is asked in.
+TEST(Locomotion, BatchedReferencePointsEqualSingleCalls) {
+    const std::shared_ptr<const NavMesh> nav = NavMesh::build(plaza());
+    auto w = walkers(nav, 37, true);
+    SimulationClock clock;
+    for (int f = 0; f < 30; ++f, clock.advance()) w->crowd.step(clock.context());
+    std::vector<std::uint32_t> slots;
+    for (ActorId id = 0; id < w->crowd.size(); ++id) slots.push_back(w->crowd.state().slot[id]);
+    std::reverse(slots.begin(), slots.end());
+    for (std::size_t n : {std::size_t(1), std::size_t(16), std::size_t(17), slots.size()}) {
+        std::vector<Mat4> out(n);
+        w->locomotion->referencePoints({slots.data(), n}, clock.context(), nullptr, out);
+        for (std::size_t k = 0; k < n; ++k) {
+            const Mat4 single = w->locomotion->referencePoint(slots[k], clock.context(), nullptr);
+            ASSERT_EQ(0, std::memcmp(&out[k], &single, sizeof(Mat4))) << "slot " << slots[k] << " in a run of " << n;
+        }
+    }
 }

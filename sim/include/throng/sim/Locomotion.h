@@ -191,6 +191,9 @@ public:
     std::span<const double> levelEnds() const override { return levelEnds_; }
     void advance(const FrameContext& context) override;
     Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override;
+    /// Every slot's at once: the same matrices, the headings' sines and cosines taken in pairs.
+    void referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
+                         std::span<Mat4> out) override;
     RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override;
     void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
