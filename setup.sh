@@ -17,6 +17,8 @@ packages=(
   libglpk-dev
   # one simulation across processes and machines (optional at build time)
   libopenmpi-dev openmpi-bin
+  # the API reference from the headers' comments
+  doxygen
 )
 
 missing=()

@@ -28,13 +28,37 @@ struct CostModelFactors {
 
 /// Table 5: operations of each kind in one frame.
 struct OperationCounts {
-    double no01 = 0, no02 = 0, no03 = 0, no04a = 0, no04b = 0, no05 = 0;  ///< NO_01 ... NO_05
+    /// \var no01
+    /// NO_01: Skeleton nodes updated (DOF values, then matrix).
+    /// \var no02
+    /// NO_02: Reference Points updated (DOF values, then matrix).
+    /// \var no03
+    /// NO_03: Skeleton Roots updated (DOF values, then matrix).
+    /// \var no04a
+    /// NO_04a: bounding spheres recomputed from their descendants.
+    /// \var no04b
+    /// NO_04b: bounding spheres tested against the frustum.
+    double no01 = 0, no02 = 0, no03 = 0, no04a = 0, no04b = 0, no05 = 0;  ///< NO_05: LOD eye distances
 };
 
 /// Table 6: FMULT cost of one operation of each kind.
 struct OperationCosts {
-    double co01a = 0, co01b = 0, co02a = 0, co02b = 0, co03a = 0, co03b = 0;  ///< DOF values (a), matrix (b)
-    double co04a = 0, co04b = 0, co05 = 0;                                    ///< spheres, distances
+    /// \var co01a
+    /// CO_01a: a Skeleton node's DOF values (behaviour).
+    /// \var co01b
+    /// CO_01b: a Skeleton node's matrix.
+    /// \var co02a
+    /// CO_02a: a Reference Point's DOF values (behaviour).
+    /// \var co02b
+    /// CO_02b: a Reference Point's matrix.
+    /// \var co03a
+    /// CO_03a: a Skeleton Root's DOF values (behaviour).
+    double co01a = 0, co01b = 0, co02a = 0, co02b = 0, co03a = 0, co03b = 0;  ///< CO_03b: Skeleton Root matrix
+    /// \var co04a
+    /// CO_04a: a bounding sphere recomputed from its descendants.
+    /// \var co04b
+    /// CO_04b: a sphere-frustum test.
+    double co04a = 0, co04b = 0, co05 = 0;                                    ///< CO_05: an LOD eye distance
 };
 
 /// The model for one set of factors.

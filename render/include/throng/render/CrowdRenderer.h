@@ -42,7 +42,8 @@ struct CrowdRendererOptions {
     /// The impostor quads and their pool of morphed cells (pool size, morph budget, GL or CPU).
     ImpostorRendererOptions impostors;
     ImpostorMorphing morphing = ImpostorMorphing::Pool;  ///< how dropped key-frames are made
-    MorphCacheOptions morph = [] {   ///< FrameCache only: the morph cache (cells kept across frames)
+    /// FrameCache only: the morph cache's options (by default 4096 cells kept across frames).
+    MorphCacheOptions morph = [] {
         MorphCacheOptions o;
         o.capacity = 4096;
         return o;

@@ -94,7 +94,7 @@ public:
     /// key-frames or cell size differ from the atlas's.
     void setProxy(std::shared_ptr<const ProxyMesh> proxy);
 
-    /// Writes impostor.json and keyframe-<k>.png for each stored key-frame into `directory`
+    /// Writes impostor.json and `keyframe-<k>.png` for each stored key-frame into `directory`
     /// (created). Throws std::runtime_error naming the file on failure.
     void save(const std::filesystem::path& directory) const;
     /// Reads what save() wrote. Throws std::runtime_error naming the file and the problem.

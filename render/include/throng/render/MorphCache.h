@@ -41,9 +41,14 @@ struct MorphCacheStatistics {
 /// What morphing one dropped cell takes: its stored neighbours, the fraction between them, and
 /// the three line sets (the strongest `options.features` bones).
 struct DroppedCellLines {
-    int before = 0, after = 0;                  ///< stored neighbouring key-frames
+    /// Stored key-frame before the dropped one (wrapping: clips loop).
+    int before = 0, after = 0;                  ///< stored key-frame after it
     float t = 0.5f;                             ///< fraction from `before` to `after`
-    std::vector<FeatureLine> from, to, target;  ///< lines in `before`, in `after`, of the in-between
+    /// \var from
+    /// Lines in `before`, one per bone.
+    /// \var to
+    /// Lines in `after`, one per bone.
+    std::vector<FeatureLine> from, to, target;  ///< lines of the in-between, one per bone
 };
 
 /// The neighbours and lines of dropped key-frame `keyframe` of `atlas` seen from `view`. Throws

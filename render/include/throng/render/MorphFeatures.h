@@ -46,7 +46,15 @@ struct FeatureOptions {
 /// Corresponding features of one morph: lines in both sources and the target, the attributes of
 /// each set (depths differ with the pose), and the bone each feature comes from.
 struct CellFeatures {
+    /// \var from
+    /// Lines in the stored neighbour before the key-frame, one per feature.
+    /// \var to
+    /// Lines in the stored neighbour after it, one per feature.
     std::vector<FeatureLine> from, to, target;                            ///< one per feature
+    /// \var fromAttributes
+    /// Attributes of the `from` lines, one per feature.
+    /// \var toAttributes
+    /// Attributes of the `to` lines, one per feature.
     std::vector<LineAttributes> fromAttributes, toAttributes, targetAttributes;  ///< one per feature
     std::vector<std::uint32_t> bones;                                     ///< bone of each feature
     std::vector<std::uint8_t> primary;                                    ///< 1 for a bone's own line

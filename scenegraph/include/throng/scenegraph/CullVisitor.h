@@ -95,18 +95,18 @@ protected:
     /// buffer; false if it is outside or hidden. Clears mask bits of planes the bound is fully inside.
     bool enter(const Node& node);
 
-    Frustum frustum_;
-    Vec3 eye_;
-    DrawList& drawList_;
-    OpCounter* counter_;
-    double lodScale2_;
-    PlaneMask mask_;
-    const Mat4* world_;
-    std::uint32_t lodLevel_ = 0;
-    double time_ = 0.0;
-    const OcclusionBuffer* occlusion_ = nullptr;
-    bool rejectedByOcclusion_ = false;
-    CullStatistics stats_;
+    Frustum frustum_;                             ///< the camera's, or setCullingFrustum's
+    Vec3 eye_;                                    ///< the camera's eye, for LOD distances
+    DrawList& drawList_;                          ///< where visible items are appended
+    OpCounter* counter_;                          ///< where operations are accounted, or null
+    double lodScale2_;                            ///< square of the LOD scale
+    PlaneMask mask_;                              ///< planes left to test for the visited node
+    const Mat4* world_;                           ///< world matrix of the visited node's frame
+    std::uint32_t lodLevel_ = 0;                  ///< LOD child index recorded in draw items
+    double time_ = 0.0;                           ///< simulation time of the frame, seconds
+    const OcclusionBuffer* occlusion_ = nullptr;  ///< occlusion buffer in use, or null
+    bool rejectedByOcclusion_ = false;            ///< last node rejected was hidden, not outside
+    CullStatistics stats_;                        ///< work done and results so far
 };
 
 }  // namespace throng

@@ -153,24 +153,29 @@ public:
         /// Walks the items segment by segment.
         class iterator {
         public:
-            using iterator_category = std::forward_iterator_tag;
-            using value_type = DrawItem;
-            using difference_type = std::ptrdiff_t;
-            using pointer = const DrawItem*;
-            using reference = const DrawItem&;
+            using iterator_category = std::forward_iterator_tag;  ///< standard iterator trait
+            using value_type = DrawItem;                          ///< standard iterator trait
+            using difference_type = std::ptrdiff_t;               ///< standard iterator trait
+            using pointer = const DrawItem*;                      ///< standard iterator trait
+            using reference = const DrawItem&;                    ///< standard iterator trait
             iterator() = default;
+            /// The item.
             reference operator*() const { return (*segment_)->items()[index_]; }
+            /// The item's members.
             pointer operator->() const { return &**this; }
+            /// Moves to the next item, across segments.
             iterator& operator++() {
                 ++index_;
                 skipEnded();
                 return *this;
             }
+            /// Moves to the next item; returns where it was.
             iterator operator++(int) {
                 iterator before = *this;
                 ++*this;
                 return before;
             }
+            /// Whether both are at the same item (or both past the last).
             bool operator==(const iterator& other) const { return segment_ == other.segment_ && index_ == other.index_; }
 
         private:

@@ -16,8 +16,10 @@ namespace throng {
 class KeyPoseSource {
 public:
     KeyPoseSource() : serial_(nextSerial()) {}
+    /// A copy is another source: it gets a serial of its own.
     KeyPoseSource(const KeyPoseSource&) : serial_(nextSerial()) {}
-    KeyPoseSource& operator=(const KeyPoseSource&) { return *this; }  // a copy is another source: keeps its own serial
+    /// Keeps this source's own serial (a copy is another source).
+    KeyPoseSource& operator=(const KeyPoseSource&) { return *this; }
     virtual ~KeyPoseSource() = default;
     /// A number no other source of this process has had: a renderer that meets a new source at a
     /// freed one's address tells them apart by it.

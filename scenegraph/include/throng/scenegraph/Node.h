@@ -80,10 +80,10 @@ protected:
     /// Adds `delta` to the APP node count of this node and its ancestors.
     void adjustAppNodeCount(std::ptrdiff_t delta);
 
-    BoundingSphere worldBound_;
-    bool boundDirty_ = true;
-    bool worldStale_ = true;  // the frame above this node changed untracked (new parent)
-    bool mayHoldOccluders_ = false;  // groups and Occluder nodes set it; groups refine it when merged
+    BoundingSphere worldBound_;      ///< world-space bound, set by the matrices-and-bounds pass
+    bool boundDirty_ = true;         ///< this subtree changed since its bound was computed
+    bool worldStale_ = true;         ///< the frame above this node changed untracked (new parent)
+    bool mayHoldOccluders_ = false;  ///< groups and Occluders set it; groups refine it when merged
 
 private:
     std::string name_;

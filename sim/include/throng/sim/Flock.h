@@ -32,7 +32,7 @@ public:
     /// One bird.
     struct Bird {
         std::shared_ptr<const ActorTemplate> tmpl;  ///< required; its clip `flapClip` beats the wings
-        int flapClip = 0;
+        int flapClip = 0;                           ///< index of that clip in the template (looped)
         std::uint64_t stream = 0;                   ///< its random stream
     };
 

@@ -19,8 +19,8 @@ namespace throng::sim {
 
 /// A region of the town: the blocks [from, to) across (x) and deep (z).
 struct RegionRectangle {
-    glm::ivec2 from{0};
-    glm::ivec2 to{1};
+    glm::ivec2 from{0};  ///< first block (x, z)
+    glm::ivec2 to{1};    ///< one past the last block (x, z)
 };
 
 /// The town the actors walk in.
@@ -64,8 +64,8 @@ struct TemplateDescription {
 
 /// Where a group of actors starts: a rectangle on the ground (centre and size, metres).
 struct AreaDescription {
-    glm::dvec2 center{0.0};
-    glm::dvec2 size{100.0};
+    glm::dvec2 center{0.0};  ///< centre (x, z), metres
+    glm::dvec2 size{100.0};  ///< extent across (x) and deep (z), metres
 };
 
 /// A group of actors sharing a template and a behaviour.
@@ -103,9 +103,9 @@ struct CameraKey {
 
 /// The camera.
 struct CameraDescription {
-    double fovDegrees = 60.0;
-    double nearDistance = 0.1;
-    double farDistance = 1500.0;
+    double fovDegrees = 60.0;              ///< vertical field of view, degrees (below 180)
+    double nearDistance = 0.1;             ///< near clipping distance, metres
+    double farDistance = 1500.0;           ///< far clipping distance, metres (beyond near)
     std::vector<CameraKey> path;           ///< keys in time order (linear between them; held after the last)
 };
 
@@ -130,15 +130,15 @@ struct RepresentationDescription {
 
 /// A whole scene.
 struct SceneDescription {
-    std::string name;
-    std::uint64_t seed = 1;
+    std::string name;                                      ///< root node's name ("scene" if empty)
+    std::uint64_t seed = 1;                                ///< actors' randomness (not the town's)
     double step = 1.0 / 60.0;                              ///< simulation step, seconds
     std::optional<TownDescription> town;                   ///< none: a flat ground
-    std::map<std::string, TemplateDescription> templates;
-    std::vector<ActorGroupDescription> actors;
-    EffectsDescription effects;
-    RepresentationDescription representation;
-    CameraDescription camera;
+    std::map<std::string, TemplateDescription> templates;  ///< actor templates by name
+    std::vector<ActorGroupDescription> actors;             ///< groups of actors, in file order
+    EffectsDescription effects;                            ///< declared effects (none by default)
+    RepresentationDescription representation;              ///< how actors are drawn with distance
+    CameraDescription camera;                              ///< the camera and its path
     std::string baseDirectory;                             ///< paths in the file are relative to it
     std::string file;                                      ///< where it was read from, for messages
 };

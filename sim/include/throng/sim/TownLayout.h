@@ -29,7 +29,7 @@ bool tileIsRoad(TileKind kind);
 
 /// One tile of the town.
 struct TilePlacement {
-    TileKind kind = TileKind::Grass;
+    TileKind kind = TileKind::Grass;  ///< which model stands there
     int x = 0;           ///< column, from 0
     int z = 0;           ///< row, from 0
     int quarterTurns = 0;///< turns of 90 degrees about +Y (+Z goes to +X)
@@ -37,6 +37,7 @@ struct TilePlacement {
 
 /// The laid-out town.
 struct TownLayout {
+    /// Tiles across (x); the grid is tilesX by tilesZ.
     int tilesX = 0, tilesZ = 0;     ///< grid size
     double tileSize = 8.0;          ///< metres per tile
     std::vector<TilePlacement> tiles;  ///< row by row

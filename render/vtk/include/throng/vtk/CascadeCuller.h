@@ -40,7 +40,10 @@ class CascadeCuller : public vtkCuller {
 public:
     /// A new culler (VTK reference counting).
     static CascadeCuller* New();
+    /// \cond
+    // Hidden from Doxygen: with no semicolon after it, the macro and SetScene read as one.
     vtkTypeMacro(CascadeCuller, vtkCuller)
+    /// \endcond
 
     /// Culls the actors of `crowd` held by nodes under `root` (both must outlive the culler; the
     /// application steps the crowd). Makes a fresh ActorProcessor; props set before are kept.

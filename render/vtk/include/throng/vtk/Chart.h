@@ -27,7 +27,7 @@ struct Chart {
     bool logX = false;                 ///< logarithmic bottom axis
     bool logY = false;                 ///< logarithmic left axis
     /// Where the legend goes (inside the plot, on the right).
-    enum class Legend { Top, Middle, Bottom } legend = Legend::Top;
+    enum class Legend { Top, Middle, Bottom } legend = Legend::Top;  ///< the legend's place
     /// Margin added on each side of both axes, as a share of the data's range (0: VTK's tight fit,
     /// which draws points on the border half outside the plot); with a legend at the top or bottom,
     /// the left axis also leaves room for it there.

@@ -22,6 +22,7 @@ namespace throng::vtk {
 
 /// What the maps hold.
 struct CrowdMapSummary {
+    /// Cells across (x); the grid is cellsX by cellsZ (0 when nothing was recorded).
     int cellsX = 0, cellsZ = 0;    ///< cells across and deep (0 when nothing was recorded)
     double cellSize = 0.0;         ///< metres
     double peakDensity = 0.0;      ///< people per square metre in the densest cell

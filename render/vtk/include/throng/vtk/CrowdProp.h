@@ -60,7 +60,10 @@ class CrowdProp : public vtkProp3D {
 public:
     /// A new prop (VTK reference counting).
     static CrowdProp* New();
+    /// \cond
+    // Hidden from Doxygen: with no semicolon after it, the macro and SetScene read as one.
     vtkTypeMacro(CrowdProp, vtkProp3D)
+    /// \endcond
 
     /// Draws the actors of `crowd` held by nodes under `root` (both must outlive the prop; the
     /// application steps the crowd; generic nodes under `root` are not drawn by the prop). Makes a

@@ -1,0 +1,12 @@
+# Runs Doxygen (DOXYGEN) on DOXYFILE and fails with its warnings (written to WARNINGS) if any.
+file(REMOVE ${WARNINGS})
+execute_process(COMMAND ${DOXYGEN} ${DOXYFILE} RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "doxygen failed (exit ${rc})")
+endif()
+file(READ ${WARNINGS} warnings)
+string(STRIP "${warnings}" warnings)
+if(NOT warnings STREQUAL "")
+  message(FATAL_ERROR "Doxygen warnings on the public headers:\n${warnings}")
+endif()
+message(STATUS "API reference built without warnings")
