@@ -7,8 +7,8 @@
 //
 // `off` is 1 on the setting that switches the approximation off (its error must be zero or at the
 // metric's floor), `better` says which way the metric improves ("lower" or "higher"), `ms` is the
-// time of the phase `ms_phase` that the knob changes. The README's "What accuracy costs" section
-// lists the metrics in use.
+// time of the phase `ms_phase` that the knob changes. docs/reference/accuracy-csv.md lists the
+// metrics in use.
 
 #include <cstdint>
 #include <fstream>

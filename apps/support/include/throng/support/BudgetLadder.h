@@ -20,7 +20,7 @@ struct BudgetSettings {
     /// Dynamic resolution: the frame drawn at this fraction of the output's width and height, scaled
     /// up (0 < scale <= 1). Optional in a rung's value ("render-scale=0.5"), 1 when absent.
     double renderScale = 1.0;
-    /// The town's LOD scale apart from the actors' (ActorProcessor::setSceneLodScale), used where
+    /// The town's LOD scale apart from the actors' (Simulation::setTownLodScale), used where
     /// the scene built the town's levels. Optional ("town-lod-scale=2"); 0 when absent: the scene's.
     double townLodScale = 0.0;
 };
