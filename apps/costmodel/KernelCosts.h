@@ -12,7 +12,7 @@
 
 #include "throng/actors/ActorFrameStatistics.h"
 #include "throng/actors/Crowd.h"
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/OpTally.h"
 

@@ -8,8 +8,8 @@
 #include <tuple>
 
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/CostModel.h"
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModel.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/actors/JointError.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SkeletonPose.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "TextTable.h"
-#include "throng/actors/CostModel.h"
+#include "throng/research/CostModel.h"
 
 namespace throng::costmodel {
 

@@ -19,7 +19,7 @@
 #include "Measurements.h"
 #include "ModelTables.h"
 #include "TextTable.h"
-#include "throng/actors/CostModel.h"
+#include "throng/research/CostModel.h"
 #include "throng/support/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/Table3Template.h"
 #include "throng/scenegraph/Stopwatch.h"

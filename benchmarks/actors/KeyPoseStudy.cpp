@@ -12,7 +12,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "throng/actors/KeyPoseExactSelection.h"
+#include "throng/research/KeyPoseExactSelection.h"
 
 namespace throng::bench {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/MeshDrawable.h"

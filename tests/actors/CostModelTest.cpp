@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "throng/actors/CostModel.h"
+#include "throng/research/CostModel.h"
 
 using namespace throng;
 

@@ -19,7 +19,7 @@
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/AnimationClip.h"
 #include "throng/actors/KeyPoseCache.h"
-#include "throng/actors/KeyPoseExactSelection.h"
+#include "throng/research/KeyPoseExactSelection.h"
 #include "throng/actors/KeyPoseRows.h"
 #include "throng/actors/KeyPoseSelection.h"
 #include "throng/actors/SkeletonPose.h"

@@ -14,7 +14,7 @@
 
 #include "AllocationCounter.h"
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"

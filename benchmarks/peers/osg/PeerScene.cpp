@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/Table3Template.h"
 #include "throng/scenes/TownSpread.h"

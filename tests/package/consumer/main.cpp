@@ -7,6 +7,11 @@
 #include <string>
 #include <vector>
 
+#include <throng/actors/ActorGroup.h>
+#include <throng/actors/ActorProcessor.h>
+#include <throng/actors/Crowd.h>
+#include <throng/actors/KeyframeBehaviour.h>
+#include <throng/actors/SeedHumanoid.h>
 #include <throng/gltf/GltfLoader.h>
 #include <throng/render/GlRenderer.h>
 #include <throng/render/OsMesaContext.h>
@@ -31,11 +36,33 @@ bool loadsGltf() {
     return asset.primaryTemplate() && asset.primitives.size() == 1 && asset.primitives[0].data->triangleCount() == 1;
 }
 
+// throng::actors from the package (which must need no GLPK): ten humanoids through the cascade.
+bool processesActors() {
+    const auto humanoid = throng::makeSeedHumanoid();
+    auto stand = std::make_shared<throng::KeyframeBehaviour>();
+    throng::Crowd crowd;
+    std::vector<throng::ActorId> ids;
+    for (int i = 0; i < 10; ++i) {
+        throng::KeyframeBehaviour::Actor a;
+        a.tmpl = humanoid;
+        a.position = throng::Vec3(i - 5.0, 0.0, -10.0);
+        ids.push_back(crowd.add(humanoid, stand, stand->addActor(a)));
+    }
+    auto scene = std::make_shared<throng::Group>();
+    scene->addChild(crowd.makeGroupNode(ids));
+    throng::ActorProcessor processor(crowd);
+    const throng::FrameContext context{0.0, 0.0, 0, nullptr};
+    crowd.step(context);
+    const throng::ActorFrameStatistics& s = processor.processFrame(*scene, throng::Camera(), context.time);
+    std::printf("consumer: %llu actors posed by the cascade\n", static_cast<unsigned long long>(s.actorsPosed));
+    return s.actorsPosed == 10;
+}
+
 }  // namespace
 
 int main() {
     using namespace throng;
-    if (!loadsGltf()) return 1;
+    if (!loadsGltf() || !processesActors()) return 1;
     auto root = std::make_shared<Transform>();
     TransformDofs dofs;
     dofs.translation = Vec3(0, 0, -10);

@@ -1,4 +1,4 @@
-#include "throng/actors/KeyPoseExactSelection.h"
+#include "throng/research/KeyPoseExactSelection.h"
 
 #include <glpk.h>
 

@@ -1,4 +1,4 @@
-#include "throng/actors/CostModelScene.h"
+#include "throng/research/CostModelScene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "throng/actors/CostModel.h"
+#include "throng/research/CostModel.h"
 
 #include <cmath>
 #include <cstdio>
