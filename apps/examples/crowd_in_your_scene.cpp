@@ -41,6 +41,12 @@ std::shared_ptr<throng::Geometry> shape(std::shared_ptr<throng::MeshData> mesh) 
 }
 
 int main() try {
+    // The crowd first: it must outlive every node that shows its actors (they release their actors
+    // from it when destroyed), so it is declared before the scene and destroyed after it.
+    const auto humanoid = throng::makeSeedHumanoid();
+    auto walk = std::make_shared<throng::KeyframeBehaviour>();
+    throng::Crowd crowd;
+
     auto root = std::make_shared<throng::Group>();
     root->addChild(shape(throng::makeBox("floor", {0, -0.05f, 0}, {40, 0.05f, 40})));
     for (int k = 0; k < 8; ++k) {  // pillars round the square, each placed by a Transform
@@ -50,9 +56,6 @@ int main() try {
         root->addChild(place);
     }
 
-    const auto humanoid = throng::makeSeedHumanoid();
-    auto walk = std::make_shared<throng::KeyframeBehaviour>();
-    throng::Crowd crowd;
     std::vector<throng::ActorId> strollers, riders;
     for (int i = 0; i < 200; ++i) {  // strollers walking circles on the square
         throng::KeyframeBehaviour::Actor a;
