@@ -1,8 +1,14 @@
 # Runs Doxygen (DOXYGEN) on DOXYFILE and fails with its warnings (written to WARNINGS) if any.
+# Doxygen opens its warning log before it makes its output folder: a fresh build has neither.
+get_filename_component(folder ${WARNINGS} DIRECTORY)
+file(MAKE_DIRECTORY ${folder})
 file(REMOVE ${WARNINGS})
 execute_process(COMMAND ${DOXYGEN} ${DOXYFILE} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "doxygen failed (exit ${rc})")
+endif()
+if(NOT EXISTS ${WARNINGS})
+  message(FATAL_ERROR "doxygen wrote no warning log (${WARNINGS})")
 endif()
 file(READ ${WARNINGS} warnings)
 string(STRIP "${warnings}" warnings)
