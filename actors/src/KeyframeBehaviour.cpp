@@ -73,11 +73,16 @@ Mat4 KeyframeBehaviour::referencePoint(std::uint32_t slot, const FrameContext& c
 
 void KeyframeBehaviour::referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
                                         std::span<Mat4> out) {
-    const auto path = [&](std::uint32_t slot) {
-        const Actor& a = actors_[slot];
-        return RefpointPath{a.position, a.heading, a.pathRadius, a.pathSpeed};
-    };
-    RefpointPath::atEachSlot(slots, path, context.time, out, ops);
+    constexpr std::size_t kBlock = 16;
+    RefpointPath paths[kBlock];
+    for (std::size_t first = 0; first < slots.size(); first += kBlock) {
+        const std::size_t n = std::min(kBlock, slots.size() - first);
+        for (std::size_t k = 0; k < n; ++k) {
+            const Actor& a = actors_[slots[first + k]];
+            paths[k] = RefpointPath{a.position, a.heading, a.pathRadius, a.pathSpeed};
+        }
+        RefpointPath::atEach({paths, n}, context.time, out.subspan(first, n), ops);
+    }
 }
 
 double KeyframeBehaviour::clipTime(std::uint32_t slot, double time) const {

@@ -1,5 +1,6 @@
 #include "throng/actors/ProceduralGait.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -36,11 +37,18 @@ Mat4 ProceduralGait::referencePoint(std::uint32_t slot, const FrameContext& cont
 
 void ProceduralGait::referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
                                      std::span<Mat4> out) {
-    const auto path = [&](std::uint32_t slot) {
-        const Actor& a = actors_[slot];
-        return RefpointPath{a.center, a.phase, a.radius, a.speed};
-    };
-    RefpointPath::atEachSlot(slots, path, context.time, out, ops);
+    // The same loop as KeyframeBehaviour's, written out: a shared template taking the path by a
+    // lambda measured 8 % slower in phase 1 (bench_actor_processing, town 10k, side by side).
+    constexpr std::size_t kBlock = 16;
+    RefpointPath paths[kBlock];
+    for (std::size_t first = 0; first < slots.size(); first += kBlock) {
+        const std::size_t n = std::min(kBlock, slots.size() - first);
+        for (std::size_t k = 0; k < n; ++k) {
+            const Actor& a = actors_[slots[first + k]];
+            paths[k] = RefpointPath{a.center, a.phase, a.radius, a.speed};
+        }
+        RefpointPath::atEach({paths, n}, context.time, out.subspan(first, n), ops);
+    }
 }
 
 RootPose ProceduralGait::skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) {

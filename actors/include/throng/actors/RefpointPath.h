@@ -2,8 +2,6 @@
 // Closed-form Reference Point motion shared by behaviours: standing, or walking a circle facing
 // along it. Being a function of time, it never drifts however long the run.
 
-#include <algorithm>
-#include <cstdint>
 #include <span>
 
 #include "throng/scenegraph/Math.h"
@@ -24,19 +22,6 @@ struct RefpointPath {
     /// out[k] = paths[k].at(time, ops), the same bits, for every path, their sines and cosines
     /// taken together (detail::sinCos). Throws std::invalid_argument if `out` is shorter.
     static void atEach(std::span<const RefpointPath> paths, double time, std::span<Mat4> out, OpTally* ops = nullptr);
-    /// out[k] = pathOf(slots[k]).at(time, ops) for every slot, through atEach: phase 1 in batches
-    /// for a behaviour whose actors follow closed-form paths (Behaviour::referencePoints).
-    template <class PathOf>
-    static void atEachSlot(std::span<const std::uint32_t> slots, PathOf&& pathOf, double time, std::span<Mat4> out,
-                           OpTally* ops) {
-        constexpr std::size_t kBlock = 16;
-        RefpointPath paths[kBlock];
-        for (std::size_t first = 0; first < slots.size(); first += kBlock) {
-            const std::size_t n = std::min(kBlock, slots.size() - first);
-            for (std::size_t k = 0; k < n; ++k) paths[k] = pathOf(slots[first + k]);
-            atEach({paths, n}, time, out.subspan(first, n), ops);
-        }
-    }
 };
 
 }  // namespace throng
