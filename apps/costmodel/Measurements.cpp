@@ -15,7 +15,7 @@
 #include "throng/actors/SkeletonPose.h"
 #include "throng/actors/Table3Template.h"
 #include "throng/scenegraph/OpCounter.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 
 namespace throng::costmodel {
 namespace {
@@ -128,7 +128,7 @@ std::vector<WallClockRow> measureWallClock(const std::vector<std::size_t>& sizes
 
 std::vector<AccuracyRow> measureAccuracy(const std::vector<double>& scales, const Progress& progress) {
     Crowd crowd;
-    const scenes::TownSpread town = scenes::buildTownSpread(crowd, kAccuracyActors, 400.0);
+    const testkit::TownSpread town = testkit::buildTownSpread(crowd, kAccuracyActors, 400.0);
     ActorProcessor p(crowd);
     const double time = 1.234;  // between keys, so holding keys is an approximation
     const Crowd::State& s = crowd.state();

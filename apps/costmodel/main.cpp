@@ -20,7 +20,7 @@
 #include "ModelTables.h"
 #include "TextTable.h"
 #include "throng/research/CostModel.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 #include "throng/vtk/Chart.h"
@@ -362,9 +362,9 @@ void plotAccuracy(const std::vector<AccuracyRow>& rows, const std::string& path)
 // The LOD-scale sweep in the common accuracy CSV: full detail (the first row) is "off"; the time is
 // APP+CULL, the phase the scale changes.
 void writeAccuracyCsv(const std::vector<AccuracyRow>& rows, const std::string& path) {
-    support::AccuracyCsv csv(path);
+    sim::AccuracyCsv csv(path);
     for (const AccuracyRow& r : rows) {
-        support::AccuracyRecord a;
+        sim::AccuracyRecord a;
         a.knob = "lod scale";
         a.off = &r == &rows.front();
         a.value = a.off ? "full detail" : fixed(r.lodScale, 2);

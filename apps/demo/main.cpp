@@ -14,7 +14,7 @@
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/RecordingBackend.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
-#include "throng/scenes/FigureField.h"
+#include "throng/testkit/FigureField.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -58,8 +58,8 @@ int main(int argc, char** argv) {
         ->check(support::wholeNumber(1, 10'000'000));
     cl.app().add_option("--frames", opt.frames, "frames to run")->type_name("N")->check(support::wholeNumber(1, 10'000'000));
     if (const auto code = cl.parse(argc, argv)) return *code;
-    auto scene = scenes::buildFigureField(opt.figures);
-    const double extent = scenes::figureFieldExtent(opt.figures);
+    auto scene = testkit::buildFigureField(opt.figures);
+    const double extent = testkit::figureFieldExtent(opt.figures);
     std::printf("throng-demo: %d figures, %zu nodes, %d frames (traditional processing, headless)\n",
                 opt.figures, countNodes(*scene), opt.frames);
 

@@ -51,8 +51,8 @@
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
-#include "throng/support/BudgetLadder.h"
-#include "throng/support/FrameBudgetAllocator.h"
+#include "throng/sim/BudgetLadder.h"
+#include "throng/sim/FrameBudgetAllocator.h"
 #include "throng/support/ProgressBar.h"
 #include "throng/support/SceneImpostors.h"
 #include "throng/vtk/CrowdRecorder.h"
@@ -124,7 +124,7 @@ std::string csvHeader(int ranks, bool budget) {
 }
 
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r,
-                   const support::FrameBudgetAllocator* budget) {
+                   const sim::FrameBudgetAllocator* budget) {
     const ActorFrameStatistics& s = f.stats;
     std::ostringstream o;
     o.precision(6);
@@ -142,7 +142,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << f.ghosts << ',' << f.handovers << ',' << f.deferred;
     if (budget) {
         const double cost = s.appCullMs() + drawMs;
-        const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
+        const sim::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
         o << ',' << budget->options().budgetMs << ',' << cost << ',' << (cost > budget->options().budgetMs ? 1 : 0) << ',' << f.rung << ','
           << b.lodScale << ',' << b.impostorDistance << ',' << b.keyPoseDistance << ',' << b.morphBudget << ',' << b.renderScale << ','
           << b.townLodScale;
@@ -294,11 +294,11 @@ int main(int argc, char** argv) {
         return 2;
     }
     // --frame-budget: the ladder is read (and refused) before anything is built.
-    std::unique_ptr<support::FrameBudgetAllocator> budget;
+    std::unique_ptr<sim::FrameBudgetAllocator> budget;
     if (o.frameBudget > 0.0) try {
-        support::FrameBudgetOptions options;
+        sim::FrameBudgetOptions options;
         options.budgetMs = o.frameBudget;
-        budget = std::make_unique<support::FrameBudgetAllocator>(support::readBudgetLadder(o.frameBudgetLadder), options);
+        budget = std::make_unique<sim::FrameBudgetAllocator>(sim::readBudgetLadder(o.frameBudgetLadder), options);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "throng-town: --frame-budget-ladder: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
@@ -361,7 +361,7 @@ int main(int argc, char** argv) {
     double impostorDistance = o.impostorDistance >= 0.0 ? o.impostorDistance : world->description().representation.impostorDistance;
     if (budget) {
         impostorDistance = 0.0;
-        for (const support::BudgetRung& r : budget->ladder()) impostorDistance = std::max(impostorDistance, r.settings.impostorDistance);
+        for (const sim::BudgetRung& r : budget->ladder()) impostorDistance = std::max(impostorDistance, r.settings.impostorDistance);
     }
     std::unique_ptr<ImpostorSet> impostors;
     if (impostorDistance > 0.0) {
@@ -405,7 +405,7 @@ int main(int argc, char** argv) {
     const double hysteresis = world->description().representation.hysteresis;
     auto applyRung = [&](int rung) {
         if (rung == appliedRung) return;
-        const support::BudgetSettings& b = budget->ladder()[std::size_t(rung)].settings;
+        const sim::BudgetSettings& b = budget->ladder()[std::size_t(rung)].settings;
         processor.setLodScale(b.lodScale);
         world->setTownLodScale(b.townLodScale > 0.0 ? b.townLodScale : townLodScale);
         if (impostors) processor.setImpostorDistance(b.impostorDistance, hysteresis * b.impostorDistance);
@@ -446,7 +446,7 @@ int main(int argc, char** argv) {
     double lastFrameEnd = 0.0;
     auto draw = [&](const PreparedFrame& f, const std::function<void()>& beforePresent) {
         if (budget) {
-            const support::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
+            const sim::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
             renderer.setMorphBudget(b.morphBudget);
             renderer.setRenderScale(float(b.renderScale));
         }
@@ -608,8 +608,8 @@ int main(int argc, char** argv) {
         b["shareWithinBudget"] = double(framesWithin) / double(std::max<std::int64_t>(sums.frames, 1));
         b["rungChanges"] = budget->changes();
         for (std::size_t r = 0; r < rungFrames.size(); ++r) {
-            const support::BudgetRung& rung = budget->ladder()[r];
-            b["rungs"].push_back({{"rung", r}, {"settings", support::budgetRungValue(rung.settings)}, {"frames", rungFrames[r]},
+            const sim::BudgetRung& rung = budget->ladder()[r];
+            b["rungs"].push_back({{"rung", r}, {"settings", sim::budgetRungValue(rung.settings)}, {"frames", rungFrames[r]},
                                   {"ladderMs", rung.ms}, {"ladderPixelsOff8", rung.error}, {"measuredMs", budget->measuredMs(int(r))}});
         }
         std::fprintf(stderr, "throng-town: APP+CULL+DRAW within %.1f ms on %.1f %% of frames\n", o.frameBudget,

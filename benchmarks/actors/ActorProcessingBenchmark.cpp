@@ -20,7 +20,7 @@
 #include "throng/actors/Table3Template.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/scenegraph/Transform.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 
 using namespace throng;
 
@@ -47,7 +47,7 @@ Scene table2Scene(std::size_t actors) {
 
 Scene townScene(std::size_t actors) {
     Scene s;
-    scenes::TownSpread town = scenes::buildTownSpread(*s.crowd, actors, 40.0 * std::sqrt(double(actors)));
+    testkit::TownSpread town = testkit::buildTownSpread(*s.crowd, actors, 40.0 * std::sqrt(double(actors)));
     s.root = town.root;
     s.camera = town.camera;
     return s;

@@ -26,7 +26,7 @@
 // Metrics per setting and camera ("street", "overview"), averaged over the measured ticks, against
 // the reference of the same tick: PSNR (identical images capped at 99 dB), SSIM, share of pixels
 // off by more than 8/255; where the knob changes poses, joint-position error (mean and max, mm,
-// world space) of the actors posed in both, read from the draw lists (DrawnJoints: the joints
+// world space) of the actors posed in both, read from the draw lists (testkit::DrawnJoints: the joints
 // where the palette, or the key-pose cache, puts them). A knob's `off` setting builds nothing for
 // it (no impostor loaded, no cache made, no occlusion buffer), so it holds no memory; the `off` rows
 // of the impostor knobs share one measurement, as do the key-pose cache's. Settings equal to
@@ -50,17 +50,18 @@
 #include <vector>
 
 #include "FrameWorld.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/DrawnJoints.h"
+#include "throng/testkit/DrawnJoints.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/ScaleActors.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -79,7 +80,7 @@ const std::vector<std::string> kKnobs{"lod-scale",         "skeletal-lod",      
                                       "key-pose-mode",       "occlusion-resolution", "render-scale",     "town-lod"};
 
 struct Options {
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::int64_t actors = 2000;
     int frames = 2;   // measured ticks per camera
     int warmup = 30;  // ticks simulated first
@@ -141,7 +142,7 @@ struct Setting {
     std::size_t cacheBytes = 0;
     std::map<std::string, Figures> figures;  // per camera
     Image frame;
-    DrawnJoints joints;
+    testkit::DrawnJoints joints;
 };
 
 struct World {
@@ -629,12 +630,12 @@ std::string table(const std::vector<Setting>& settings, const Options& o, std::s
 }
 
 void writeCsv(const std::vector<Setting>& settings, const Options& o, std::size_t actors) {
-    support::AccuracyCsv csv(o.accuracyCsv);
+    sim::AccuracyCsv csv(o.accuracyCsv);
     for (const Setting& m : settings)
         for (const Label& l : m.labels)
             for (const std::string& camera : o.cameras) {
                 const Figures& f = m.figures.at(camera);
-                support::AccuracyRecord r;
+                sim::AccuracyRecord r;
                 r.knob = l.knob;
                 r.value = l.value;
                 r.off = l.off;
@@ -646,7 +647,7 @@ void writeCsv(const std::vector<Setting>& settings, const Options& o, std::size_
                 r.ms = f.appCull + f.draw;
                 r.msPhase = "app_cull+draw";
                 r.memoryBytes = f.memory;
-                r.scene = support::sceneName(o.scene);
+                r.scene = sim::sceneName(o.scene);
                 r.camera = camera;
                 r.actors = std::int64_t(actors);
                 csv.add(r);

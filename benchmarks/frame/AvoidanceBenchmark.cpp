@@ -23,11 +23,12 @@
 
 #include <glm/geometric.hpp>
 
+#include "throng/testkit/Assets.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -40,7 +41,7 @@ namespace {
 }
 
 struct Options {
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::int64_t actors = 2000;
     int ticks = 300;
     int warmup = 30;
@@ -242,9 +243,9 @@ int main(int argc, char** argv) {
         // The common accuracy CSV: the finest setting (the first row, the reference) is "off"; path
         // deviation from it comes first, the measure that is zero there by construction.
         try {
-            support::AccuracyCsv csv(o.accuracyCsv);
+            sim::AccuracyCsv csv(o.accuracyCsv);
             for (const Result& r : rows) {
-                support::AccuracyRecord a;
+                sim::AccuracyRecord a;
                 a.knob = r.setting.farEvery > 1 ? "avoidance quality and far update" : "avoidance quality";
                 std::ostringstream value;
                 value << r.setting.quality << " at range " << r.setting.range;
@@ -258,7 +259,7 @@ int main(int argc, char** argv) {
                              {"progress", r.progress, "m/s", false}};
                 a.ms = r.stepMs;
                 a.msPhase = "step";
-                a.scene = support::sceneName(o.scene);
+                a.scene = sim::sceneName(o.scene);
                 a.camera = "none";
                 a.actors = std::int64_t(r.walkers);
                 csv.add(a);

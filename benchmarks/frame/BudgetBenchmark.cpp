@@ -29,21 +29,22 @@
 #include <vector>
 
 #include "FrameWorld.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/scenegraph/Stopwatch.h"
-#include "throng/support/AccuracyCsv.h"
-#include "throng/support/BudgetLadder.h"
+#include "throng/sim/AccuracyCsv.h"
+#include "throng/sim/BudgetLadder.h"
 #include "throng/support/CommandLine.h"
-#include "throng/support/FrameBudgetAllocator.h"
+#include "throng/sim/FrameBudgetAllocator.h"
 #include "throng/support/Validators.h"
 
 using namespace throng;
-using support::BudgetRung;
-using support::BudgetSettings;
+using sim::BudgetRung;
+using sim::BudgetSettings;
 
 namespace {
 
@@ -74,7 +75,7 @@ struct Options {
     };
     std::vector<double> budgets;
     int width = 1280, height = 720;
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::string ladder, markdown;
     std::string fromLadder;  // measure no rung: run the allocators on this ladder
 };
@@ -83,7 +84,7 @@ struct Options {
 struct Method {
     std::string name;
     BudgetSettings settings;
-    std::unique_ptr<support::FrameBudgetAllocator> allocator;  // null: fixed
+    std::unique_ptr<sim::FrameBudgetAllocator> allocator;  // null: fixed
     int rung = -1;                                              // the allocator's current rung
     std::unique_ptr<ActorProcessor> processor;
     std::unique_ptr<CrowdRenderer> draw;
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
 
     std::vector<BudgetSettings> candidates;
     for (const std::string& v : o.rungs) try {
-        candidates.push_back(support::parseBudgetRungValue(v));
+        candidates.push_back(sim::parseBudgetRungValue(v));
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "bench_budget: --rungs: '%s': %s\n", v.c_str(), e.what());
         return 2;
@@ -182,7 +183,7 @@ int main(int argc, char** argv) {
         };
         std::vector<Method> methods;
         if (o.fromLadder.empty())
-            for (const BudgetSettings& s : candidates) methods.push_back(makeMethod(support::budgetRungValue(s), s));
+            for (const BudgetSettings& s : candidates) methods.push_back(makeMethod(sim::budgetRungValue(s), s));
         const std::size_t fixedCount = methods.size();
 
         // Runs `ms` on the next ticks (the allocator needs the ladder's times before its run, so the
@@ -256,7 +257,7 @@ int main(int argc, char** argv) {
         std::vector<BudgetRung> ladder;
         for (std::size_t i : front)
             ladder.push_back({methods[i].settings, methods[i].off8, methods[i].psnr, methods[i].ssim, methods[i].ms});
-        if (!o.fromLadder.empty()) ladder = support::readBudgetLadder(o.fromLadder);
+        if (!o.fromLadder.empty()) ladder = sim::readBudgetLadder(o.fromLadder);
 
         char line[1024];
         if (fixedCount > 0) report << "### " << world->crowd().size() << " actors, " << o.frames << " frames from each of " << o.starts.size()
@@ -270,15 +271,15 @@ int main(int argc, char** argv) {
             report << line;
         }
         if (!o.ladder.empty() && o.fromLadder.empty()) {
-            support::AccuracyCsv csv(o.ladder);
+            sim::AccuracyCsv csv(o.ladder);
             for (const BudgetRung& r : ladder) {
-                support::AccuracyRecord rec;
-                rec.knob = support::kBudgetRungKnob;
-                rec.value = support::budgetRungValue(r.settings);
+                sim::AccuracyRecord rec;
+                rec.knob = sim::kBudgetRungKnob;
+                rec.value = sim::budgetRungValue(r.settings);
                 rec.metrics = {{"pixels_off_8", r.error, "share", true}, {"psnr", r.psnr, "dB", false}, {"ssim", r.ssim, "1", false}};
                 rec.ms = r.ms;
                 rec.msPhase = "app_cull_draw";
-                rec.scene = support::sceneName(o.scene);
+                rec.scene = sim::sceneName(o.scene);
                 rec.camera = "path";
                 rec.actors = std::int64_t(world->crowd().size());
                 csv.add(rec);
@@ -288,13 +289,13 @@ int main(int argc, char** argv) {
         // The allocator at each budget against every fixed rung of the ladder, on new ticks.
         if (!o.budgets.empty()) {
             std::vector<Method> second;
-            for (const BudgetRung& r : ladder) second.push_back(makeMethod(support::budgetRungValue(r.settings), r.settings));
+            for (const BudgetRung& r : ladder) second.push_back(makeMethod(sim::budgetRungValue(r.settings), r.settings));
             const std::size_t fixed = second.size();
             for (double b : o.budgets) {
-                support::FrameBudgetOptions bo;
+                sim::FrameBudgetOptions bo;
                 bo.budgetMs = b;
                 Method m = makeMethod("allocator, budget " + std::to_string(int(b)) + " ms", ladder.back().settings);
-                m.allocator = std::make_unique<support::FrameBudgetAllocator>(ladder, bo);
+                m.allocator = std::make_unique<sim::FrameBudgetAllocator>(ladder, bo);
                 m.rung = m.allocator->rung();
                 m.histogram.assign(ladder.size(), 0);
                 second.push_back(std::move(m));

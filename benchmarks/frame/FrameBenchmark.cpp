@@ -45,11 +45,12 @@
 #include <vector>
 
 #include "FrameWorld.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlRenderer.h"
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/render/ImpostorSet.h"
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/scenegraph/Stopwatch.h"
@@ -58,7 +59,7 @@
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -86,7 +87,7 @@ struct Options {
     std::int64_t townActors = 10;        // actors of the town section
     int townSamples = 12;                // cameras along the path in the town section
     int townFrames = 5;                  // frames per camera and variant in the town section
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
     std::vector<int> occlusionRests;       // rest lengths of the occlusion section's resting rows (empty: the scene's)
@@ -698,7 +699,7 @@ void townImageReuse(GlRenderer& r, const Camera& camera, const DrawList& list, s
     reuse.resize(std::size(kReuseOffsets));
     for (std::size_t i = 0; i < std::size(kReuseOffsets); ++i) {
         const Image truth = frame(shiftedCamera(camera, kReuseOffsets[i], r.width()));
-        const ImageDifference kept = compareImages(cached, truth, 8), shifted = compareImages(shiftedRight(cached, kReuseOffsets[i]), truth, 8);
+        const testkit::ImageDifference kept = testkit::compareImages(cached, truth, 8), shifted = testkit::compareImages(shiftedRight(cached, kReuseOffsets[i]), truth, 8);
         reuse[i].keptOver.push_back(kept.fractionOverThreshold);
         reuse[i].shiftedOver.push_back(shifted.fractionOverThreshold);
         reuse[i].keptPsnr.push_back(kept.psnr);
@@ -1047,10 +1048,10 @@ int main(int argc, char** argv) {
                    << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
             // The common accuracy CSV. Occlusion is conservative (no visible actor is rejected at any
             // resolution), so its measures are what it achieves: the share hidden, and the posing left.
-            std::unique_ptr<support::AccuracyCsv> csv;
-            if (!o.occlusionCsv.empty()) csv = std::make_unique<support::AccuracyCsv>(o.occlusionCsv);
+            std::unique_ptr<sim::AccuracyCsv> csv;
+            if (!o.occlusionCsv.empty()) csv = std::make_unique<sim::AccuracyCsv>(o.occlusionCsv);
             const auto record = [&](const OcclusionRow& row, const char* knob, const std::string& value, bool off) {
-                support::AccuracyRecord a;
+                sim::AccuracyRecord a;
                 a.knob = knob;
                 a.value = value;
                 a.off = off;
@@ -1060,7 +1061,7 @@ int main(int argc, char** argv) {
                 a.msPhase = "app_cull";
                 // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
                 a.memoryBytes = double(std::int64_t(row.width) * row.height * 16 / 3);
-                a.scene = support::sceneName(o.scene);
+                a.scene = sim::sceneName(o.scene);
                 a.camera = row.camera;
                 a.actors = actors;
                 csv->add(a);

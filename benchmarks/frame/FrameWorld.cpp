@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/support/SceneImpostors.h"
@@ -39,9 +39,9 @@ std::uint64_t stateDigest(const Crowd& crowd) {
 }
 
 void addFrameError(const Image& frame, const Image& reference, double& psnr, double& ssim, double& off8) {
-    const ImageDifference d = compareImages(frame, reference, 8);
+    const testkit::ImageDifference d = testkit::compareImages(frame, reference, 8);
     psnr += std::min(d.psnr, 99.0);
-    ssim += structuralSimilarity(frame, reference);
+    ssim += testkit::structuralSimilarity(frame, reference);
     off8 += d.fractionOverThreshold;
 }
 

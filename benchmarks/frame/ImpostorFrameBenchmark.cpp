@@ -35,13 +35,14 @@
 #include <vector>
 
 #include "FrameWorld.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/scenegraph/Stopwatch.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 
@@ -66,7 +67,7 @@ struct Options {
     std::vector<std::int64_t> crowdFeatures{0, 4, 8, 12, 1000};  // 1000: every bone
     int crowdFrames = 12;
     int width = 1280, height = 720;
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::vector<std::string> sections{"methods"};
     std::string markdown, accuracyCsv;
     bool has(const char* s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
@@ -115,7 +116,7 @@ struct Row {
 };
 
 void compare(const Image& a, const Image& b, double& psnr, double& ssim, double& off8, double& n, double* ncc = nullptr) {
-    if (ncc) *ncc += normalizedCrossCorrelation(a, b, false);
+    if (ncc) *ncc += testkit::normalizedCrossCorrelation(a, b, false);
     bench::addFrameError(a, b, psnr, ssim, off8);
     n += 1;
 }
@@ -326,10 +327,10 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
 // The common accuracy CSV: one record per knob setting, its image error against all skinned and its
 // DRAW time. "none" (no impostors) and "unlimited" (no morph budget) switch their knob off.
 void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, const Options& o) {
-    support::AccuracyCsv csv(path);
+    sim::AccuracyCsv csv(path);
     for (const Row& r : rows) {
         if (r.images == 0 || r.knob.empty()) continue;
-        support::AccuracyRecord a;
+        sim::AccuracyRecord a;
         a.knob = r.knob;
         a.value = r.value;
         a.off = (r.knob == "impostor distance" && r.value == "none") || (r.knob == "morph budget" && r.value == "unlimited");
@@ -337,7 +338,7 @@ void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, con
         a.ms = r.draw;
         a.msPhase = "draw";
         a.memoryBytes = r.textureBytes;
-        a.scene = support::sceneName(o.scene);
+        a.scene = sim::sceneName(o.scene);
         a.camera = "path";
         a.actors = std::int64_t(r.actors);
         csv.add(a);

@@ -29,18 +29,19 @@
 #include <vector>
 
 #include "FrameWorld.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/render/CrowdRenderer.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/SceneParser.h"
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 #include "throng/vtk/Chart.h"
@@ -64,7 +65,7 @@ struct Options {
     double rate = 0;            // key-poses per second (0: the scene's declaration, else 15)
     std::int64_t demandSize = 32;  // cache size whose interpolative demands --demands records
     int width = 1280, height = 720;
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::string csv, accuracyCsv, demands, plots, markdown;
 };
 
@@ -495,14 +496,14 @@ int main(int argc, char** argv) {
         if (!o.accuracyCsv.empty()) {
             // The common accuracy CSV: one knob per cache mode, plain skinning (the same rows) as
             // each knob's "off"; the time is APP+CULL and DRAW, the two phases the cache changes.
-            support::AccuracyCsv csv(o.accuracyCsv);
-            const std::string scene = support::sceneName(o.scene);
+            sim::AccuracyCsv csv(o.accuracyCsv);
+            const std::string scene = sim::sceneName(o.scene);
             for (const char* mode : {"intermittent", "interpolative"}) {
                 const bool present = std::any_of(all.begin(), all.end(), [&](const Row& r) { return r.size > 0 && r.method.rfind(mode, 0) == 0; });
                 if (!present) continue;
                 for (const Row& r : all) {
                     if (r.size > 0 && r.method.rfind(mode, 0) != 0) continue;
-                    support::AccuracyRecord a;
+                    sim::AccuracyRecord a;
                     a.knob = std::string("key-pose cache size, ") + mode;
                     a.value = r.size == 0 ? "off" : std::to_string(r.size);
                     a.off = r.size == 0;

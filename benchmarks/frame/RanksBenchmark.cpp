@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "throng/testkit/Assets.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/Ranks.h"
 #include "throng/sim/ScaleActors.h"
@@ -32,7 +33,7 @@ namespace throng {
 namespace {
 
 struct Options {
-    std::string scene = THRONG_TOWN_DEFAULT_SCENE;
+    std::string scene = testkit::townDefaultScene();
     std::vector<std::int64_t> actors{10000, 100000};
     int warmup = 10;
     int steps = 20;

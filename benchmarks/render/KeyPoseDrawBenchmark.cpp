@@ -43,6 +43,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/SkeletonPose.h"
@@ -70,7 +71,7 @@ struct CesiumMan {
 
 const CesiumMan& cesiumMan() {
     static const CesiumMan c = [] {
-        const std::string path = std::string(THRONG_SHARED_ASSETS) + "/characters/CesiumMan.glb";
+        const std::string path = testkit::sharedAssets() + "/characters/CesiumMan.glb";
         static const CharacterAsset asset = loadCharacter(path);
         CesiumMan m;
         m.tmpl = asset.primaryTemplate();

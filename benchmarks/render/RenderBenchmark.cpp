@@ -34,6 +34,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/render/CpuSkinning.h"
@@ -76,7 +77,7 @@ const Model& tubeModel() {
 // its walk clip. Throws if the asset is missing.
 const Model& cesiumManModel() {
     static const Model model = [] {
-        const std::string path = std::string(THRONG_SHARED_ASSETS) + "/characters/CesiumMan.glb";
+        const std::string path = testkit::sharedAssets() + "/characters/CesiumMan.glb";
         static const CharacterAsset asset = loadCharacter(path);
         const auto tmpl = asset.primaryTemplate();
         if (!tmpl || tmpl->clips().empty() || tmpl->skins().empty()) throw std::runtime_error(path + ": no animated skinned character");

@@ -7,7 +7,7 @@
 
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
-#include "throng/scenes/FigureField.h"
+#include "throng/testkit/FigureField.h"
 
 using namespace throng;
 
@@ -15,8 +15,8 @@ namespace {
 
 void runFrames(benchmark::State& state, bool counting) {
     const int figures = static_cast<int>(state.range(0));
-    auto scene = scenes::buildFigureField(figures);
-    const double extent = scenes::figureFieldExtent(figures);
+    auto scene = testkit::buildFigureField(figures);
+    const double extent = testkit::figureFieldExtent(figures);
     Camera camera;
     camera.setPerspective(1.0, 16.0 / 9.0, 0.1, 3000.0);
     camera.setLookAt(Vec3(extent / 2, 30, extent * 1.2), Vec3(extent / 2, 0, extent / 2));

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "throng/scenegraph/SphereArrayCuller.h"
-#include "throng/scenes/RandomScenes.h"
+#include "throng/testkit/RandomScenes.h"
 
 using namespace throng;
 

@@ -31,7 +31,7 @@
 #include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlContext.h"
 #include "throng/scenegraph/Stopwatch.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
 #include "throng/vtk/CameraFromVtk.h"
@@ -94,7 +94,7 @@ struct VtkPath {
 void run(std::int64_t count, const Options& o) {
     Crowd crowd;
     const auto actors = std::size_t(count);
-    const scenes::TownSpread town = scenes::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
+    const testkit::TownSpread town = testkit::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
     VtkPath mapper(crowd, *town.root, false, o), inVtk(crowd, *town.root, true, o);
 
     ContextOptions contextOptions;

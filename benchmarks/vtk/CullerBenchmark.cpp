@@ -29,7 +29,7 @@
 
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Stopwatch.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 #include "throng/vtk/CascadeCuller.h"
 
 using namespace throng;
@@ -39,7 +39,7 @@ namespace {
 void BM_CullActorProps(benchmark::State& state) {
     const auto actors = std::size_t(state.range(0));
     Crowd crowd;
-    const scenes::TownSpread town = scenes::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
+    const testkit::TownSpread town = testkit::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
 
     vtkNew<vtkRenderWindow> window;  // never rendered: it gives the renderer its aspect ratio
     window->SetSize(1600, 900);

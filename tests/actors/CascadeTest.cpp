@@ -9,7 +9,7 @@
 #include <cstring>
 #include <random>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/research/CostModelScene.h"
 #include "throng/actors/SkeletonPose.h"

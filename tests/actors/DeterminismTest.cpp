@@ -7,7 +7,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/ThreadTeam.h"

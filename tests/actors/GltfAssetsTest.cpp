@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"
@@ -19,7 +20,7 @@ using namespace throng;
 
 namespace {
 
-std::string asset(const std::string& path) { return std::string(THRONG_SHARED_ASSETS) + "/" + path; }
+std::string asset(const std::string& path) { return testkit::sharedAssets() + "/" + path; }
 
 std::vector<std::string> clipNames(const ActorTemplate& t) {
     std::vector<std::string> names;

@@ -8,7 +8,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "GltfTestFile.h"
+#include "throng/testkit/GltfTestFile.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"

@@ -12,7 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "GltfTestFile.h"
+#include "throng/testkit/GltfTestFile.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"

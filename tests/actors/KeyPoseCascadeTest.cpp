@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/KeyPoseSelection.h"

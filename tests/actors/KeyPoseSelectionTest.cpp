@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/AnimationClip.h"
 #include "throng/actors/KeyPoseCache.h"

@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Geometry.h"

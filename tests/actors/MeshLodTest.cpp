@@ -10,6 +10,7 @@
 #include <vector>
 #include <tuple>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/gltf/MeshSimplifier.h"
@@ -20,7 +21,7 @@ using namespace throng;
 
 namespace {
 
-const std::string kAssets = THRONG_SHARED_ASSETS;
+const std::string kAssets = testkit::sharedAssets();
 
 // A dense sphere with made-up influences that depend on the vertex, so each can be traced.
 std::shared_ptr<MeshData> skinnedSphere() {

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/ProceduralGait.h"

@@ -6,7 +6,7 @@
 
 #include <numbers>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/Camera.h"

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/research/CostModelScene.h"
 #include "throng/actors/SkeletonPose.h"

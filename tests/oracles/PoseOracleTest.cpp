@@ -46,7 +46,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "../render/CharacterStage.h"
+#include "throng/testkit/CharacterStage.h"
 #include "ThrongPoses.h"
 #include "VtkGltfPoser.h"
 #include "throng/actors/AnimationClip.h"

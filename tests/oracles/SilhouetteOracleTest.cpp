@@ -27,7 +27,7 @@
 #include <map>
 #include <numbers>
 
-#include "../render/CharacterStage.h"
+#include "throng/testkit/CharacterStage.h"
 #include "Silhouette.h"
 #include "ThrongPoses.h"
 #include "VtkGltfPoser.h"

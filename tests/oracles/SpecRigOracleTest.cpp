@@ -40,7 +40,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "../actors/GltfTestFile.h"
+#include "throng/testkit/GltfTestFile.h"
 #include "VtkGltfPoser.h"
 #include "throng/actors/AnimationClip.h"
 #include "throng/actors/SkeletonPose.h"

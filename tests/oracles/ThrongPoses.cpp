@@ -6,13 +6,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "throng/testkit/Assets.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/render/CpuSkinning.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
 namespace throng::test {
 
-std::string characterPath(const std::string& file) { return std::string(THRONG_SHARED_ASSETS) + "/characters/" + file; }
+std::string characterPath(const std::string& file) { return testkit::sharedAssets() + "/characters/" + file; }
 
 const CharacterAsset& loadedCharacter(const std::string& file, double scale) {
     static std::map<std::pair<std::string, double>, CharacterAsset> cache;

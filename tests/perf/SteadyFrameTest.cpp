@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "AllocationCounter.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/research/CostModelScene.h"
 #include "throng/actors/KeyPoseCache.h"
@@ -22,7 +23,7 @@
 #include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/MeshDrawable.h"
 #include "throng/scenegraph/MeshShapes.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 
 using namespace throng;
 using namespace throng::testing;
@@ -58,7 +59,7 @@ struct Scene {
 };
 
 std::shared_ptr<const ActorTemplate> cesiumMan() {
-    return loadCharacter(std::string(THRONG_SHARED_ASSETS) + "/characters/CesiumMan.glb").primaryTemplate();
+    return loadCharacter(testkit::sharedAssets() + "/characters/CesiumMan.glb").primaryTemplate();
 }
 
 std::unique_ptr<Scene> build(Layout layout) {
@@ -75,7 +76,7 @@ std::unique_ptr<Scene> build(Layout layout) {
         return s;
     }
     s->tmpl = layout == Layout::SkinnedTown ? cesiumMan() : makeSeedHumanoid();
-    scenes::TownSpread town = scenes::buildTownSpread(s->crowd, kActors, 40.0 * std::sqrt(double(kActors)), 50.0, 1, s->tmpl);
+    testkit::TownSpread town = testkit::buildTownSpread(s->crowd, kActors, 40.0 * std::sqrt(double(kActors)), 50.0, 1, s->tmpl);
     s->root = town.root;
     s->camera = town.camera;
     return s;

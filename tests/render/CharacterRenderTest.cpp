@@ -21,8 +21,9 @@
 #include <map>
 #include <numbers>
 
-#include "CharacterStage.h"
+#include "throng/testkit/CharacterStage.h"
 #include "RenderTestSupport.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
@@ -47,7 +48,7 @@ constexpr int kSize = test::kCharacterFrameSize;  // square frames
 // with Mesa 22.3.6 llvmpipe: no pixel over the threshold, largest difference 1/255, PSNR 74.7 dB.
 const test::GoldenTolerance kSkinningAgreement{8, 0.003, 40.0};
 
-std::string assetPath(const std::string& file) { return std::string(THRONG_SHARED_ASSETS) + "/characters/" + file; }
+std::string assetPath(const std::string& file) { return testkit::sharedAssets() + "/characters/" + file; }
 
 // Each file is loaded once for the whole test program.
 const CharacterAsset& asset(const std::string& file) {
@@ -99,7 +100,7 @@ TEST_F(CharacterRenderTest, GoldenImagesOfLoadedCharacters) {
         EXPECT_LT(covered, std::size_t(kSize * kSize) * 3 / 4) << "the camera is inside the character";
         // The clip is played: 0.2 s later the pose, hence the frame, is another.
         const Image later = stage.render(renderer, camera, c.time + 0.2);
-        const ImageDifference moved = compareImages(image, later, 8);
+        const testkit::ImageDifference moved = testkit::compareImages(image, later, 8);
         EXPECT_GT(moved.pixelsOverThreshold, std::size_t(kSize * kSize) / 200) << "the pose does not change with time";
         const std::string failure = test::compareWithGolden(image, c.golden);
         EXPECT_TRUE(failure.empty()) << failure;
@@ -108,7 +109,7 @@ TEST_F(CharacterRenderTest, GoldenImagesOfLoadedCharacters) {
 
 // Compares `a` with `b` under `t`; empty when they agree, else what differs.
 std::string disagreement(const Image& a, const Image& b, const test::GoldenTolerance& t) {
-    const ImageDifference d = compareImages(a, b, t.threshold);
+    const testkit::ImageDifference d = testkit::compareImages(a, b, t.threshold);
     if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
     return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
            "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";
@@ -131,7 +132,7 @@ TEST_F(CharacterRenderTest, CpuAndGpuSkinningAgreeOnCesiumMan) {
     EXPECT_EQ(renderer.statistics().cpuSkinnedVertices, skinnedVertices(*tmpl));
     EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, 0u);
     EXPECT_GT(test::coveredPixels(cpu), std::size_t(kSize * kSize) / 25);
-    const ImageDifference d = compareImages(cpu, gpu, kSkinningAgreement.threshold);
+    const testkit::ImageDifference d = testkit::compareImages(cpu, gpu, kSkinningAgreement.threshold);
     RecordProperty("pixels_over_threshold", std::to_string(d.pixelsOverThreshold));
     RecordProperty("psnr_db", std::to_string(d.psnr));
     RecordProperty("max_channel_difference", std::to_string(d.maxChannelDifference));
@@ -214,7 +215,7 @@ TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinn
                 EXPECT_NEAR(lodItem.skinPalette[k][c][r], expected[k][c][r], 1e-5f) << "joint " << k;
 
     // The leg visibly changes: deactivation is not a no-op.
-    EXPECT_GT(compareImages(full, lod, 8).pixelsOverThreshold, 30u) << "deactivating the knee did not move the leg";
+    EXPECT_GT(testkit::compareImages(full, lod, 8).pixelsOverThreshold, 30u) << "deactivating the knee did not move the leg";
     // And the renderer draws exactly what the ancestor's matrix gives.
     fullItem.skinPalette = expected.data();
     DrawList list;

@@ -76,7 +76,7 @@ TEST(ContextTest, WindowRendersLikeHeadless) {
     ASSERT_EQ(a.width, b.width);
     ASSERT_EQ(a.height, b.height);
     // Another driver may sit behind the window: compare loosely.
-    const ImageDifference d = compareImages(a, b, 16);
+    const testkit::ImageDifference d = testkit::compareImages(a, b, 16);
     EXPECT_LE(d.fractionOverThreshold, 0.02) << window->description();
     EXPECT_GT(test::coveredPixels(a), 1000u);
     RecordProperty("window", window->description());

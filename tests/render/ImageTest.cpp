@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/render/ImageIO.h"
 #include "throng/render/ProceduralMeshes.h"
 
@@ -26,7 +26,7 @@ Image solid(int w, int h, std::uint8_t value) {
 
 TEST(ImageCompareTest, IdenticalImages) {
     const Image a = solid(8, 4, 100);
-    const ImageDifference d = compareImages(a, a);
+    const testkit::ImageDifference d = testkit::compareImages(a, a);
     EXPECT_EQ(d.maxChannelDifference, 0);
     EXPECT_EQ(d.pixelsOverThreshold, 0u);
     EXPECT_EQ(d.meanAbsoluteDifference, 0.0);
@@ -38,23 +38,23 @@ TEST(ImageCompareTest, KnownDifferences) {
     Image b = a;
     b.rgba[0] = 110;          // pixel 0, red: 10
     b.rgba[4 * 7 + 2] = 97;   // pixel 7, blue: 3
-    const ImageDifference d = compareImages(a, b, 5);
+    const testkit::ImageDifference d = testkit::compareImages(a, b, 5);
     EXPECT_EQ(d.maxChannelDifference, 10);
     EXPECT_EQ(d.pixelsOverThreshold, 1u);
     EXPECT_DOUBLE_EQ(d.fractionOverThreshold, 0.01);
     EXPECT_DOUBLE_EQ(d.meanAbsoluteDifference, 13.0 / 400.0);
     EXPECT_NEAR(d.psnr, 10.0 * std::log10(255.0 * 255.0 / (109.0 / 400.0)), 1e-9);
-    EXPECT_EQ(compareImages(a, b, 2).pixelsOverThreshold, 2u);
-    const Image diff = differenceImage(a, b, 8);
+    EXPECT_EQ(testkit::compareImages(a, b, 2).pixelsOverThreshold, 2u);
+    const Image diff = testkit::differenceImage(a, b, 8);
     EXPECT_EQ(diff.rgba[0], 80);
     EXPECT_EQ(diff.rgba[4 * 7 + 2], 24);
     EXPECT_EQ(diff.rgba[4], 0);
 }
 
 TEST(ImageCompareTest, MismatchesAreErrors) {
-    EXPECT_THROW(compareImages(solid(4, 4, 0), solid(4, 5, 0)), std::invalid_argument);
-    EXPECT_THROW(compareImages(solid(4, 4, 0), Image{}), std::invalid_argument);
-    EXPECT_THROW(compareImages(solid(4, 4, 0), solid(4, 4, 0), 256), std::invalid_argument);
+    EXPECT_THROW(testkit::compareImages(solid(4, 4, 0), solid(4, 5, 0)), std::invalid_argument);
+    EXPECT_THROW(testkit::compareImages(solid(4, 4, 0), Image{}), std::invalid_argument);
+    EXPECT_THROW(testkit::compareImages(solid(4, 4, 0), solid(4, 4, 0), 256), std::invalid_argument);
 }
 
 TEST(ImageIoTest, PngRoundTrip) {

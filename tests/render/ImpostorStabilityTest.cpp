@@ -9,7 +9,7 @@
 
 #include "ImpostorTestSupport.h"
 #include "throng/render/GpuMorpher.h"
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/render/MorphCache.h"
 #include "throng/render/ViewHemisphere.h"
 
@@ -86,12 +86,12 @@ TEST(ImpostorStability, DegenerateFeatureLines) {
     const Image dissolve = morphImages(a, points, b, points, points, 0.5f, m);
     const Image noLines = morphImages(a, {}, b, {}, {}, 0.5f, m);
     EXPECT_EQ(dissolve.rgba, noLines.rgba);
-    EXPECT_LE(compareImages(dissolve, gpu.morph(a, points, b, points, points, 0.5f, m), 2).fractionOverThreshold, 0.001);
+    EXPECT_LE(testkit::compareImages(dissolve, gpu.morph(a, points, b, points, points, 0.5f, m), 2).fractionOverThreshold, 0.001);
     // A line collapsing to a point in the source, and a point growing to a line: finite.
     const std::vector<FeatureLine> collapsing = {{{20, 20}, {20, 20}}}, growing = {{{20, 10}, {20, 40}}};
     const Image c = morphImages(a, collapsing, b, growing, growing, 0.5f, m);
-    EXPECT_GT(compareImages(c, noLines).psnr, 5.0);
-    EXPECT_LE(compareImages(c, gpu.morph(a, collapsing, b, growing, growing, 0.5f, m), 2).fractionOverThreshold, 0.001);
+    EXPECT_GT(testkit::compareImages(c, noLines).psnr, 5.0);
+    EXPECT_LE(testkit::compareImages(c, gpu.morph(a, collapsing, b, growing, growing, 0.5f, m), 2).fractionOverThreshold, 0.001);
     // Coincident lines (the same line twice) weigh twice but move pixels as one line does.
     std::vector<FeatureLine> lines0(atlas.lines(3, 0).begin(), atlas.lines(3, 0).end());
     std::vector<FeatureLine> lines2(atlas.lines(3, 2).begin(), atlas.lines(3, 2).end());
@@ -102,11 +102,11 @@ TEST(ImpostorStability, DegenerateFeatureLines) {
     interpolateLines(two0, two2, 0.5f, mid2);
     const Image single = morphImages(a, one0, b, one2, mid1, 0.5f, m);
     const Image doubled = morphImages(a, two0, b, two2, mid2, 0.5f, m);
-    EXPECT_LE(compareImages(single, doubled, 1).fractionOverThreshold, 0.001);
+    EXPECT_LE(testkit::compareImages(single, doubled, 1).fractionOverThreshold, 0.001);
     // Every bone collapsed onto one point in one image: finite, and the GPU agrees.
     std::vector<FeatureLine> collapsed(lines0.size(), FeatureLine{{32, 32}, {32, 32}});
     const Image crushed = morphImages(a, collapsed, b, lines2, lines2, 0.5f, m);
-    EXPECT_LE(compareImages(crushed, gpu.morph(a, collapsed, b, lines2, lines2, 0.5f, m), 2).fractionOverThreshold, 0.001);
+    EXPECT_LE(testkit::compareImages(crushed, gpu.morph(a, collapsed, b, lines2, lines2, 0.5f, m), 2).fractionOverThreshold, 0.001);
     // Pixels on a line (distance 0) with a = 0 stay finite.
     const MorphParameters sharp{0.0f, 2.0f, 1.0f};
     const glm::vec2 on = beierNeelySourcePosition(lines0[4].p, lines0, lines2, sharp);

@@ -22,8 +22,8 @@
 #include "throng/render/ImpostorRenderer.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/render/GpuMorpher.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/render/MorphCache.h"
 
 namespace throng {
@@ -90,7 +90,7 @@ TEST(Impostor, CpuAndGpuMorphsAgree) {
         for (std::uint32_t v = 0; v < atlas.views().viewCount(); v += 3) {
             const Image cpu = morphDroppedCell(atlas, v, k, options);
             const Image onGpu = morphDroppedCell(atlas, v, k, options, &gpu);
-            const ImageDifference d = compareImages(cpu, onGpu, 2);
+            const testkit::ImageDifference d = testkit::compareImages(cpu, onGpu, 2);
             EXPECT_LE(d.fractionOverThreshold, 0.001) << "view " << v << " key-frame " << k;
             EXPECT_GT(opaquePixels(cpu), 100u);
         }
@@ -104,8 +104,8 @@ TEST(Impostor, MorphBeatsThePreviousKeyframe) {
     for (int k = 1; k < atlas.keyframeCount(); k += 2)
         for (std::uint32_t v = 0; v < atlas.views().viewCount(); ++v) {
             const Image truth = full.cell(v, k);
-            morphed += normalizedCrossCorrelation(morphDroppedCell(atlas, v, k, {}), truth);
-            previous += normalizedCrossCorrelation(atlas.cell(v, k - 1), truth);
+            morphed += testkit::normalizedCrossCorrelation(morphDroppedCell(atlas, v, k, {}), truth);
+            previous += testkit::normalizedCrossCorrelation(atlas.cell(v, k - 1), truth);
             ++n;
         }
     EXPECT_GT(morphed / n, previous / n);
@@ -314,8 +314,8 @@ TEST(Impostor, PoolMorphsAgreeWithTheFrameCache) {
     EXPECT_EQ(stats.quads.poolOverflows, 0u);
     const Image b = scene.render(1.0, nullptr, cpu);
     const Image c = scene.render(1.0, nullptr, before);
-    EXPECT_LT(compareImages(a, c, 2).fractionOverThreshold, 0.001) << "GL pool against the frame cache";
-    EXPECT_LT(compareImages(b, c, 2).fractionOverThreshold, 0.001) << "CPU pool against the frame cache";
+    EXPECT_LT(testkit::compareImages(a, c, 2).fractionOverThreshold, 0.001) << "GL pool against the frame cache";
+    EXPECT_LT(testkit::compareImages(b, c, 2).fractionOverThreshold, 0.001) << "CPU pool against the frame cache";
 }
 
 // A cell morphed once stays in the pool: the next frames of the same state make none.
@@ -389,7 +389,7 @@ TEST(Impostor, SurfaceProxyWarpIsNearerTheBakedKeyframe) {
         const Image truth = scene.render(1.0, nullptr, proxy, t, 1, nullptr, all);
         const Image byLines = scene.render(1.0, nullptr, lines, t, 1, nullptr, withProxy);
         const Image byProxy = scene.render(1.0, nullptr, proxy, t, 1, nullptr, withProxy);
-        const double linesPsnr = compareImages(byLines, truth, 8).psnr, proxyPsnr = compareImages(byProxy, truth, 8).psnr;
+        const double linesPsnr = testkit::compareImages(byLines, truth, 8).psnr, proxyPsnr = testkit::compareImages(byProxy, truth, 8).psnr;
         EXPECT_GT(proxyPsnr, linesPsnr + 2.0) << "clip time " << t << ": " << linesPsnr << " dB by lines, " << proxyPsnr << " by the proxy";
         EXPECT_EQ(byLines.rgba, scene.render(1.0, nullptr, proxy, t).rgba) << "an atlas without a proxy: lines";
         EXPECT_EQ(byProxy.rgba, scene.render(1.0, nullptr, background, t, 2, nullptr, withProxy).rgba) << "on the other thread";

@@ -12,8 +12,8 @@
 #include "ImpostorTestSupport.h"
 #include "throng/render/FeatureTrack.h"
 #include "throng/render/GpuMorpher.h"
-#include "throng/render/ImageCompare.h"
-#include "throng/render/ImageSimilarity.h"
+#include "throng/testkit/ImageCompare.h"
+#include "throng/testkit/ImageSimilarity.h"
 #include "throng/render/LimbMorph.h"
 #include "throng/render/MorphFeatures.h"
 #include "throng/render/ProxyMesh.h"
@@ -49,7 +49,7 @@ double meanDroppedNcc(F&& regenerate) {
     double sum = 0;
     int n = 0;
     for (int k = 1; k < half.keyframeCount(); k += 2)
-        for (std::uint32_t v = 0; v < half.views().viewCount(); ++v, ++n) sum += normalizedCrossCorrelation(regenerate(v, k), full.cell(v, k));
+        for (std::uint32_t v = 0; v < half.views().viewCount(); ++v, ++n) sum += testkit::normalizedCrossCorrelation(regenerate(v, k), full.cell(v, k));
     return sum / n;
 }
 
@@ -180,7 +180,7 @@ TEST(ImpostorWarp, CpuAndGpuAgreeWithLimbAttributes) {
             const Image a = e.half.cell(v, before), b = e.half.cell(v, after);
             const Image cpu = morphImages(a, f.from, b, f.to, f.target, t, p, 1, f.targetAttributes);
             const Image onGpu = gpu.morph(a, f.from, b, f.to, f.target, t, p, f.targetAttributes);
-            EXPECT_LE(compareImages(cpu, onGpu, 2).fractionOverThreshold, 0.001) << "view " << v << " key-frame " << k;
+            EXPECT_LE(testkit::compareImages(cpu, onGpu, 2).fractionOverThreshold, 0.001) << "view " << v << " key-frame " << k;
         }
 }
 
@@ -219,7 +219,7 @@ TEST(ImpostorWarp, ProxyCoversWhatTheRendererDraws) {
             const glm::vec3 eye = full.views().direction(v);
             const ProxySource self[1] = {{&cell, eye, k, 1.0f}};
             const Image same = warpProxy(proxy, self, eye, k, o);
-            const ImageDifference d = compareImages(same, cell, 1);
+            const testkit::ImageDifference d = testkit::compareImages(same, cell, 1);
             EXPECT_LE(d.fractionOverThreshold, 0.005) << "view " << v << " key-frame " << k;
         }
 }
@@ -234,7 +234,7 @@ TEST(ImpostorWarp, IdenticalViewsWarpToThemselves) {
     const float weights[2] = {0.3f, 0.7f};
     const std::vector<FeatureLine> target = blendViewLines(lines, weights);
     const Image out = warpViews(cells, lines, weights, target);
-    EXPECT_EQ(compareImages(out, cells[0], 1).pixelsOverThreshold, 0u);
+    EXPECT_EQ(testkit::compareImages(out, cells[0], 1).pixelsOverThreshold, 0u);
     // The postwarp between a view and itself is the identity.
     const glm::vec3 dirs[2] = {full.views().direction(v), full.views().direction(v)};
     const glm::mat2 m = viewPostwarp(dirs, weights, dirs[0]);
@@ -288,9 +288,9 @@ TEST(ImpostorWarp, ViewWarpsBeatTheColourBlend) {
             for (std::size_t j = 0; j < 3; ++j) s += blend.weights[j] * cells[j].rgba[p];
             mix.rgba[p] = static_cast<std::uint8_t>(std::lround(std::min(s, 255.0f)));
         }
-        colour += normalizedCrossCorrelation(mix, truth);
-        reprojected += normalizedCrossCorrelation(warpViews(cells, lines, blend.weights, track.lines(k, eye)), truth);
-        proxy += normalizedCrossCorrelation(warpProxy(Extras::get().proxy, sources, eye, k, o), truth);
+        colour += testkit::normalizedCrossCorrelation(mix, truth);
+        reprojected += testkit::normalizedCrossCorrelation(warpViews(cells, lines, blend.weights, track.lines(k, eye)), truth);
+        proxy += testkit::normalizedCrossCorrelation(warpProxy(Extras::get().proxy, sources, eye, k, o), truth);
     }
     std::printf("NCC between views: colour blend %.4f, warp to reprojected bones %.4f, surface proxy %.4f\n", colour / n, reprojected / n,
                 proxy / n);
@@ -312,7 +312,7 @@ TEST(ImpostorWarp, OcclusionAwareBlendWithFullTrustIsTheCrossDissolve) {
     EXPECT_EQ(limbs.rgba, plain.rgba);
     // With distrust, some pixels change (the figure's limbs do cross in this walk).
     const Image aware = morphLimbs(a, b, f, e.track, 0.5f, {}, {});
-    EXPECT_GT(compareImages(aware, plain, 0).pixelsOverThreshold, 0u);
+    EXPECT_GT(testkit::compareImages(aware, plain, 0).pixelsOverThreshold, 0u);
 }
 
 TEST(ImpostorWarp, FrontFeatureIsTheNearerCapsule) {

@@ -31,6 +31,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "RenderTestSupport.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/gltf/GltfLoader.h"
@@ -48,7 +49,7 @@ constexpr int kSize = 160;  // square frames, as the character goldens
 
 const test::GoldenTolerance kGolden{};  // the project's golden-image tolerance
 
-std::string assetPath(const std::string& file) { return std::string(THRONG_SHARED_ASSETS) + "/characters/" + file; }
+std::string assetPath(const std::string& file) { return testkit::sharedAssets() + "/characters/" + file; }
 
 const CharacterAsset& asset(const std::string& file) {
     static std::map<std::string, CharacterAsset> cache;
@@ -82,7 +83,7 @@ Character character(const std::string& file) {
 
 // What a pass/fail comparison says: empty when `a` and `b` agree under `t`.
 std::string disagreement(const Image& a, const Image& b, const test::GoldenTolerance& t) {
-    const ImageDifference d = compareImages(a, b, t.threshold);
+    const testkit::ImageDifference d = testkit::compareImages(a, b, t.threshold);
     if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
     return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
            "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";

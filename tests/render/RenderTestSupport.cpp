@@ -76,10 +76,10 @@ std::string compareWithGolden(const Image& actual, const std::string& name, cons
         return "golden " + golden.string() + " is " + std::to_string(expected.width) + " x " +
                std::to_string(expected.height) + ", the frame " + std::to_string(actual.width) + " x " +
                std::to_string(actual.height);
-    const ImageDifference d = compareImages(actual, expected, tolerance.threshold);
+    const testkit::ImageDifference d = testkit::compareImages(actual, expected, tolerance.threshold);
     if (d.fractionOverThreshold <= tolerance.maxFraction && d.psnr >= tolerance.minPsnr) return {};
     writeOutput(actual, name + "-actual");
-    writeOutput(differenceImage(actual, expected), name + "-diff");
+    writeOutput(testkit::differenceImage(actual, expected), name + "-diff");
     std::ostringstream why;
     why << name << ": " << d.pixelsOverThreshold << " pixels (" << 100.0 * d.fractionOverThreshold
         << "%) differ by more than " << tolerance.threshold << " (allowed " << 100.0 * tolerance.maxFraction

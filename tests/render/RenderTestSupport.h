@@ -16,7 +16,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Image.h"

@@ -76,7 +76,7 @@ TEST_F(RendererTest, InstancedAndSeparateDrawsGiveIdenticalImages) {
     EXPECT_EQ(renderer.statistics().drawCalls, 12u);
     EXPECT_EQ(renderer.statistics().instances, 12u);
     EXPECT_GT(test::coveredPixels(instanced), 1500u);
-    const ImageDifference d = compareImages(instanced, separate);
+    const testkit::ImageDifference d = testkit::compareImages(instanced, separate);
     EXPECT_EQ(d.maxChannelDifference, 0);
 }
 
@@ -92,7 +92,7 @@ TEST_F(RendererTest, CameraRelativeRenderingFarFromTheOrigin) {
     buildMixedScene(distant, far);
     const Image a = test::renderFrame(renderer, test::makeCamera(Vec3(0, 0.5, 4.0), Vec3(0.0)), near);
     const Image b = test::renderFrame(renderer, test::makeCamera(far + Vec3(0, 0.5, 4.0), far), distant);
-    const ImageDifference d = compareImages(a, b, 2);
+    const testkit::ImageDifference d = testkit::compareImages(a, b, 2);
     EXPECT_LE(d.maxChannelDifference, 2);
     EXPECT_EQ(d.pixelsOverThreshold, 0u);
     EXPECT_GT(test::coveredPixels(b), 1500u);
@@ -113,7 +113,7 @@ TEST_F(RendererTest, MirroredItemsAreNotDrawnInsideOut) {
     const Image b = test::renderFrame(renderer, camera, mirrored);
     EXPECT_GT(test::coveredPixels(a), 1500u);
     EXPECT_EQ(test::coveredPixels(a), test::coveredPixels(b));
-    EXPECT_LE(compareImages(a, b, 8).fractionOverThreshold, 0.001);
+    EXPECT_LE(testkit::compareImages(a, b, 8).fractionOverThreshold, 0.001);
     // Mixed in one list, with instancing: mirrored items get their own draw call.
     both.add(box, glm::translate(Mat4(1.0), Vec3(-0.7, 0, 0)) * tilt);
     both.add(box, glm::translate(Mat4(1.0), Vec3(0.7, 0, 0)) * glm::scale(Mat4(1.0), Vec3(-1, 1, 1)) * tilt);
@@ -169,9 +169,9 @@ TEST_F(RendererTest, ProbesLeaveWorkOutAndFragmentCountsAddUp) {
     const std::uint64_t quadFragments = fragmentsOf(checker, DrawProbe::None, &textured);
     EXPECT_EQ(fragmentsOf(checker, DrawProbe::OneColour, &oneColour), quadFragments);
     EXPECT_EQ(test::coveredPixels(oneColour), test::coveredPixels(textured));
-    EXPECT_GT(compareImages(textured, oneColour, 8).fractionOverThreshold, 0.1);
+    EXPECT_GT(testkit::compareImages(textured, oneColour, 8).fractionOverThreshold, 0.1);
     EXPECT_EQ(fragmentsOf(both, DrawProbe::None, &again), passed);
-    EXPECT_EQ(compareImages(plain, again).maxChannelDifference, 0);
+    EXPECT_EQ(testkit::compareImages(plain, again).maxChannelDifference, 0);
     // Not counting: the statistic stays zero.
     renderer.setOptions(RendererOptions{});
     test::renderFrame(renderer, camera, both);
@@ -228,7 +228,7 @@ TEST_F(RendererTest, SkinnedMeshWithoutPaletteDrawsItsBindPose) {
     EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, 0u);
     const Image b = test::renderFrame(renderer, camera, identity);
     EXPECT_GT(renderer.statistics().gpuSkinnedVertices, 0u);
-    EXPECT_LE(compareImages(a, b, 2).pixelsOverThreshold, 0u);
+    EXPECT_LE(testkit::compareImages(a, b, 2).pixelsOverThreshold, 0u);
 }
 
 TEST_F(RendererTest, ClearColourViewportSizeAndCapture) {
@@ -285,8 +285,8 @@ TEST_F(RendererTest, TwoContextsInOneProcess) {
     const Image a = test::renderFrame(first, camera, scene);
     const Image b = test::renderFrame(second, camera, scene);
     const Image c = test::renderFrame(first, camera, scene);
-    EXPECT_EQ(compareImages(a, b).maxChannelDifference, 0);
-    EXPECT_EQ(compareImages(a, c).maxChannelDifference, 0);
+    EXPECT_EQ(testkit::compareImages(a, b).maxChannelDifference, 0);
+    EXPECT_EQ(testkit::compareImages(a, c).maxChannelDifference, 0);
     EXPECT_GT(test::coveredPixels(a), 1000u);
 }
 

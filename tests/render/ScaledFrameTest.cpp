@@ -15,7 +15,7 @@
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlContext.h"
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/render/ProceduralMeshes.h"
 #include "throng/render/ScaledFrame.h"
 #include "throng/scenegraph/MeshShapes.h"
@@ -59,13 +59,13 @@ TEST(ScaledFrame, AHalfResolutionFrameComesBackFullSizeCloseToTheFullFrame) {
     EXPECT_EQ(half.renderHeight, test::kHeight / 2);
     ASSERT_EQ(scaled.width, reference.width);
     ASSERT_EQ(scaled.height, reference.height);
-    const ImageDifference d = compareImages(reference, scaled, 8);
+    const testkit::ImageDifference d = testkit::compareImages(reference, scaled, 8);
     test::writeOutput(scaled, "scaled-frame-half");
     EXPECT_GT(d.psnr, 18.0) << "the same picture, blurred";
     EXPECT_GT(d.pixelsOverThreshold, 0u) << "a lower resolution must cost something";
     EXPECT_LT(d.fractionOverThreshold, 0.5);
     // Scale 1 draws exactly what a renderer without the option draws.
-    EXPECT_EQ(compareImages(reference, drawAt(1.0f), 0).pixelsOverThreshold, 0u);
+    EXPECT_EQ(testkit::compareImages(reference, drawAt(1.0f), 0).pixelsOverThreshold, 0u);
 }
 
 TEST(ScaledFrame, TheOverlayIsDrawnAtFullResolutionOverTheScaledFrame) {

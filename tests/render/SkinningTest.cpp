@@ -239,7 +239,7 @@ TEST_F(SkinningTest, CpuAndGpuSkinnedFramesAgree) {
     EXPECT_EQ(renderer.statistics().gpuSkinnedVertices, 0u);
     EXPECT_EQ(renderer.statistics().drawCalls, 6u);
     EXPECT_GT(test::coveredPixels(gpuFrame), 2000u);
-    const ImageDifference d = compareImages(gpuFrame, cpuFrame, 8);
+    const testkit::ImageDifference d = testkit::compareImages(gpuFrame, cpuFrame, 8);
     EXPECT_LE(d.fractionOverThreshold, 0.002) << "max difference " << d.maxChannelDifference;
     if (d.maxChannelDifference > 0) {
         test::writeOutput(gpuFrame, "skinning-gpu");

@@ -18,9 +18,10 @@
 #include <string>
 
 #include "RenderTestSupport.h"
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/GlRenderer.h"
-#include "throng/render/ImageCompare.h"
+#include "throng/testkit/ImageCompare.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
@@ -33,7 +34,7 @@ constexpr int kWidth = 640, kHeight = 360;
 
 // The default scene with 10 actors, its town at full detail or with town LOD.
 std::unique_ptr<sim::Simulation> defaultTown(bool townLod) {
-    sim::SceneDescription scene = sim::parseSceneFile(THRONG_TOWN_DEFAULT_SCENE);
+    sim::SceneDescription scene = sim::parseSceneFile(testkit::townDefaultScene());
     sim::scaleActors(scene, 10);
     scene.town->lod.clear();
     scene.town->lodScale = 0.0;  // the levels at their declared distances
@@ -88,7 +89,7 @@ TEST_F(TownDrawTest, NewDrawingMatchesOldAtFullDetail) {
         EXPECT_GT(now.stats.constantTriangles, now.stats.triangles / 5) << "the cheap path must really be taken";
         EXPECT_GT(now.stats.flatLitTriangles, 0u) << "so must the flat-lit one";
         EXPECT_GT(test::coveredPixels(old.image), std::size_t(kWidth * kHeight / 4)) << "the town must be in view";
-        const ImageDifference d = compareImages(old.image, now.image, test::GoldenTolerance{}.threshold);
+        const testkit::ImageDifference d = testkit::compareImages(old.image, now.image, test::GoldenTolerance{}.threshold);
         std::printf("t = %4.1f s: %llu of %llu triangles constant, %llu flat-lit; %zu pixels over %d (%.4f %%), max %d, PSNR %.1f dB\n",
                     t, (unsigned long long)now.stats.constantTriangles, (unsigned long long)now.stats.triangles,
                     (unsigned long long)now.stats.flatLitTriangles,
@@ -100,7 +101,7 @@ TEST_F(TownDrawTest, NewDrawingMatchesOldAtFullDetail) {
             const std::string name = "town_t" + std::to_string(int(t));
             test::writeOutput(old.image, name + "-old");
             test::writeOutput(now.image, name + "-new");
-            test::writeOutput(differenceImage(old.image, now.image), name + "-diff");
+            test::writeOutput(testkit::differenceImage(old.image, now.image), name + "-diff");
         }
     }
 }
@@ -116,7 +117,7 @@ TEST_F(TownDrawTest, TownLodDrawsFewerTrianglesInTheOverview) {
     const Frame a = render(renderer, camera, fullProcessor.drawList());
     const Frame b = render(renderer, camera, lodProcessor.drawList());
     EXPECT_LT(double(b.stats.triangles), 0.8 * double(a.stats.triangles));
-    const ImageDifference d = compareImages(a.image, b.image, test::GoldenTolerance{}.threshold);
+    const testkit::ImageDifference d = testkit::compareImages(a.image, b.image, test::GoldenTolerance{}.threshold);
     std::printf("overview: %llu triangles at full detail, %llu with town LOD; image difference: %zu pixels over %d "
                 "(%.3f %%), mean %.3f, PSNR %.1f dB\n",
                 (unsigned long long)a.stats.triangles, (unsigned long long)b.stats.triangles, d.pixelsOverThreshold,

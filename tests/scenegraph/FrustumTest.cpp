@@ -11,7 +11,7 @@
 
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Frustum.h"
-#include "throng/scenes/RandomScenes.h"
+#include "throng/testkit/RandomScenes.h"
 
 using namespace throng;
 
@@ -79,7 +79,7 @@ TEST(Frustum, NeverRejectsASphereHoldingAVisiblePointOnRandomCases) {
     int outside = 0, inside = 0, intersects = 0;
     constexpr int kCases = 100000;
     for (int i = 0; i < kCases; ++i) {
-        const Camera cam = scenes::randomCamera(rng, 100.0);
+        const Camera cam = testkit::randomCamera(rng, 100.0);
         const Mat4 vp = cam.viewProjection();
         const Frustum f = Frustum::fromViewProjection(vp);
         const Vec3 c = cam.eye() + Vec3(u(rng), u(rng), u(rng)) * 150.0;

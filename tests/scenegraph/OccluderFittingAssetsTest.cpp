@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "OccluderOracle.h"
+#include "throng/testkit/Assets.h"
 #include "throng/gltf/GltfLoader.h"
 #include "throng/scenegraph/OccluderFitting.h"
 
@@ -16,7 +17,7 @@ using throng::testing::TriangleSoup;
 
 namespace {
 
-const std::string kTiles = std::string(THRONG_SHARED_ASSETS) + "/town/kenney_city_builder";
+const std::string kTiles = testkit::sharedAssets() + "/town/kenney_city_builder";
 
 std::vector<std::string> tileFiles() {
     std::vector<std::string> files;

@@ -12,7 +12,7 @@
 #endif
 
 #include "throng/scenegraph/SphereArrayCuller.h"
-#include "throng/scenes/RandomScenes.h"
+#include "throng/testkit/RandomScenes.h"
 
 using namespace throng;
 
@@ -26,7 +26,7 @@ Agreement compareWithDouble(std::mt19937_64& rng, const Vec3& origin, int camera
     std::uniform_real_distribution<double> u(-1, 1);
     Agreement a;
     for (int c = 0; c < cameras; ++c) {
-        const Camera cam = scenes::randomCamera(rng, 100.0, origin);
+        const Camera cam = testkit::randomCamera(rng, 100.0, origin);
         const Frustum f = cam.frustum();
         const SphereArrayCuller culler(f, cam.eye());
         std::vector<float> x, y, z, r;
@@ -85,7 +85,7 @@ TEST(SphereArrayCuller, LeavesNoDirtyUpperRegisterHalves) {
 #if defined(__x86_64__)
     if (!canReadStatesInUse()) GTEST_SKIP() << "this CPU cannot say which register states are in use (XGETBV 1)";
     std::mt19937_64 rng(7);
-    const Camera cam = scenes::randomCamera(rng, 100.0, Vec3(0.0));
+    const Camera cam = testkit::randomCamera(rng, 100.0, Vec3(0.0));
     const SphereArrayCuller culler(cam.frustum(), cam.eye());
     for (std::size_t n = 1; n <= 300; ++n) {  // every remainder of every vector width
         std::vector<float> x(n, 1.0f), y(n, 2.0f), z(n, -30.0f), r(n, 0.5f);

@@ -14,7 +14,7 @@
 #include "throng/scenegraph/SphereArrayCuller.h"
 #include "throng/scenegraph/TraditionalProcessor.h"
 #include "throng/scenegraph/Transform.h"
-#include "throng/scenes/RandomScenes.h"
+#include "throng/testkit/RandomScenes.h"
 
 using namespace throng;
 
@@ -65,8 +65,8 @@ TEST_P(FarFromOrigin, CullsCorrectlyAtCentimetreMargins) {
 
     // A whole scene of nested transforms 10^6-10^7 m away culls as it does at the origin.
     std::mt19937_64 rngNear(42), rngFar(42);
-    auto nearScene = scenes::buildRandomScene(rngNear, {.objects = 80});
-    auto farScene = scenes::buildRandomScene(rngFar, {.objects = 80, .origin = Vec3(far, -0.5 * far, far)});
+    auto nearScene = testkit::buildRandomScene(rngNear, {.objects = 80});
+    auto farScene = testkit::buildRandomScene(rngFar, {.objects = 80, .origin = Vec3(far, -0.5 * far, far)});
     const Camera nearCam = cameraAt(Vec3(0, 20, 300), Vec3(0.0));
     const Camera farCam = cameraAt(Vec3(far, -0.5 * far + 20, far + 300), Vec3(far, -0.5 * far, far));
     TraditionalProcessor pn, pf;

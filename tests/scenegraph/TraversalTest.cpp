@@ -20,7 +20,7 @@
 #include "throng/scenegraph/TraditionalProcessor.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/scenegraph/UpdateCallback.h"
-#include "throng/scenes/RandomScenes.h"
+#include "throng/testkit/RandomScenes.h"
 
 using namespace throng;
 
@@ -181,8 +181,8 @@ TEST(Traversal, LodNodesSelectTheirChildByTheirOwnDistance) {
 
 TEST(Traversal, UnchangedSubtreesAreNotRecomputedAndResultsMatchAFullRecompute) {
     std::mt19937_64 rng(3);
-    auto scene = scenes::buildRandomScene(rng, {.objects = 50});
-    const Camera cam = scenes::randomCamera(rng, 200.0);
+    auto scene = testkit::buildRandomScene(rng, {.objects = 50});
+    const Camera cam = testkit::randomCamera(rng, 200.0);
     TraditionalProcessor proc;
     const auto first = proc.processFrame(*scene, cam, 0.0);
     EXPECT_GT(first.matrices.spheresRecomputed, 100u);
@@ -245,10 +245,10 @@ TEST(Traversal, DrawListMatchesBruteForceOnRandomScenes) {
     std::mt19937_64 rng(99);
     std::size_t totalDrawn = 0, totalRejected = 0;
     for (int scene = 0; scene < 60; ++scene) {
-        auto root = scenes::buildRandomScene(rng, {.objects = 60, .extent = 150.0});
+        auto root = testkit::buildRandomScene(rng, {.objects = 60, .extent = 150.0});
         TraditionalProcessor proc;
         for (int view = 0; view < 5; ++view) {
-            const Camera cam = scenes::randomCamera(rng, 150.0);
+            const Camera cam = testkit::randomCamera(rng, 150.0);
             proc.processFrame(*root, cam, view * 0.1);
             std::vector<const Node*> expected;
             bruteForce(*root, Mat4(1.0), cam, cam.frustum(), expected);
@@ -265,7 +265,7 @@ TEST(Traversal, DrawListMatchesBruteForceOnRandomScenes) {
 
 TEST(Traversal, SmallerCullingFrustumDrawsASubset) {
     std::mt19937_64 rng(17);
-    auto root = scenes::buildRandomScene(rng, {.objects = 200});
+    auto root = testkit::buildRandomScene(rng, {.objects = 200});
     Camera cam;
     cam.setPerspective(1.2, 1.5, 0.1, 2000);
     cam.setLookAt(Vec3(0, 0, 400), Vec3(0.0), Vec3(0, 1, 0));

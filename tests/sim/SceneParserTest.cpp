@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "throng/testkit/Assets.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 
@@ -15,7 +16,7 @@ using namespace throng::sim;
 
 namespace {
 
-const std::string kAssets = THRONG_SHARED_ASSETS;
+const std::string kAssets = throng::testkit::sharedAssets();
 
 // A valid scene; `patch` replaces one piece of it to break it.
 std::string scene(const std::string& actors, const std::string& extra = "") {

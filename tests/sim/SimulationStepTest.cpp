@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
@@ -25,7 +26,7 @@ std::unique_ptr<sim::Simulation> walkers() {
       "actors": [{"name": "walkers", "template": "person", "count": 60, "behaviour": "walk", "speed": [1.2, 1.2]}],
       "camera": {"fov": 60, "near": 0.2, "far": 500, "path": [{"time": 0, "eye": [0, 40, 60], "target": [0, 0, 0]}]}
     })";
-    return sim::Simulation::build(sim::parseScene(text, THRONG_SHARED_ASSETS));
+    return sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
 }
 
 // Each walker's distance covered per step over `steps` steps, with `processors` processors (of both
@@ -116,12 +117,12 @@ TEST(SimulationKeyPoseCaches, OnePerDeclaredTemplateInUseAndNoneUndeclared) {
       "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"}},
       "actors": [{"template": "cesium", "count": 20, "behaviour": "walk"}, {"template": "cesium", "count": 6, "behaviour": "idle"},
                  {"template": "person", "count": 4, "behaviour": "walk"}])";
-    auto plain = sim::Simulation::build(sim::parseScene(base + "}", THRONG_SHARED_ASSETS));
+    auto plain = sim::Simulation::build(sim::parseScene(base + "}", testkit::sharedAssets()));
     EXPECT_TRUE(plain->makeKeyPoseCaches().empty());
     EXPECT_EQ(plain->effects().of("key-pose cache").constructed, 0u);
 
     auto cached = sim::Simulation::build(sim::parseScene(
-        base + R"(, "representation": {"keyPoseCache": {"mode": "interpolative", "rows": {"cesium": 24}}}})", THRONG_SHARED_ASSETS));
+        base + R"(, "representation": {"keyPoseCache": {"mode": "interpolative", "rows": {"cesium": 24}}}})", testkit::sharedAssets()));
     const auto caches = cached->makeKeyPoseCaches();
     std::size_t cesiums = 0;  // templates in use named cesium (a standing copy counts apart when it has its own clip)
     for (const auto& t : cached->templates()) cesiums += t.name.rfind("cesium", 0) == 0;
@@ -135,7 +136,7 @@ TEST(SimulationKeyPoseCaches, OnePerDeclaredTemplateInUseAndNoneUndeclared) {
     EXPECT_NE(caches[0].get(), cached->makeKeyPoseCaches()[0].get()) << "each call builds fresh caches";
 
     auto rigid = sim::Simulation::build(
-        sim::parseScene(base + R"(, "representation": {"keyPoseCache": {"rows": {"person": 8}}}})", THRONG_SHARED_ASSETS));
+        sim::parseScene(base + R"(, "representation": {"keyPoseCache": {"rows": {"person": 8}}}})", testkit::sharedAssets()));
     try {
         rigid->makeKeyPoseCaches();
         FAIL() << "a template of rigid parts was cached";

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/Group.h"
@@ -27,7 +28,7 @@ std::unique_ptr<sim::Simulation> smallTown(const std::string& lod) {
       "actors": [],
       "camera": {"fov": 60, "near": 0.2, "far": 1000, "path": [{"time": 0, "eye": [0, 150, 300], "target": [0, 0, 0]}]}
     })";
-    return sim::Simulation::build(sim::parseScene(text, THRONG_SHARED_ASSETS));
+    return sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
 }
 
 // LOD nodes under `node`, and the triangles of the first and of the last child of each.

@@ -22,11 +22,11 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkPointData.h>
 
-#include "throng/support/AccuracyCsv.h"
+#include "throng/sim/AccuracyCsv.h"
 
 namespace fs = std::filesystem;
-using throng::support::AccuracyCsv;
-using throng::support::AccuracyRecord;
+using throng::sim::AccuracyCsv;
+using throng::sim::AccuracyRecord;
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 
-#include "../actors/ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/vtk/CascadeCuller.h"
 #include "throng/vtk/Chart.h"
 

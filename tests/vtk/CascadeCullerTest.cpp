@@ -13,7 +13,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 
-#include "../actors/ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/vtk/CameraFromVtk.h"

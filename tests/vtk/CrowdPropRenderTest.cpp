@@ -22,7 +22,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
-#include "../actors/ActorTestScenes.h"
+#include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ActorProcessor.h"

@@ -6,7 +6,7 @@
 #include "throng/research/CostModelScene.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/Table3Template.h"
-#include "throng/scenes/TownSpread.h"
+#include "throng/testkit/TownSpread.h"
 
 namespace throng::peers {
 
@@ -28,7 +28,7 @@ PeerScene buildPeerScene(const std::string& name, std::size_t actors) {
         // As bench_actor_processing: density kept constant as the crowd grows (one actor per
         // 1600 m^2, or per 16 m^2 when dense).
         const double spacing = name == "town" ? 40.0 : 4.0;
-        scenes::TownSpread town = scenes::buildTownSpread(*s.crowd, actors, spacing * std::sqrt(double(actors)));
+        testkit::TownSpread town = testkit::buildTownSpread(*s.crowd, actors, spacing * std::sqrt(double(actors)));
         s.root = town.root;
         s.camera = town.camera;
         // The dense crowd is for the check: near and far planes that cut through it decide too.

@@ -1,0 +1,137 @@
+#pragma once
+// Random crowds and draw-list comparison shared by the actor, VTK and cascade tests (header only).
+
+#include <algorithm>
+#include <numbers>
+#include <memory>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "throng/actors/Actor.h"
+#include "throng/actors/ActorGroup.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/ProceduralGait.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/actors/Table3Template.h"
+#include "throng/scenegraph/MeshDrawable.h"
+#include "throng/scenegraph/MeshShapes.h"
+#include "throng/scenegraph/DrawList.h"
+#include "throng/scenegraph/Group.h"
+#include "throng/scenegraph/Transform.h"
+
+namespace throng::testing {
+
+/// A primitive's identity: node, instance, part, drawable.
+using PrimitiveKey = std::tuple<const void*, std::uint32_t, std::uint32_t, const void*>;
+
+/// The draw list as a sorted list of primitive identities.
+inline std::vector<PrimitiveKey> primitives(const DrawList& list) {
+    std::vector<PrimitiveKey> keys;
+    for (const DrawItem& i : list.items()) keys.emplace_back(i.node, i.instance, i.part, i.drawable);
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
+/// A random crowd: humanoids and Table 3 actors, key-framed or walking procedurally, some alone,
+/// some in groups, some under a moving generic Transform (a vehicle), spread over a square.
+struct RandomCrowd {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<Transform> vehicle = std::make_shared<Transform>();
+    std::vector<ActorId> ids;
+};
+
+inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int actors, double extent) {
+    auto scene = std::make_unique<RandomCrowd>();
+    static const auto humanoid = makeSeedHumanoid();
+    static const auto table3 = makeTable3Template();
+    auto keyframes = std::make_shared<KeyframeBehaviour>(std::vector<double>{30.0, 1e9});
+    auto gait = std::make_shared<ProceduralGait>(std::vector<double>{25.0, 1e9});
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    std::vector<ActorId> grouped, onVehicle;
+    for (int i = 0; i < actors; ++i) {
+        const auto tmpl = unit(rng) < 0.5 ? humanoid : table3;
+        const Vec3 where(extent * u(rng), 0.2 * extent * u(rng), extent * u(rng));
+        ActorId id;
+        if (unit(rng) < 0.6) {
+            KeyframeBehaviour::Actor a;
+            a.tmpl = tmpl;
+            a.clip = static_cast<int>(unit(rng) * double(tmpl->clips().size()));
+            a.timeOffset = 10.0 * unit(rng);
+            a.position = where;
+            a.heading = 6.3 * unit(rng);
+            a.pathRadius = unit(rng) < 0.3 ? 4.0 : 0.0;
+            a.pathSpeed = 1.4;
+            id = scene->crowd.add(tmpl, keyframes, keyframes->addActor(a), ActorLook{float(0.5 + unit(rng)), glm::vec4(1)});
+        } else {
+            ProceduralGait::Actor a;
+            a.center = where;
+            a.radius = 6.0 * unit(rng);
+            a.phase = 6.3 * unit(rng);
+            id = scene->crowd.add(tmpl, gait, gait->addActor(a));
+        }
+        scene->ids.push_back(id);
+        const double r = unit(rng);
+        if (r < 0.45) scene->root->addChild(scene->crowd.makeActorNode(id));
+        else if (r < 0.9) grouped.push_back(id);
+        else onVehicle.push_back(id);
+    }
+    for (std::size_t g = 0; g < grouped.size(); g += 50)
+        scene->root->addChild(scene->crowd.makeGroupNode(
+            std::vector<ActorId>(grouped.begin() + long(g), grouped.begin() + long(std::min(g + 50, grouped.size())))));
+    scene->vehicle->setName("vehicle");
+    for (ActorId id : onVehicle) scene->vehicle->addChild(scene->crowd.makeActorNode(id));
+    scene->root->addChild(scene->vehicle);
+    return scene;
+}
+
+// A 2 m bar skinned to two joints: "base" at the origin and "arm" 1 m up, which turns about Z
+// (switched off beyond `armOff` metres); no clip yet.
+inline ActorTemplateBuilder skinnedBarBuilder(const std::string& name, double armOff = 20.0) {
+    SkeletonNode base;
+    base.name = "base";
+    SkeletonNode arm;
+    arm.name = "arm";
+    arm.parent = 0;
+    arm.restTranslation = glm::vec3(0, 1, 0);
+    arm.dofs = {Dof::rotation(glm::vec3(0, 0, 1), -3.2f, 3.2f)};
+    arm.deactivationDistance = armOff;
+    arm.inverseBind = glm::mat4(1.0f);
+    arm.inverseBind[3] = glm::vec4(0, -1, 0, 1);  // inverse of the bind pose's translation
+    auto mesh = makeBox("bar", glm::vec3(0, 1, 0), glm::vec3(0.05f, 1.0f, 0.05f));
+    for (const glm::vec3& p : mesh->positions) {
+        mesh->joints0.push_back(glm::u16vec4(p.y < 1.0f ? 0 : 1, 0, 0, 0));
+        mesh->weights0.push_back(glm::vec4(1, 0, 0, 0));
+    }
+    // Joint spheres from the vertices each dominates, in the joint's frame.
+    base.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
+    arm.geometrySphere = BoundingSphere(Vec3(0, 0.5, 0), 0.6);
+    ActorTemplateBuilder b(name);
+    b.addNode(base);
+    b.addNode(arm);
+    const int skin = b.addSkin(Skin{"bar", {0, 1}});
+    b.rootGeometry().addLevel(1000.0, std::make_shared<MeshDrawable>(mesh), skin);
+    return b;
+}
+
+// The bar's clip "bend" (2 s): the arm turns to 90 degrees over the first second and holds.
+inline std::shared_ptr<const AnimationClip> barBendClip() {
+    ClipChannel bend;
+    bend.node = 1;
+    bend.times = {0.0f, 1.0f, 2.0f};
+    bend.values = {0.0f, std::numbers::pi_v<float> / 2.0f, std::numbers::pi_v<float> / 2.0f};
+    return std::make_shared<AnimationClip>("bend", std::vector<ClipChannel>{bend});
+}
+
+// The skinned bar playing "bend".
+inline std::shared_ptr<const ActorTemplate> skinnedBar() {
+    ActorTemplateBuilder b = skinnedBarBuilder("bar");
+    b.addClip(barBendClip());
+    return b.build();
+}
+
+}  // namespace throng::testing
