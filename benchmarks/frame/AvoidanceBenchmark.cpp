@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -23,34 +24,24 @@
 
 #include <glm/geometric.hpp>
 
-#include "throng/testkit/Assets.h"
+#include "throng/bench/Experiment.h"
+#include "throng/bench/ResultTable.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/sim/AccuracyCsv.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
+#include "throng/testkit/Assets.h"
 
 namespace throng {
 namespace {
 
-[[noreturn]] void fail(const std::string& why) {
-    std::fprintf(stderr, "bench_avoidance: %s\n", why.c_str());
-    std::exit(1);
-}
-
+// The experiment's own settings (the common ones are in bench::ExperimentSpec).
 struct Options {
-    std::string scene = testkit::townDefaultScene();
-    std::int64_t actors = 2000;
-    int ticks = 300;
-    int warmup = 30;
-    int threads = 1;
     std::vector<int> qualities{0, 1, 2, 3};
     std::vector<double> ranges{6.0, 12.0};
     std::vector<int> farEvery{1};
     double farDistance = 60.0;
-    std::string markdown, accuracyCsv;
 };
 
 struct Setting {
@@ -103,18 +94,18 @@ void closePairs(const std::vector<glm::vec3>& p, float reach, float inner, std::
 
 // Steps the scene's walkers with `setting`; `reference` holds the finest setting's positions per
 // tick (filled when empty).
-Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm::vec3>>& reference) {
-    sim::SceneDescription d = sim::parseSceneFile(o.scene);
-    if (o.actors > 0) sim::scaleActors(d, o.actors);
+Result run(const bench::ExperimentSpec& e, const Options& o, const Setting& setting, std::vector<std::vector<glm::vec3>>& reference) {
+    sim::SceneDescription d = sim::parseSceneFile(e.scene);
+    if (e.actors.front() > 0) sim::scaleActors(d, e.actors.front());
     d.effects.avoidance = true;
     d.effects.avoidanceQuality = setting.quality;
     d.effects.avoidanceRange = setting.range;
     d.effects.farUpdateEvery = setting.farEvery;
     d.effects.farUpdateDistance = setting.farEvery > 1 ? o.farDistance : 0.0;
     auto world = sim::Simulation::build(std::move(d));
-    world->setThreads(static_cast<unsigned>(o.threads));
+    world->setThreads(static_cast<unsigned>(e.threads));
     const sim::Locomotion* walk = world->locomotion();
-    if (!walk || walk->size() < 2) fail("the scene has fewer than two walkers");
+    if (!walk || walk->size() < 2) throw std::runtime_error("the scene has fewer than two walkers");
     const std::size_t n = walk->size();
     const float reach = 2.0f * walk->settings().radius + 0.05f;
     const bool fill = reference.empty();
@@ -127,10 +118,10 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     double progress = 0, deviation = 0, seconds = 0;
     std::uint64_t collisions = 0;
     // The first steps are not measured: walkers leave their start places and find their pace.
-    const int total = o.warmup + o.ticks;
+    const int total = e.warmup + e.frames;
     for (int t = 0; t < total; ++t) {
         const double dt = world->step().deltaTime;
-        const bool measured = t >= o.warmup, since = t > o.warmup;  // since: a measured step before this one
+        const bool measured = t >= e.warmup, since = t > e.warmup;  // since: a measured step before this one
         if (measured)
             r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount()),
                 r.deferred += static_cast<double>(walk->lastDeferredCount());
@@ -161,10 +152,10 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
         if (measured) deviation += sum / static_cast<double>(n);
         if (t == total - 1) r.finalDeviation = sum / static_cast<double>(n);
     }
-    r.stepMs /= o.ticks;
-    r.ghosts /= o.ticks;
-    r.deferred /= o.ticks;
-    r.deviation = deviation / o.ticks;
+    r.stepMs /= e.frames;
+    r.ghosts /= e.frames;
+    r.deferred /= e.frames;
+    r.deviation = deviation / e.frames;
     r.overlaps = seconds > 0 ? static_cast<double>(overlaps) / (static_cast<double>(n) * seconds) : 0.0;
     r.contact = seconds > 0 ? r.contact / (static_cast<double>(n) * seconds) : 0.0;
     r.collisions = seconds > 0 ? static_cast<double>(collisions) / (static_cast<double>(n) * seconds) : 0.0;
@@ -174,19 +165,26 @@ Result run(const Options& o, const Setting& setting, std::vector<std::vector<glm
     return r;
 }
 
-std::string table(const std::vector<Result>& rows) {
-    std::ostringstream t;
-    char line[512];
-    t << "| quality | neighbour range (radii) | far regions step every | walkers deferred | walkers | step ms | vs finest | contacts per agent-second | contact s per agent-second | overlaps per agent-second | "
-         "progress m/s | path deviation m (mean) | at the last tick | ghosts per step |\n"
-         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+bench::ResultTable table(const std::vector<Result>& rows) {
+    bench::ResultTable t({{"", "quality", "%lld"},
+                          {"", "neighbour range (radii)", "%.0f"},
+                          {"", "far regions step every", "%lld"},
+                          {"", "walkers deferred", "%.0f"},
+                          {"", "walkers", "%lld"},
+                          {"", "step ms", "%.2f"},
+                          {"", "vs finest", "%.2fx"},
+                          {"", "contacts per agent-second", "%.4f"},
+                          {"", "contact s per agent-second", "%.4f"},
+                          {"", "overlaps per agent-second", "%.4f"},
+                          {"", "progress m/s", "%.3f"},
+                          {"", "path deviation m (mean)", "%.3f"},
+                          {"", "at the last tick", "%.3f"},
+                          {"", "ghosts per step", "%.0f"}});
     const double finest = rows.front().stepMs;
-    for (const Result& r : rows) {
-        std::snprintf(line, sizeof line, "| %d | %.0f | %d | %.0f | %zu | %.2f | %.2fx | %.4f | %.4f | %.4f | %.3f | %.3f | %.3f | %.0f |\n", r.setting.quality,
-                      r.setting.range, r.setting.farEvery, r.deferred, r.walkers, r.stepMs, r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts);
-        t << line;
-    }
-    return t.str();
+    for (const Result& r : rows)
+        t.add({std::int64_t(r.setting.quality), r.setting.range, std::int64_t(r.setting.farEvery), r.deferred, std::int64_t(r.walkers), r.stepMs,
+               r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts});
+    return t;
 }
 
 }  // namespace
@@ -194,28 +192,25 @@ std::string table(const std::vector<Result>& rows) {
 
 int main(int argc, char** argv) {
     using namespace throng;
-    using support::wholeNumber;
     Options o;
-    support::CommandLine cl("bench_avoidance",
-                            "Avoidance quality against step time: the same walkers stepped with each setting of DetourCrowd's "
-                            "velocity sampling and neighbour range; collisions, progress and path deviation from the finest.");
-    CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
-    app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000))->capture_default_str();
-    app.add_option("--warmup", o.warmup, "steps first, not measured")->type_name("N")->check(wholeNumber(0, 1'000'000))->capture_default_str();
-    app.add_option("--ticks", o.ticks, "measured steps per setting")->type_name("N")->check(wholeNumber(2, 1'000'000))->capture_default_str();
-    app.add_option("--threads", o.threads, "threads of the step")->type_name("N")->check(wholeNumber(1, 256))->capture_default_str();
+    bench::Experiment experiment("bench_avoidance",
+                                 "Avoidance quality against step time: the same walkers stepped with each setting of DetourCrowd's "
+                                 "velocity sampling and neighbour range; collisions, progress and path deviation from the finest.",
+                                 bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kThreads | bench::kMarkdown |
+                                     bench::kAccuracyCsv,
+                                 {.scene = testkit::townDefaultScene(), .actors = {2000}, .frames = 300, .warmup = 30},
+                                 {.frames = "--ticks", .framesHelp = "measured steps per setting", .minFrames = 2});
+    CLI::App& app = experiment.app();
     app.add_option("--qualities", o.qualities, "avoidance qualities (0 coarsest to 3 finest)")->delimiter(',')->type_name("Q,Q,...")
-        ->check(wholeNumber(0, 3));
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(0, 3));
     app.add_option("--ranges", o.ranges, "neighbour ranges, agent radii (at least 1)")->delimiter(',')->type_name("R,R,...")
-        ->check(CLI::Range(1.0, 1000.0));
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(1.0, 1000.0));
     app.add_option("--far-every", o.farEvery, "far regions step every N steps (1: every step)")->delimiter(',')->type_name("N,N,...")
-        ->check(wholeNumber(1, 1000));
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(1, 1000));
     app.add_option("--far-distance", o.farDistance, "regions farther than this from the camera path are far, metres")
-        ->type_name("M")->check(CLI::Range(1.0, 1e6))->capture_default_str();
-    app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
-    app.add_option("--accuracy-csv", o.accuracyCsv, "write the rows in the common accuracy CSV")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ->type_name("M")->check(bench::finiteNumber(1.0, 1e6));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    const bench::ExperimentSpec& e = experiment.spec();
     std::vector<Result> rows;
     try {
         // The finest setting first: it is the reference the others deviate from.
@@ -225,25 +220,25 @@ int main(int argc, char** argv) {
                 for (int q : o.qualities)
                     if (!(q == settings[0].quality && range == settings[0].range && every == 1)) settings.push_back({q, range, every});
         std::vector<std::vector<glm::vec3>> reference;
-        for (const Setting& s : settings) rows.push_back(run(o, s, reference));
-    } catch (const std::exception& e) {
-        fail(e.what());
+        for (const Setting& s : settings) rows.push_back(run(e, o, s, reference));
+    } catch (const std::exception& ex) {
+        experiment.fail(ex.what());
     }
     std::ostringstream report;
-    report << "### Avoidance: " << rows.front().walkers << " walkers, " << o.ticks << " steps after " << o.warmup << ", " << o.threads
+    report << "### Avoidance: " << rows.front().walkers << " walkers, " << e.frames << " steps after " << e.warmup << ", " << e.threads
            << " thread(s); deviation from quality 3 at the widest range\n\n"
-           << table(rows) << "\n";
+           << table(rows).markdown() << "\n";
     std::fputs(report.str().c_str(), stdout);
-    if (!o.markdown.empty()) {
-        std::ofstream md(o.markdown);
-        if (!md) fail("cannot write " + o.markdown);
-        md << report.str();
+    try {
+        if (!e.markdown.empty()) bench::writeWhole(e.markdown, report.str());
+    } catch (const std::exception& ex) {
+        experiment.fail(ex.what());
     }
-    if (!o.accuracyCsv.empty()) {
+    if (!e.accuracyCsv.empty()) {
         // The common accuracy CSV: the finest setting (the first row, the reference) is "off"; path
         // deviation from it comes first, the measure that is zero there by construction.
         try {
-            sim::AccuracyCsv csv(o.accuracyCsv);
+            sim::AccuracyCsv csv(e.accuracyCsv);
             for (const Result& r : rows) {
                 sim::AccuracyRecord a;
                 a.knob = r.setting.farEvery > 1 ? "avoidance quality and far update" : "avoidance quality";
@@ -259,13 +254,13 @@ int main(int argc, char** argv) {
                              {"progress", r.progress, "m/s", false}};
                 a.ms = r.stepMs;
                 a.msPhase = "step";
-                a.scene = sim::sceneName(o.scene);
+                a.scene = sim::sceneName(e.scene);
                 a.camera = "none";
                 a.actors = std::int64_t(r.walkers);
                 csv.add(a);
             }
-        } catch (const std::exception& e) {
-            fail(e.what());
+        } catch (const std::exception& ex) {
+            experiment.fail(ex.what());
         }
     }
     return 0;

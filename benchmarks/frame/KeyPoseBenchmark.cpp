@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "FrameWorld.h"
+#include "throng/bench/FrameWorld.h"
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyPoseCache.h"

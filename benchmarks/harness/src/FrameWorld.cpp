@@ -1,14 +1,14 @@
-#include "FrameWorld.h"
+#include "throng/bench/FrameWorld.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "throng/testkit/ImageCompare.h"
 #include "throng/testkit/ImageSimilarity.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
-#include "throng/support/SceneImpostors.h"
 
 namespace throng::bench {
 
@@ -19,7 +19,12 @@ std::unique_ptr<sim::Simulation> buildWorld(const std::string& scene, std::int64
 }
 
 std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world) {
-    return support::bakeSceneImpostors(context, world, false);
+    // As throng-town bakes them (apps/support's bakeSceneImpostors), without its progress bar.
+    std::vector<ImpostorSet::Source> sources;
+    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
+    ImpostorBakeOptions bake;
+    bake.cellSize = 64;
+    return std::make_unique<ImpostorSet>(context, sources, bake);
 }
 
 std::pair<double, double> impostorDistance(const sim::Simulation& world) {

@@ -1,5 +1,5 @@
 #pragma once
-// What the whole-frame benchmarks (bench_frame, bench_keypose) share: the town world built from a
+// What the frame-level benchmarks share: the town world built from a
 // scene scaled to an actor count, its impostors as throng-town bakes them, the two cameras, and the
 // digest that proves every method of a tick saw one state.
 
