@@ -28,8 +28,10 @@
 #include <string>
 #include <vector>
 
+#include "throng/bench/Experiment.h"
 #include "throng/bench/FrameWorld.h"
-#include "throng/testkit/Assets.h"
+#include "throng/bench/ResultTable.h"
+#include "throng/bench/SameState.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
@@ -38,9 +40,8 @@
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/AccuracyCsv.h"
 #include "throng/sim/BudgetLadder.h"
-#include "throng/support/CommandLine.h"
 #include "throng/sim/FrameBudgetAllocator.h"
-#include "throng/support/Validators.h"
+#include "throng/testkit/Assets.h"
 
 using namespace throng;
 using sim::BudgetRung;
@@ -48,13 +49,9 @@ using sim::BudgetSettings;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& why) { bench::fail("bench_budget", why); }
-
+// The experiment's own settings (the common ones are in bench::ExperimentSpec).
 struct Options {
-    std::int64_t actors = 10000;
     std::vector<double> starts{0.0, 9.0, 15.0};
-    int frames = 12;
-    int warmup = 30;
     int errorEvery = 3;
     std::vector<std::string> rungs{
         "lod-scale=0.5 impostor-distance=120 key-pose-distance=60 morph-budget=16",
@@ -74,9 +71,7 @@ struct Options {
         "lod-scale=4 impostor-distance=6 key-pose-distance=3 morph-budget=0 render-scale=0.35 town-lod-scale=3",
     };
     std::vector<double> budgets;
-    int width = 1280, height = 720;
-    std::string scene = testkit::townDefaultScene();
-    std::string ladder, markdown;
+    std::string ladder;
     std::string fromLadder;  // measure no rung: run the allocators on this ladder
 };
 
@@ -106,46 +101,44 @@ void apply(ActorProcessor& p, CrowdRenderer& r, const BudgetSettings& s, double 
 }  // namespace
 
 int main(int argc, char** argv) {
-    using support::wholeNumber;
     Options o;
-    support::CommandLine cl("bench_budget",
-                            "The ladder of throng-town --frame-budget: each rung's APP+CULL+DRAW and image error against every "
-                            "approximation off, on the identical states; the allocator at each --budgets against the fixed rungs.");
-    CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
-    app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000))->capture_default_str();
+    bench::Experiment experiment("bench_budget",
+                                 "The ladder of throng-town --frame-budget: each rung's APP+CULL+DRAW and image error against every "
+                                 "approximation off, on the identical states; the allocator at each --budgets against the fixed rungs.",
+                                 bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kImageSize | bench::kMarkdown,
+                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .frames = 12, .warmup = 30},
+                                 {.frames = "--frames", .framesHelp = "measured ticks from each start"});
+    CLI::App& app = experiment.app();
     app.add_option("--starts", o.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--frames", o.frames, "measured ticks from each start")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
-    app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000))->capture_default_str();
-    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(wholeNumber(1, 100000))->capture_default_str();
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(0.0, 1e6));
+    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(CLI::Range(1, 100000));
     app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N [render-scale=S] [town-lod-scale=T]')")
-        ->delimiter(';')->type_name("RUNG;RUNG;...");
+        ->delimiter(';')->type_name("RUNG;RUNG;...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--budgets", o.budgets, "also run the allocator at these budgets (ms) on the measured ladder")->delimiter(',')
-        ->type_name("MS,MS,...")->check(CLI::PositiveNumber);
-    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192))->capture_default_str();
-    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192))->capture_default_str();
-    app.add_option("--ladder", o.ladder, "write the ladder (Pareto front, most accurate first) as the common accuracy CSV")->type_name("FILE");
+        ->type_name("MS,MS,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(1e-3, 1e6));
+    app.add_option("--ladder", o.ladder, "write the ladder (Pareto front, most accurate first) as the common accuracy CSV")->type_name("FILE")
+        ->check(bench::fileToWrite());
     app.add_option("--from-ladder", o.fromLadder, "skip measuring the rungs: run the --budgets allocators on this ladder (and its rungs)")
-        ->type_name("FILE")->check(support::existingFile());
-    app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ->type_name("FILE")->check(CLI::ExistingFile);
+    experiment.markOutput("--ladder");
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    const bench::ExperimentSpec& e = experiment.spec();
 
     std::vector<BudgetSettings> candidates;
     for (const std::string& v : o.rungs) try {
         candidates.push_back(sim::parseBudgetRungValue(v));
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "bench_budget: --rungs: '%s': %s\n", v.c_str(), e.what());
-        return 2;
+    } catch (const std::invalid_argument& ex) {
+        std::fprintf(stderr, "bench_budget: --rungs: '%s': %s\n", v.c_str(), ex.what());
+        return bench::Experiment::kUsageError;
     }
     std::ostringstream report;
     try {
-        auto context = createContext({.width = o.width, .height = o.height, .window = false});
-        std::fprintf(stderr, "bench_budget: building the world\n");
-        auto world = bench::buildWorld(o.scene, o.actors);
-        std::fprintf(stderr, "bench_budget: baking impostors\n");
+        auto context = createContext({.width = e.width, .height = e.height, .window = false});
+        experiment.progress("building the world");
+        auto world = bench::buildWorld(e.scene, e.actors.front());
+        experiment.progress("baking impostors");
         auto impostors = bench::bakeImpostors(context, *world);
-        context->resize(o.width, o.height);
+        context->resize(e.width, e.height);
         const auto& declared = world->description().representation;
         const double hysteresis = declared.hysteresis;
         const bool caches = declared.keyPoseCache.has_value();
@@ -190,28 +183,24 @@ int main(int argc, char** argv) {
         // rungs are measured first and the allocators run on later ticks beside the ladder's rungs).
         auto runTicks = [&](std::vector<Method>& ms, bool withReference, const char* what) {
             for (Method& m : ms) m.ms = m.frames = m.within = m.psnr = m.ssim = m.off8 = m.images = 0;
-            const double aspect = double(o.width) / double(o.height);
+            const double aspect = double(e.width) / double(e.height);
             const double step = world->description().step;
             std::vector<Image> frames(ms.size());
             int tick = 0;
-            const int total = int(o.starts.size()) * (o.frames + 2);
+            const int total = int(o.starts.size()) * (e.frames + 2);
             for (double start : o.starts)
-                for (int f = -2; f < o.frames; ++f, ++tick) {
+                for (int f = -2; f < e.frames; ++f, ++tick) {
                     const FrameContext& now = world->step();
                     const Camera camera = world->camera().at(start + step * (f + 2), aspect);
                     const bool measureError = withReference && f >= 0 && f % o.errorEvery == 0;
-                    std::uint64_t digest = 0;
-                    for (std::size_t i = 0; i < ms.size(); ++i) {
-                        Method& m = ms[(i + std::size_t(tick)) % ms.size()];  // methods take turns going first
+                    bench::runOnSameState(world->crowd(), ms.size(), tick, [&](std::size_t v) {
+                        Method& m = ms[v];
                         if (m.allocator) {
                             m.settings = m.allocator->ladder()[std::size_t(m.rung)].settings;
                             apply(*m.processor, *m.draw, m.settings, hysteresis, caches);
                         }
                         world->setTownLodScale(m.settings.townLodScale > 0.0 ? m.settings.townLodScale : townLodScale);
                         const ActorFrameStatistics s = m.processor->processFrame(world->root(), camera, now.time);
-                        const std::uint64_t d = bench::stateDigest(world->crowd());
-                        if (i == 0) digest = d;
-                        else if (d != digest) fail("'" + m.name + "' saw another state");
                         Stopwatch watch;
                         m.draw->drawFrame(camera, m.processor->drawList());
                         const double cost = s.appCullMs() + watch.elapsedMs();
@@ -221,11 +210,11 @@ int main(int argc, char** argv) {
                             if (f >= 0) m.histogram[std::size_t(used)]++;
                             if (f >= 0) m.within += cost <= m.allocator->options().budgetMs ? 1 : 0;
                         }
-                        if (f < 0) continue;
+                        if (f < 0) return;
                         m.ms += cost;
                         m.frames += 1;
-                        if (measureError) frames[std::size_t(&m - ms.data())] = m.draw->readFrame();
-                    }
+                        if (measureError) frames[v] = m.draw->readFrame();
+                    }, [&](std::size_t v) { return ms[v].name; });
                     if (measureError) {
                         world->setTownLodScale(townLodScale);
                         reference.processor->processFrame(world->root(), camera, now.time);
@@ -236,7 +225,7 @@ int main(int argc, char** argv) {
                             ms[m].images += 1;
                         }
                     }
-                    std::fprintf(stderr, "\rbench_budget: %s: tick %d/%d   ", what, tick + 1, total);
+                    std::fprintf(stderr, "\r%s: %s: tick %d/%d   ", experiment.program().c_str(), what, tick + 1, total);
                 }
             std::fprintf(stderr, "\n");
             for (Method& m : ms) {
@@ -244,7 +233,7 @@ int main(int argc, char** argv) {
                 if (m.images > 0) m.psnr /= m.images, m.ssim /= m.images, m.off8 /= m.images;
             }
         };
-        for (int f = 0; f < o.warmup; ++f) world->step();
+        for (int f = 0; f < e.warmup; ++f) world->step();
         if (!methods.empty()) runTicks(methods, true, "rungs");
 
         // The ladder: by error, then only rungs cheaper than every more accurate one.
@@ -259,16 +248,18 @@ int main(int argc, char** argv) {
             ladder.push_back({methods[i].settings, methods[i].off8, methods[i].psnr, methods[i].ssim, methods[i].ms});
         if (!o.fromLadder.empty()) ladder = sim::readBudgetLadder(o.fromLadder);
 
-        char line[1024];
-        if (fixedCount > 0) report << "### " << world->crowd().size() << " actors, " << o.frames << " frames from each of " << o.starts.size()
-               << " points of the camera path, " << o.width << "x" << o.height << "\n\n"
-                                   << "| rung | APP+CULL+DRAW ms | PSNR dB | SSIM | pixels off > 8 | on the ladder |\n|---|---:|---:|---:|---:|---|\n";
-        for (std::size_t i = 0; i < fixedCount; ++i) {
-            const Method& m = methods[i];
-            const auto at = std::find(front.begin(), front.end(), i);
-            std::snprintf(line, sizeof line, "| %s | %.1f | %.2f | %.4f | %.2f %% | %s |\n", m.name.c_str(), m.ms, m.psnr, m.ssim, 100.0 * m.off8,
-                          at == front.end() ? "no (dominated)" : ("rung " + std::to_string(at - front.begin())).c_str());
-            report << line;
+        if (fixedCount > 0) {
+            report << "### " << world->crowd().size() << " actors, " << e.frames << " frames from each of " << o.starts.size()
+                   << " points of the camera path, " << e.width << "x" << e.height << "\n\n";
+            bench::ResultTable rungs({{"", "rung", "%s", true}, {"", "APP+CULL+DRAW ms", "%.1f"}, {"", "PSNR dB", "%.2f"}, {"", "SSIM", "%.4f"},
+                                      {"", "pixels off > 8", "%.2f %%"}, {"", "on the ladder", "%s", true}});
+            for (std::size_t i = 0; i < fixedCount; ++i) {
+                const Method& m = methods[i];
+                const auto at = std::find(front.begin(), front.end(), i);
+                rungs.add({m.name, m.ms, m.psnr, m.ssim, 100.0 * m.off8,
+                           at == front.end() ? std::string("no (dominated)") : "rung " + std::to_string(at - front.begin())});
+            }
+            report << rungs.markdown();
         }
         if (!o.ladder.empty() && o.fromLadder.empty()) {
             sim::AccuracyCsv csv(o.ladder);
@@ -279,7 +270,7 @@ int main(int argc, char** argv) {
                 rec.metrics = {{"pixels_off_8", r.error, "share", true}, {"psnr", r.psnr, "dB", false}, {"ssim", r.ssim, "1", false}};
                 rec.ms = r.ms;
                 rec.msPhase = "app_cull_draw";
-                rec.scene = sim::sceneName(o.scene);
+                rec.scene = sim::sceneName(e.scene);
                 rec.camera = "path";
                 rec.actors = std::int64_t(world->crowd().size());
                 csv.add(rec);
@@ -301,8 +292,10 @@ int main(int argc, char** argv) {
                 second.push_back(std::move(m));
             }
             runTicks(second, true, "allocator");
-            report << "\n| budget | allocator: within budget | mean ms | PSNR dB | SSIM | pixels off > 8 | rungs used | best fixed rung not dearer | its mean ms | PSNR dB | SSIM | pixels off > 8 |\n"
-                      "|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|\n";
+            bench::ResultTable allocators({{"", "budget", "%.0f"}, {"", "allocator: within budget", "%.1f %%"}, {"", "mean ms", "%.1f"},
+                                           {"", "PSNR dB", "%.2f"}, {"", "SSIM", "%.4f"}, {"", "pixels off > 8", "%.2f %%"},
+                                           {"", "rungs used", "%s", true}, {"", "best fixed rung not dearer", "%s", true}, {"", "its mean ms", "%s"},
+                                           {"", "PSNR dB", "%s"}, {"", "SSIM", "%s"}, {"", "pixels off > 8", "%s"}});
             for (std::size_t a = fixed; a < second.size(); ++a) {
                 const Method& m = second[a];
                 const Method* best = nullptr;
@@ -311,29 +304,24 @@ int main(int argc, char** argv) {
                 std::string used;
                 for (std::size_t r = 0; r < m.histogram.size(); ++r)
                     if (m.histogram[r]) used += (used.empty() ? "" : ", ") + std::to_string(r) + ": " + std::to_string(m.histogram[r]);
-                std::snprintf(line, sizeof line, "| %.0f | %.1f %% | %.1f | %.2f | %.4f | %.2f %% | %s | %s | %s | %s | %s | %s |\n",
-                              m.allocator->options().budgetMs, 100.0 * m.within / std::max(m.frames, 1.0), m.ms, m.psnr, m.ssim, 100.0 * m.off8,
-                              used.c_str(), best ? best->name.c_str() : "none (every rung dearer)",
-                              best ? std::to_string(best->ms).substr(0, 6).c_str() : "-", best ? std::to_string(best->psnr).substr(0, 5).c_str() : "-",
-                              best ? std::to_string(best->ssim).substr(0, 6).c_str() : "-",
-                              best ? (std::to_string(100.0 * best->off8).substr(0, 5) + " %").c_str() : "-");
-                report << line;
+                allocators.add({m.allocator->options().budgetMs, 100.0 * m.within / std::max(m.frames, 1.0), m.ms, m.psnr, m.ssim, 100.0 * m.off8, used,
+                                best ? best->name : std::string("none (every rung dearer)"), best ? std::to_string(best->ms).substr(0, 6) : "-",
+                                best ? std::to_string(best->psnr).substr(0, 5) : "-", best ? std::to_string(best->ssim).substr(0, 6) : "-",
+                                best ? std::to_string(100.0 * best->off8).substr(0, 5) + " %" : "-"});
             }
-            report << "\nFixed rungs on the same ticks:\n\n| rung | APP+CULL+DRAW ms | PSNR dB | SSIM | pixels off > 8 |\n|---|---:|---:|---:|---:|\n";
-            for (std::size_t i = 0; i < fixed; ++i) {
-                std::snprintf(line, sizeof line, "| %s | %.1f | %.2f | %.4f | %.2f %% |\n", second[i].name.c_str(), second[i].ms, second[i].psnr,
-                              second[i].ssim, 100.0 * second[i].off8);
-                report << line;
-            }
+            bench::ResultTable fixedRungs({{"", "rung", "%s", true}, {"", "APP+CULL+DRAW ms", "%.1f"}, {"", "PSNR dB", "%.2f"}, {"", "SSIM", "%.4f"},
+                                           {"", "pixels off > 8", "%.2f %%"}});
+            for (std::size_t i = 0; i < fixed; ++i) fixedRungs.add({second[i].name, second[i].ms, second[i].psnr, second[i].ssim, 100.0 * second[i].off8});
+            report << "\n" << allocators.markdown() << "\nFixed rungs on the same ticks:\n\n" << fixedRungs.markdown();
         }
-    } catch (const std::exception& e) {
-        fail(e.what());
+    } catch (const std::exception& ex) {
+        experiment.fail(ex.what());
     }
     std::fputs(report.str().c_str(), stdout);
-    if (!o.markdown.empty()) {
-        std::ofstream md(o.markdown);
-        if (!md) fail("cannot write " + o.markdown);
-        md << report.str();
+    try {
+        if (!e.markdown.empty()) bench::writeWhole(e.markdown, report.str());
+    } catch (const std::exception& ex) {
+        experiment.fail(ex.what());
     }
     return 0;
 }

@@ -34,8 +34,10 @@
 #include <string>
 #include <vector>
 
+#include "throng/bench/Experiment.h"
 #include "throng/bench/FrameWorld.h"
-#include "throng/testkit/Assets.h"
+#include "throng/bench/ResultTable.h"
+#include "throng/bench/SameState.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/CrowdRenderer.h"
@@ -43,8 +45,7 @@
 #include "throng/testkit/ImageSimilarity.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/AccuracyCsv.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
+#include "throng/testkit/Assets.h"
 
 using namespace throng;
 
@@ -52,11 +53,10 @@ namespace {
 
 [[noreturn]] void fail(const std::string& why) { bench::fail("bench_impostor_frame", why); }
 
+// The experiment's settings: the common ones (e) and its own.
 struct Options {
-    std::int64_t actors = 0;     // 0: the scene's own count
+    bench::ExperimentSpec e;     // scene, actors (one count, 0: the scene's), frames from each start, warmup, size, outputs
     std::vector<double> starts{0.0, 9.0, 15.0};  // camera path times where measured runs start
-    int frames = 16;             // measured ticks from each start, the camera following the path
-    int warmup = 30;             // ticks simulated first
     int errorEvery = 4;          // ticks between image comparisons
     int budget = 16;             // new morphed cells per atlas and frame
     int poolSlots = 48;          // pool layers per atlas
@@ -66,10 +66,7 @@ struct Options {
     std::vector<std::int64_t> crowdActors{1024, 4096, 8192, 16384};
     std::vector<std::int64_t> crowdFeatures{0, 4, 8, 12, 1000};  // 1000: every bone
     int crowdFrames = 12;
-    int width = 1280, height = 720;
-    std::string scene = testkit::townDefaultScene();
     std::vector<std::string> sections{"methods"};
-    std::string markdown, accuracyCsv;
     bool has(const char* s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
@@ -135,9 +132,9 @@ CrowdRendererOptions poolOptions(const Options& o, MorphSource source, int budge
 }
 
 std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& context) {
-    auto world = bench::buildWorld(o.scene, o.actors);
+    auto world = bench::buildWorld(o.e.scene, o.e.actors.front());
     auto impostors = bench::bakeImpostors(context, *world);
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     const auto [distance, hysteresis] = bench::impostorDistance(*world);
     std::vector<Method> methods;
     CrowdRendererOptions finished;
@@ -185,7 +182,7 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         m.draw = std::make_unique<CrowdRenderer>(context, m.renderer);
         if (m.kind == Kind::Impostors) m.draw->preloadImpostors(drawables);
     }
-    for (int f = 0; f < o.warmup; ++f) world->step();
+    for (int f = 0; f < o.e.warmup; ++f) world->step();
     std::vector<Row> rows(methods.size());
     for (std::size_t m = 0; m < methods.size(); ++m) {
         rows[m].method = methods[m].name;
@@ -193,28 +190,23 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         rows[m].value = methods[m].value;
         rows[m].actors = world->crowd().size();
     }
-    const double aspect = double(o.width) / double(o.height);
+    const double aspect = double(o.e.width) / double(o.e.height);
     std::vector<Image> frames(methods.size());
     const double step = world->description().step;
     for (double start : o.starts)
-    for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks warm the GL and the pools
+    for (int f = -2; f < o.e.frames; ++f) {  // two unmeasured ticks warm the GL and the pools
         const FrameContext& now = world->step();
         const Camera camera = world->camera().at(start + step * (f + 2), aspect);
         const bool measureError = f >= 0 && f % o.errorEvery == 0;
-        std::uint64_t digest = 0;
-        for (std::size_t i = 0; i < methods.size(); ++i) {
-            const std::size_t m = (i + std::size_t(f + 2)) % methods.size();  // methods take turns going first
+        bench::runOnSameState(world->crowd(), methods.size(), f + 2, [&](std::size_t m) {
             const ActorFrameStatistics s = methods[m].processor->processFrame(world->root(), camera, now.time);
-            const std::uint64_t d = bench::stateDigest(world->crowd());
-            if (i == 0) digest = d;
-            else if (d != digest) fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
             Stopwatch watch;
             methods[m].draw->drawFrame(camera, methods[m].processor->drawList());
             const double drawMs = watch.elapsedMs();
-            if (f < 0) continue;
+            if (f < 0) return;
             rows[m].add(s, methods[m].draw->statistics(), drawMs);
             if (measureError) frames[m] = methods[m].draw->readFrame();
-        }
+        }, [&](std::size_t m) { return methods[m].name; });
         if (!measureError) continue;
         for (std::size_t m = 1; m < methods.size(); ++m) {
             compare(frames[m], frames[0], rows[m].psnr, rows[m].ssim, rows[m].off8, rows[m].images, &rows[m].ncc);
@@ -227,42 +219,38 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         rows[m].divide();
     }
     std::fprintf(stderr, "bench_impostor_frame: %zu actors, %zu runs of %d frames along the path done\n", world->crowd().size(),
-                 o.starts.size(), o.frames);
+                 o.starts.size(), o.e.frames);
     return rows;
 }
 
 std::string methodsTable(const std::vector<Row>& rows) {
-    std::ostringstream t;
-    char line[1024];
-    t << "| method | APP+CULL | DRAW | town | meshes | impostor pass | of which morphing | quads | morphing on another thread | impostors | cells morphed | "
-         "cells deferred | impostor texture MiB | PSNR dB | SSIM | NCC | pixels off > 8 | vs unlimited pool: PSNR / SSIM / off > 8 |\n"
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    bench::ResultTable t({{"", "method", "%s", true}, {"", "APP+CULL", "%.2f"}, {"", "DRAW", "%.1f"}, {"", "town", "%.1f"}, {"", "meshes", "%.1f"},
+                          {"", "impostor pass", "%.2f"}, {"", "of which morphing", "%.2f"}, {"", "quads", "%.2f"},
+                          {"", "morphing on another thread", "%.2f"}, {"", "impostors", "%.0f"}, {"", "cells morphed", "%.1f"},
+                          {"", "cells deferred", "%.1f"}, {"", "impostor texture MiB", "%.1f"}, {"", "PSNR dB", "%s"}, {"", "SSIM", "%s"},
+                          {"", "NCC", "%s"}, {"", "pixels off > 8", "%s"}, {"", "vs unlimited pool: PSNR / SSIM / off > 8", "%s", true}});
     for (const Row& r : rows) {
         const bool img = r.images > 0, pool = r.imagesPool > 0;
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.1f | %s | %s | %s | %s | %s |\n",
-                      r.method.c_str(), r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.background, r.impostors, r.morphed, r.deferred,
-                      r.textureBytes / 1048576.0, img ? std::to_string(r.psnr).substr(0, 5).c_str() : "-",
-                      img ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
-                      img ? std::to_string(r.ncc).substr(0, 6).c_str() : "-",
-                      img ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-",
-                      pool ? (std::to_string(r.psnrPool).substr(0, 5) + " / " + std::to_string(r.ssimPool).substr(0, 6) + " / " +
-                              std::to_string(100.0 * r.off8Pool).substr(0, 5) + " %").c_str()
-                           : "-");
-        t << line;
+        t.add({r.method, r.appCull, r.draw, r.town, r.meshes, r.impostor, r.morph, r.quads, r.background, r.impostors, r.morphed, r.deferred,
+               r.textureBytes / 1048576.0, img ? std::to_string(r.psnr).substr(0, 5) : "-", img ? std::to_string(r.ssim).substr(0, 6) : "-",
+               img ? std::to_string(r.ncc).substr(0, 6) : "-", img ? std::to_string(100.0 * r.off8).substr(0, 5) + " %" : "-",
+               pool ? std::to_string(r.psnrPool).substr(0, 5) + " / " + std::to_string(r.ssimPool).substr(0, 6) + " / " +
+                          std::to_string(100.0 * r.off8Pool).substr(0, 5) + " %"
+                    : "-"});
     }
-    return t.str();
+    return t.markdown();
 }
 
 // Seed 000's Table 1: every actor an impostor, the overview camera; the impostor pass per crowd
 // size, feature count and morph path (each its own renderer, taking turns on the same frames).
 std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context) {
-    std::ostringstream t;
-    t << "| actors | features | morphing | impostor pass ms | of which morphing | quads | fps of the pass | morphing on another thread | "
-         "impostors | cells morphed |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    bench::ResultTable t({{"", "actors", "%lld"}, {"", "features", "%s"}, {"", "morphing", "%s", true}, {"", "impostor pass ms", "%.1f"},
+                          {"", "of which morphing", "%.1f"}, {"", "quads", "%.1f"}, {"", "fps of the pass", "%.0f"},
+                          {"", "morphing on another thread", "%.1f"}, {"", "impostors", "%.0f"}, {"", "cells morphed", "%.1f"}});
     for (std::int64_t actors : o.crowdActors) {
-        auto world = bench::buildWorld(o.scene, actors);
+        auto world = bench::buildWorld(o.e.scene, actors);
         auto impostors = bench::bakeImpostors(context, *world);
-        context->resize(o.width, o.height);
+        context->resize(o.e.width, o.e.height);
         std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
         for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
         struct CrowdMethod {
@@ -291,8 +279,8 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
         }
         ActorProcessor processor(world->crowd());
         impostors->attach(processor, 1.0, 0.0);
-        for (int f = 0; f < o.warmup; ++f) world->step();
-        const Camera camera = world->camera().at(bench::cameraTime("overview"), double(o.width) / double(o.height));
+        for (int f = 0; f < o.e.warmup; ++f) world->step();
+        const Camera camera = world->camera().at(bench::cameraTime("overview"), double(o.e.width) / double(o.e.height));
         for (int f = -2; f < o.crowdFrames; ++f) {
             const FrameContext& now = world->step();
             processor.processFrame(world->root(), camera, now.time);
@@ -310,18 +298,14 @@ std::string runCrowd(const Options& o, const std::shared_ptr<GlContext>& context
                 m.draws += 1;
             }
         }
-        char line[512];
         for (const CrowdMethod& m : methods) {
             const double n = std::max(m.draws, 1.0);
-            const std::string features = m.features >= 1000 ? std::string("all") : std::to_string(m.features);
-            std::snprintf(line, sizeof line, "| %zu | %s | %s | %.1f | %.1f | %.1f | %.0f | %.1f | %.0f | %.1f |\n", world->crowd().size(),
-                          features.c_str(), m.name.c_str(), m.pass / n, m.morph / n, m.quads / n, 1000.0 * n / std::max(m.pass, 1e-9),
-                          m.background / n, m.impostors / n, m.morphed / n);
-            t << line;
+            t.add({std::int64_t(world->crowd().size()), m.features >= 1000 ? std::string("all") : std::to_string(m.features), m.name, m.pass / n,
+                   m.morph / n, m.quads / n, 1000.0 * n / std::max(m.pass, 1e-9), m.background / n, m.impostors / n, m.morphed / n});
         }
         std::fprintf(stderr, "bench_impostor_frame: crowd of %zu done\n", world->crowd().size());
     }
-    return t.str();
+    return t.markdown();
 }
 
 // The common accuracy CSV: one record per knob setting, its image error against all skinned and its
@@ -338,7 +322,7 @@ void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, con
         a.ms = r.draw;
         a.msPhase = "draw";
         a.memoryBytes = r.textureBytes;
-        a.scene = sim::sceneName(o.scene);
+        a.scene = sim::sceneName(o.e.scene);
         a.camera = "path";
         a.actors = std::int64_t(r.actors);
         csv.add(a);
@@ -348,57 +332,50 @@ void writeAccuracyCsv(const std::string& path, const std::vector<Row>& rows, con
 }  // namespace
 
 int main(int argc, char** argv) {
-    using support::wholeNumber;
     Options o;
-    support::CommandLine cl("bench_impostor_frame",
-                            "Far actors as impostors against drawing them as meshes, on the identical state: APP+CULL, DRAW, the "
-                            "impostor pass and its morphing, and the image error against all skinned.");
-    CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
-    app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000));
+    bench::Experiment experiment("bench_impostor_frame",
+                                 "Far actors as impostors against drawing them as meshes, on the identical state: APP+CULL, DRAW, the "
+                                 "impostor pass and its morphing, and the image error against all skinned.",
+                                 bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kImageSize | bench::kMarkdown |
+                                     bench::kAccuracyCsv,
+                                 {.scene = testkit::townDefaultScene(), .actors = {0}, .frames = 16, .warmup = 30},
+                                 {.frames = "--frames", .framesHelp = "measured ticks from each start, the camera following its path",
+                                  .accuracyCsvHelp = "write the methods' image error and DRAW time in the common accuracy CSV"});
+    CLI::App& app = experiment.app();
     app.add_option("--starts", o.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--frames", o.frames, "measured ticks from each start, the camera following its path")->type_name("N")->check(wholeNumber(1, 100000));
-    app.add_option("--grid", o.gridStep, "warp grid (pixels) of the CPU grid methods")->type_name("N")->check(wholeNumber(2, 64));
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(0.0, 1e6));
+    app.add_option("--grid", o.gridStep, "warp grid (pixels) of the CPU grid methods")->type_name("N")->check(CLI::Range(2, 64));
     app.add_option("--distances", o.distances, "other impostor distances (m), each with the default morphing")->delimiter(',')
-        ->type_name("M,M,...")->check(CLI::PositiveNumber);
-    app.add_option("--grid-budgets", o.gridBudgets, "budgets of the CPU grid methods")->delimiter(',')->type_name("N,N,...")
-        ->check(wholeNumber(0, 100000));
-    app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000));
-    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(wholeNumber(1, 100000));
-    app.add_option("--budget", o.budget, "new morphed cells per atlas and frame for the budgeted pools")->type_name("N")->check(wholeNumber(0, 100000));
-    app.add_option("--pool", o.poolSlots, "pool layers per atlas")->type_name("N")->check(wholeNumber(1, 2048));
-    app.add_option("--crowd-actors", o.crowdActors, "crowd sizes of the crowd section")->delimiter(',')->type_name("N,N,...")
-        ->check(wholeNumber(1, 10'000'000));
+        ->type_name("M,M,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(1e-3, 1e6));
+    app.add_option("--grid-budgets", o.gridBudgets, "budgets of the CPU grid methods")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check(CLI::Range(0, 100000));
+    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(CLI::Range(1, 100000));
+    app.add_option("--budget", o.budget, "new morphed cells per atlas and frame for the budgeted pools")->type_name("N")->check(CLI::Range(0, 100000));
+    app.add_option("--pool", o.poolSlots, "pool layers per atlas")->type_name("N")->check(CLI::Range(1, 2048));
+    app.add_option("--crowd-actors", o.crowdActors, "crowd sizes of the crowd section")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check(CLI::Range(1, 10'000'000));
     app.add_option("--crowd-features", o.crowdFeatures, "feature lines of the crowd section (1000: every bone)")->delimiter(',')
-        ->type_name("N,N,...")->check(wholeNumber(0, 1000));
-    app.add_option("--crowd-frames", o.crowdFrames, "measured frames of the crowd section")->type_name("N")->check(wholeNumber(1, 100000));
-    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
-    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
+        ->type_name("N,N,...")->check(CLI::Range(0, 1000));
+    app.add_option("--crowd-frames", o.crowdFrames, "measured frames of the crowd section")->type_name("N")->check(CLI::Range(1, 100000));
     app.add_option("--sections", o.sections, "what to run: methods (the scene along its camera path), crowd (seed 000's 16,384 impostors)")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "crowd"}));
-    app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
-    app.add_option("--accuracy-csv", o.accuracyCsv, "write the methods' image error and DRAW time in the common accuracy CSV")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ->delimiter(',')->type_name("NAME,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::IsMember({"methods", "crowd"}));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    o.e = experiment.spec();
     std::ostringstream report;
     try {
-        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
         if (o.has("methods")) {
             const std::vector<Row> rows = runMethods(o, context);
-            report << "### " << (o.actors ? std::to_string(o.actors) : std::string("the scene's")) << " actors, " << o.frames
-                   << " frames from each of " << o.starts.size() << " points of the camera path, " << o.width << "x" << o.height << " (ms per frame)\n\n"
+            report << "### " << (o.e.actors.front() ? std::to_string(o.e.actors.front()) : std::string("the scene's")) << " actors, " << o.e.frames
+                   << " frames from each of " << o.starts.size() << " points of the camera path, " << o.e.width << "x" << o.e.height << " (ms per frame)\n\n"
                    << methodsTable(rows) << "\n";
-            if (!o.accuracyCsv.empty()) writeAccuracyCsv(o.accuracyCsv, rows, o);
+            if (!o.e.accuracyCsv.empty()) writeAccuracyCsv(o.e.accuracyCsv, rows, o);
         }
         if (o.has("crowd")) report << "### Seed 000's Table 1: every actor an impostor, the overview camera (ms per frame)\n\n" << runCrowd(o, context) << "\n";
+        std::fputs(report.str().c_str(), stdout);
+        if (!o.e.markdown.empty()) bench::writeWhole(o.e.markdown, report.str());
     } catch (const std::exception& e) {
         fail(e.what());
-    }
-    std::fputs(report.str().c_str(), stdout);
-    if (!o.markdown.empty()) {
-        std::ofstream md(o.markdown);
-        if (!md) fail("cannot write " + o.markdown);
-        md << report.str();
     }
     return 0;
 }

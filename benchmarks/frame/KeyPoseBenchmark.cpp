@@ -28,8 +28,10 @@
 #include <string>
 #include <vector>
 
+#include "throng/bench/Experiment.h"
 #include "throng/bench/FrameWorld.h"
-#include "throng/testkit/Assets.h"
+#include "throng/bench/ResultTable.h"
+#include "throng/bench/SameState.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/SkeletonPose.h"
@@ -42,8 +44,7 @@
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/AccuracyCsv.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
+#include "throng/testkit/Assets.h"
 #include "throng/vtk/Chart.h"
 
 using namespace throng;
@@ -52,21 +53,17 @@ namespace {
 
 [[noreturn]] void fail(const std::string& why) { bench::fail("bench_keypose", why); }
 
+// The experiment's settings: the common ones (e) and its own.
 struct Options {
-    std::vector<std::int64_t> actors{10000};
-    std::vector<std::string> cameras{"street", "overview"};
+    bench::ExperimentSpec e;    // scene, actor counts, cameras, measured ticks per camera, warmup, size, outputs
     std::vector<std::int64_t> sizes{8, 16, 32, 64, 128, 256};
-    int frames = 20;            // measured ticks per camera
-    int warmup = 60;            // ticks simulated first
     int errorEvery = 5;         // ticks between accuracy measurements (images read back, vertices compared)
     int errorSamples = 48;      // cached actors compared per method and measured tick
     int pathFrames = 90;        // frames along the camera path for Fig. 11 (0: skip)
     double distance = 0;        // start of the band (0: the scene's declaration, else 15 m)
     double rate = 0;            // key-poses per second (0: the scene's declaration, else 15)
     std::int64_t demandSize = 32;  // cache size whose interpolative demands --demands records
-    int width = 1280, height = 720;
-    std::string scene = testkit::townDefaultScene();
-    std::string csv, accuracyCsv, demands, plots, markdown;
+    std::string demands;
 };
 
 // One setting: plain skinning (size 0) or a cache mode and size.
@@ -196,9 +193,9 @@ struct Result {
 // numbering instances from *instance on.
 Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context, std::ofstream* demandsOut,
            std::uint64_t* instance) {
-    auto world = bench::buildWorld(o.scene, actors);
+    auto world = bench::buildWorld(o.e.scene, actors);
     auto impostors = bench::bakeImpostors(context, *world);
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     const auto& declared = world->description().representation.keyPoseCache;
     const double distance = o.distance > 0 ? o.distance : declared ? declared->distance : 15.0;
     const double rate = o.rate > 0 ? o.rate : declared ? declared->keyPosesPerSecond : 15.0;
@@ -224,11 +221,11 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
     ro.finishPasses = true;
     std::vector<std::unique_ptr<CrowdRenderer>> renderers;
     for (std::size_t m = 0; m < methods.size(); ++m) renderers.push_back(std::make_unique<CrowdRenderer>(context, ro));
-    for (int f = 0; f < o.warmup; ++f) world->step();
+    for (int f = 0; f < o.e.warmup; ++f) world->step();
     Result result;
-    const double aspect = double(o.width) / double(o.height);
+    const double aspect = double(o.e.width) / double(o.e.height);
     std::vector<Image> frames(methods.size());
-    for (const std::string& cameraName : o.cameras) {
+    for (const std::string& cameraName : o.e.cameras) {
         const Camera camera = world->camera().at(bench::cameraTime(cameraName), aspect);
         std::vector<Row> rows(methods.size());
         for (std::size_t m = 0; m < methods.size(); ++m) {
@@ -237,28 +234,21 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             rows[m].method = methods[m].name;
             rows[m].size = methods[m].size;
         }
-        for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks fill the caches and warm the GL
+        for (int f = -2; f < o.e.frames; ++f) {  // two unmeasured ticks fill the caches and warm the GL
             const FrameContext& now = world->step();
             const double stepMs = world->lastStepMs();
             const bool measureError = f >= 0 && f % o.errorEvery == 0;
-            std::uint64_t digest = 0;  // after the first method of the tick has computed the Reference Points
-            // The methods take turns going first, so none always meets the step's cold caches.
-            for (std::size_t i = 0; i < methods.size(); ++i) {
-                const std::size_t m = (i + std::size_t(f + 2)) % methods.size();
+            bench::runOnSameState(world->crowd(), methods.size(), f + 2, [&](std::size_t m) {
                 ActorProcessor& p = *methods[m].processor;
                 const ActorFrameStatistics s = p.processFrame(world->root(), camera, now.time);
-                const std::uint64_t d = bench::stateDigest(world->crowd());
-                if (i == 0) digest = d;
-                else if (d != digest)
-                    fail("tick " + std::to_string(now.frame) + ": '" + methods[m].name + "' saw another state");
                 CrowdRenderer& renderer = *renderers[m];
                 Stopwatch watch;
                 renderer.drawFrame(camera, p.drawList());
                 const double drawMs = watch.elapsedMs();
-                if (f < 0) continue;
+                if (f < 0) return;
                 rows[m].add(s, renderer.statistics(), stepMs, drawMs);
                 if (measureError) frames[m] = renderer.readFrame();
-            }
+            }, [&](std::size_t m) { return methods[m].name; });
             if (f >= 0) ++result.ticks;
             if (!measureError) continue;
             for (std::size_t m = 1; m < methods.size(); ++m) {
@@ -268,7 +258,7 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
             }
         }
         for (Row& r : rows) {
-            r.divide(o.frames);
+            r.divide(o.e.frames);
             result.rows.push_back(r);
         }
         std::fprintf(stderr, "bench_keypose: %lld actors, %s camera done\n", (long long)actors, cameraName.c_str());
@@ -302,23 +292,47 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
     return result;
 }
 
-std::string table(const std::vector<Row>& rows) {
-    std::ostringstream t;
-    char line[1024];
-    t << "| actors | camera | method | APP+CULL | poses | selection | mesh draw | DRAW | whole frame | band | from cache | skinned in band | "
-         "cache updates | rows skinned (DRAW) | posed | vertex error mean / max mm | key-pose error mean / max mm | PSNR dB | SSIM | "
-         "pixels off > 8 |\n"
-         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const Row& r : rows) {
-        std::snprintf(line, sizeof line,
-                      "| %lld | %s | %s | %.2f | %.2f | %.3f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.1f | %.1f | %.0f | %.1f / %.0f | %.1f / %.0f | %s | %s | %s |\n",
-                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.appCull, r.pose, r.select, r.mesh, r.draw, r.frame,
-                      r.band, r.served, r.misses, r.updates, r.fills, r.posed, r.vertexMeanMm(), 1000.0 * r.vertexMax, r.keyMeanMm(), 1000.0 * r.keyMax,
-                      r.images ? std::to_string(r.psnr).substr(0, 5).c_str() : "-", r.images ? std::to_string(r.ssim).substr(0, 6).c_str() : "-",
-                      r.images ? (std::to_string(100.0 * r.off8).substr(0, 5) + " %").c_str() : "-");
-        t << line;
-    }
-    return t.str();
+// The rows: the CSV has every figure in a column of its own, the Markdown pairs mean and maximum.
+bench::ResultTable table(const std::vector<Row>& rows) {
+    bench::ResultTable t({{"actors", "actors", "%lld"},
+                          {"camera", "camera", "%s", true},
+                          {"method", "method", "%s", true},
+                          {"size", "", "%lld"},
+                          {"app_cull_ms", "APP+CULL", "%.2f"},
+                          {"pose_ms", "poses", "%.2f"},
+                          {"select_ms", "selection", "%.3f"},
+                          {"mesh_ms", "mesh draw", "%.1f"},
+                          {"draw_ms", "DRAW", "%.1f"},
+                          {"frame_ms", "whole frame", "%.1f"},
+                          {"band", "band", "%.0f"},
+                          {"served", "from cache", "%.0f"},
+                          {"misses", "skinned in band", "%.0f"},
+                          {"updates", "cache updates", "%.1f"},
+                          {"fills", "rows skinned (DRAW)", "%.1f"},
+                          {"posed", "posed", "%.0f"},
+                          {"vertex_error_mean_mm", "", "%g"},
+                          {"vertex_error_max_mm", "", "%g"},
+                          {"", "vertex error mean / max mm", "%s"},
+                          {"key_pose_error_mean_mm", "", "%g"},
+                          {"key_pose_error_max_mm", "", "%g"},
+                          {"", "key-pose error mean / max mm", "%s"},
+                          {"psnr_db", "", "%g"},
+                          {"", "PSNR dB", "%s"},
+                          {"ssim", "", "%g"},
+                          {"", "SSIM", "%s"},
+                          {"pixels_off_8", "", "%g"},
+                          {"", "pixels off > 8", "%s"}});
+    char pair[64];
+    const auto both = [&](double mean, double max) {
+        std::snprintf(pair, sizeof pair, "%.1f / %.0f", mean, max);
+        return std::string(pair);
+    };
+    for (const Row& r : rows)
+        t.add({r.actors, r.camera, r.method, std::int64_t(r.size), r.appCull, r.pose, r.select, r.mesh, r.draw, r.frame, r.band, r.served, r.misses,
+               r.updates, r.fills, r.posed, r.vertexMeanMm(), 1000.0 * r.vertexMax, both(r.vertexMeanMm(), 1000.0 * r.vertexMax), r.keyMeanMm(),
+               1000.0 * r.keyMax, both(r.keyMeanMm(), 1000.0 * r.keyMax), r.psnr, r.images ? std::to_string(r.psnr).substr(0, 5) : "-", r.ssim,
+               r.images ? std::to_string(r.ssim).substr(0, 6) : "-", r.off8, r.images ? std::to_string(100.0 * r.off8).substr(0, 5) + " %" : "-"});
+    return t;
 }
 
 // Writes `chart` without its empty series (a camera that saw no actor in the band has none), and
@@ -339,11 +353,11 @@ void writeChart(vtk::Chart chart, const std::string& path) {
 // The figures as PNG (VTK charts need a display: under xvfb-run).
 void plots(const Options& o, const std::vector<Result>& results) {
     namespace fs = std::filesystem;
-    fs::create_directories(o.plots);
+    fs::create_directories(o.e.plots);
     for (const Result& res : results) {
         if (res.rows.empty()) continue;
         const std::string tag = std::to_string(res.rows.front().actors);
-        for (const std::string& cameraName : o.cameras) {
+        for (const std::string& cameraName : o.e.cameras) {
             // Fig. 9: the whole frame and the mesh pass on one chart, APP+CULL (ten times smaller) on its own.
             const char* names[] = {"intermittent", "interpolative"};
             const auto timeChart = [&](const std::string& title, std::initializer_list<const char*> whats, const std::string& file) {
@@ -374,7 +388,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
                         chart.series.push_back(s);
                     }
                 }
-                writeChart(chart, (fs::path(o.plots) / (file + "-" + tag + "-" + cameraName + ".png")).string());
+                writeChart(chart, (fs::path(o.e.plots) / (file + "-" + tag + "-" + cameraName + ".png")).string());
             };
             timeChart("Frame time against cache size (seed 004 Fig. 9)", {"whole frame", "mesh draw"}, "keypose-frame-time");
             timeChart("APP+CULL against cache size", {"APP+CULL"}, "keypose-app-cull");
@@ -393,7 +407,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
                 vtk::paletteColour(mode, s.rgb);
                 served.series.push_back(s);
             }
-            writeChart(served, (fs::path(o.plots) / ("keypose-served-" + tag + "-" + cameraName + ".png")).string());
+            writeChart(served, (fs::path(o.e.plots) / ("keypose-served-" + tag + "-" + cameraName + ".png")).string());
         }
         if (res.pathTimes.empty()) continue;
         vtk::Chart path;
@@ -410,7 +424,7 @@ void plots(const Options& o, const std::vector<Result>& results) {
             vtk::paletteColour(int(m % o.sizes.size()), s.rgb);
             path.series.push_back(s);
         }
-        writeChart(path, (fs::path(o.plots) / ("keypose-path-" + tag + ".png")).string());
+        writeChart(path, (fs::path(o.e.plots) / ("keypose-path-" + tag + ".png")).string());
     }
 }
 
@@ -418,47 +432,40 @@ void plots(const Options& o, const std::vector<Result>& results) {
 
 int main(int argc, char** argv) {
     Options o;
-    support::CommandLine cl("bench_keypose",
-                            "Seed 004's key-pose cache on the town crowd: plain skinning, intermittent and interpolative caches\n"
-                            "of each size, on the identical state, side by side; frame time, cache use and accuracy.");
-    CLI::App& app = cl.app();
-    using support::wholeNumber;
-    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")
-        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
-    app.add_option("--cameras", o.cameras, "cameras")->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"street", "overview"}));
-    app.add_option("--sizes", o.sizes, "cache sizes (key-poses per template)")->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 65535));
-    app.add_option("--frames", o.frames, "measured ticks per camera")->type_name("N")->check(wholeNumber(1, 1'000'000));
-    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->type_name("N")->check(wholeNumber(0, 1'000'000));
-    app.add_option("--error-every", o.errorEvery, "ticks between accuracy measurements")->type_name("N")->check(wholeNumber(1, 1'000'000));
+    bench::Experiment experiment("bench_keypose",
+                                 "Seed 004's key-pose cache on the town crowd: plain skinning, intermittent and interpolative caches\n"
+                                 "of each size, on the identical state, side by side; frame time, cache use and accuracy.",
+                                 bench::kScene | bench::kActorList | bench::kCameras | bench::kFrames | bench::kWarmup | bench::kImageSize |
+                                     bench::kCsv | bench::kAccuracyCsv | bench::kMarkdown | bench::kPlots,
+                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .cameras = {"street", "overview"}, .frames = 20, .warmup = 60},
+                                 {.accuracyCsvHelp = "write the accuracy rows in the common accuracy CSV"});
+    CLI::App& app = experiment.app();
+    app.add_option("--sizes", o.sizes, "cache sizes (key-poses per template)")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(std::int64_t(1), std::int64_t(65535)));
+    app.add_option("--error-every", o.errorEvery, "ticks between accuracy measurements")->type_name("N")->check(CLI::Range(1, 1'000'000));
     app.add_option("--error-samples", o.errorSamples, "cached actors compared per method and measured tick")
-        ->type_name("N")->check(wholeNumber(1, 1'000'000));
+        ->type_name("N")->check(CLI::Range(1, 1'000'000));
     app.add_option("--path-frames", o.pathFrames, "frames along the camera path for the served share (0: skip)")
-        ->type_name("N")->check(wholeNumber(0, 1'000'000));
+        ->type_name("N")->check(CLI::Range(0, 1'000'000));
     app.add_option("--distance", o.distance, "start of the cache band, metres (default: the scene's, else 15)")
-        ->type_name("M")->check(support::positiveNumber());
+        ->type_name("M")->check(bench::finiteNumber(1e-6, 1e6));
     app.add_option("--rate", o.rate, "key-poses per second of clip (default: the scene's, else 15)")
-        ->type_name("HZ")->check(support::positiveNumber());
-    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
-    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
-    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
-    app.add_option("--csv", o.csv, "also write the rows as CSV")->type_name("FILE");
-    app.add_option("--accuracy-csv", o.accuracyCsv, "write the accuracy rows in the common accuracy CSV")->type_name("FILE");
+        ->type_name("HZ")->check(bench::finiteNumber(1e-6, 1e6));
     app.add_option("--demands", o.demands,
                    "write what the band needed along the camera path, one instance per frame and template (frame,a,b,actors: "
                    "bench_keypose_selection --demands reads it)")
-        ->type_name("FILE");
+        ->type_name("FILE")->check(bench::fileToWrite());
+    experiment.markOutput("--demands");
     app.add_option("--demand-size", o.demandSize, "the interpolative cache size whose demands --demands writes")
-        ->type_name("N")->check(wholeNumber(1, 65535));
-    app.add_option("--plots", o.plots, "write the figures as PNG into DIR (needs a display: xvfb-run -a)")->type_name("DIR");
-    app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ->type_name("N")->check(CLI::Range(1, 65535));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    o.e = experiment.spec();
     if (!o.demands.empty() && std::find(o.sizes.begin(), o.sizes.end(), o.demandSize) == o.sizes.end())
         fail("--demand-size " + std::to_string(o.demandSize) + " is not one of --sizes");
 
     std::ostringstream report;
     std::vector<Result> results;
     try {
-        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
         std::ofstream demands;
         if (!o.demands.empty()) {
             demands.open(o.demands);
@@ -466,38 +473,24 @@ int main(int argc, char** argv) {
             demands << "frame,a,b,actors\n";
         }
         std::uint64_t ticks = 0, instance = 0;
-        for (std::int64_t n : o.actors) {
-            std::fprintf(stderr, "bench_keypose: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n, o.frames);
+        for (std::int64_t n : o.e.actors) {
+            std::fprintf(stderr, "bench_keypose: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n, o.e.frames);
             results.push_back(run(o, n, context, demands.is_open() ? &demands : nullptr, &instance));
             ticks += results.back().ticks;
         }
         report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n"
-               << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
-               << ", one thread, the GL finished after each pass; means over " << o.frames << " ticks (`bench_keypose";
-        for (int i = 1; i < argc; ++i) {
-            const std::string_view arg = argv[i];
-            if (arg == "--markdown" || arg == "--csv" || arg == "--accuracy-csv" || arg == "--demands" || arg == "--plots") ++i;
-            else report << ' ' << arg;
-        }
+               << "Milliseconds per frame, " << o.e.width << " x " << o.e.height << " headless, " << context->description()
+               << ", one thread, the GL finished after each pass; means over " << o.e.frames << " ticks (`" << experiment.reproduction();
         std::vector<Row> all;
         for (const Result& r : results) all.insert(all.end(), r.rows.begin(), r.rows.end());
         report << "`). Vertex and image errors against plain skinning of the same tick, every " << o.errorEvery << " ticks.\n\n"
-               << table(all);
-        if (!o.csv.empty()) {
-            std::ofstream csv(o.csv);
-            csv << "actors,camera,method,size,app_cull_ms,pose_ms,select_ms,mesh_ms,draw_ms,frame_ms,band,served,misses,updates,fills,posed,"
-                   "vertex_error_mean_mm,vertex_error_max_mm,key_pose_error_mean_mm,key_pose_error_max_mm,psnr_db,ssim,pixels_off_8\n";
-            for (const Row& r : all)
-                csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.size << ',' << r.appCull << ',' << r.pose << ',' << r.select
-                    << ',' << r.mesh << ',' << r.draw << ',' << r.frame << ',' << r.band << ',' << r.served << ',' << r.misses << ','
-                    << r.updates << ',' << r.fills << ',' << r.posed << ',' << r.vertexMeanMm() << ',' << 1000.0 * r.vertexMax << ','
-                    << r.keyMeanMm() << ',' << 1000.0 * r.keyMax << ',' << r.psnr << ',' << r.ssim << ',' << r.off8 << '\n';
-        }
-        if (!o.accuracyCsv.empty()) {
+               << table(all).markdown();
+        if (!o.e.csv.empty()) bench::writeWhole(o.e.csv, table(all).csv());
+        if (!o.e.accuracyCsv.empty()) {
             // The common accuracy CSV: one knob per cache mode, plain skinning (the same rows) as
             // each knob's "off"; the time is APP+CULL and DRAW, the two phases the cache changes.
-            sim::AccuracyCsv csv(o.accuracyCsv);
-            const std::string scene = sim::sceneName(o.scene);
+            sim::AccuracyCsv csv(o.e.accuracyCsv);
+            const std::string scene = sim::sceneName(o.e.scene);
             for (const char* mode : {"intermittent", "interpolative"}) {
                 const bool present = std::any_of(all.begin(), all.end(), [&](const Row& r) { return r.size > 0 && r.method.rfind(mode, 0) == 0; });
                 if (!present) continue;
@@ -524,7 +517,7 @@ int main(int argc, char** argv) {
                 }
             }
         }
-        if (!o.plots.empty()) {
+        if (!o.e.plots.empty()) {
             if (vtk::displayAvailable()) plots(o, results);
             else std::fprintf(stderr, "bench_keypose: no display, no plots (run under xvfb-run -a)\n");
         }
@@ -532,6 +525,10 @@ int main(int argc, char** argv) {
         fail(e.what());
     }
     std::fputs(report.str().c_str(), stdout);
-    if (!o.markdown.empty()) std::ofstream(o.markdown) << report.str();
+    try {
+        if (!o.e.markdown.empty()) bench::writeWhole(o.e.markdown, report.str());
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
     return 0;
 }

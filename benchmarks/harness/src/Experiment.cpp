@@ -13,8 +13,7 @@ namespace throng::bench {
 Experiment::Experiment(std::string program, std::string description, unsigned options, ExperimentSpec defaults, ExperimentNames names)
     : program_(std::move(program)), options_(options), spec_(std::move(defaults)), names_(std::move(names)), app_(std::move(description), program_) {
     app_.option_defaults()->always_capture_default();
-    // CLI11 would keep every value of a repeated option; the last one counts, as in every Throng tool.
-    app_.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    // A single-valued option given twice is refused (CLI11's default), rather than one value silently winning.
     if (options & kScene) app_.add_option("--scene", spec_.scene, "scene file")->type_name("FILE")->check(CLI::ExistingFile);
     if (options & kActorList)
         app_.add_option("--actors", spec_.actors, "actor counts (the scene's groups scaled to each)")
