@@ -49,7 +49,10 @@
 #include <string>
 #include <vector>
 
+#include "throng/bench/Experiment.h"
 #include "throng/bench/FrameWorld.h"
+#include "throng/bench/ResultTable.h"
+#include "throng/bench/SameState.h"
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/testkit/DrawnJoints.h"
@@ -62,8 +65,6 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/AccuracyCsv.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
 
 using namespace throng;
 
@@ -79,13 +80,9 @@ const std::vector<std::string> kKnobs{"lod-scale",         "skeletal-lod",      
                                       "impostor-resolution", "impostor-views",    "impostor-keyframes", "key-pose-rows",
                                       "key-pose-mode",       "occlusion-resolution", "render-scale",     "town-lod"};
 
+// The experiment's settings: the common ones (e) and its own.
 struct Options {
-    std::string scene = testkit::townDefaultScene();
-    std::int64_t actors = 2000;
-    int frames = 2;   // measured ticks per camera
-    int warmup = 30;  // ticks simulated first
-    int width = 1280, height = 720;
-    std::vector<std::string> cameras{"street", "overview"};
+    bench::ExperimentSpec e;  // scene, actors (one count), cameras, measured ticks per camera, warmup, size, outputs
     std::vector<std::string> knobs = kKnobs;
     std::vector<double> lodScales{0.5, 1.0, 2.0};
     std::vector<double> jointAngles{0.001, 0.004, 0.016};
@@ -100,7 +97,6 @@ struct Options {
     std::vector<std::string> occlusion{"64x36", "256x144", "1024x576"};
     std::vector<double> renderScales{0.75, 0.5, 0.35};
     std::vector<double> townLodScales{1.0, 3.0};
-    std::string markdown, accuracyCsv;
     bool has(const std::string& k) const { return std::find(knobs.begin(), knobs.end(), k) != knobs.end(); }
 };
 
@@ -166,8 +162,8 @@ std::optional<std::pair<int, int>> resolution(const std::string& text) {
 }
 
 sim::SceneDescription scaledScene(const Options& o) {
-    sim::SceneDescription d = sim::parseSceneFile(o.scene);
-    if (o.actors > 0) sim::scaleActors(d, o.actors);
+    sim::SceneDescription d = sim::parseSceneFile(o.e.scene);
+    if (o.e.actors.front() > 0) sim::scaleActors(d, o.e.actors.front());
     return d;
 }
 
@@ -511,7 +507,7 @@ private:
                 set.attach(*m.processor, m.impostorDistance * scale, m.hysteresis * scale);
                 for (std::size_t i = 0; i < set.size(); ++i) drawables.push_back(set.drawable(i));
             }
-            context_->resize(o_.width, o_.height);
+            context_->resize(o_.e.width, o_.e.height);
             m.draw = std::make_unique<CrowdRenderer>(context_, m.renderer);
             if (!drawables.empty()) m.draw->preloadImpostors(drawables);
         }
@@ -530,33 +526,30 @@ private:
     }
 
     void measure() {
-        for (int f = 0; f < o_.warmup; ++f) step("warm-up");
-        const double aspect = double(o_.width) / double(o_.height);
-        for (const std::string& name : o_.cameras) {
+        for (int f = 0; f < o_.e.warmup; ++f) step("warm-up");
+        const double aspect = double(o_.e.width) / double(o_.e.height);
+        for (const std::string& name : o_.e.cameras) {
             const Camera camera = worlds_[0].sim->camera().at(bench::cameraTime(name), aspect);
-            for (int f = -1; f < o_.frames; ++f) {  // one unmeasured tick warms the GL, pools and caches
+            for (int f = -1; f < o_.e.frames; ++f) {  // one unmeasured tick warms the GL, pools and caches
                 step(name);
-                std::uint64_t digest = 0;  // the state the first processor of the tick saw (APP places the Reference Points)
-                for (std::size_t i = 0; i < settings_.size(); ++i) {
-                    Setting& m = settings_[(i + std::size_t(f + 1)) % settings_.size()];  // settings take turns going first
+                bench::runOnSameStates(settings_.size(), f + 1, [&](std::size_t v) {
+                    Setting& m = settings_[v];
                     sim::Simulation& w = *worlds_[m.world].sim;
                     // The town's levels at the setting's own scale (on top of its LOD scale), else the scene's.
                     w.setTownLodScale(m.townLodScale > 0 ? m.townLodScale / m.lodScale : sceneTownLodScale_);
                     const ActorFrameStatistics s = m.processor->processFrame(w.root(), camera, w.now().time);
-                    const std::uint64_t d = bench::stateDigest(w.crowd());
-                    if (i == 0) digest = d;
-                    else if (d != digest) fail("tick " + std::to_string(w.now().frame) + ": " + label(m) + " saw another state");
                     Stopwatch watch;
                     m.draw->drawFrame(camera, m.processor->drawList());
                     const double drawMs = watch.elapsedMs();
-                    if (f < 0) continue;
+                    if (f < 0) return;
                     Figures& fig = m.figures[name];
                     fig.appCull += s.appCullMs();
                     fig.draw += drawMs;
                     fig.ticks += 1;
                     m.frame = m.draw->readFrame();
                     if (m.poses || m.labels.empty()) m.joints.collect(m.processor->drawList(), w.crowd());
-                }
+                }, [&](std::size_t v) { return bench::stateDigest(worlds_[settings_[v].world].sim->crowd()); },
+                   [&](std::size_t v) { return label(settings_[v]); });
                 if (f < 0) continue;
                 const Setting& ref = settings_[0];
                 for (std::size_t i = 1; i < settings_.size(); ++i) {
@@ -565,7 +558,7 @@ private:
                     bench::addFrameError(m.frame, ref.frame, fig.psnr, fig.ssim, fig.off8);
                     if (m.poses) m.joints.compare(ref.joints, fig.joints);
                 }
-                std::fprintf(stderr, "%s: %s camera, tick %d of %d done\n", kProgram, name.c_str(), f + 1, o_.frames);
+                std::fprintf(stderr, "%s: %s camera, tick %d of %d done\n", kProgram, name.c_str(), f + 1, o_.e.frames);
             }
             for (Setting& m : settings_) {
                 Figures& fig = m.figures[name];
@@ -594,17 +587,20 @@ private:
 };
 
 std::string table(const std::vector<Setting>& settings, const Options& o, std::size_t actors) {
-    std::ostringstream t;
-    t << "### " << actors << " actors, " << o.frames << " ticks per camera, " << o.width << "x" << o.height
-      << ", each knob alone against every approximation off (ms per frame)\n\n"
-         "| knob | value | camera | PSNR dB | SSIM | pixels off > 8 | joint error mean / max mm | APP+CULL | DRAW | memory MiB |\n"
-         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
-    char line[1024];
-    for (const std::string& camera : o.cameras) {
+    std::ostringstream out;
+    out << "### " << actors << " actors, " << o.e.frames << " ticks per camera, " << o.e.width << "x" << o.e.height
+        << ", each knob alone against every approximation off (ms per frame)\n\n";
+    bench::ResultTable t({{"", "knob", "%s", true}, {"", "value", "%s", true}, {"", "camera", "%s", true}, {"", "PSNR dB", "%s"},
+                          {"", "SSIM", "%s"}, {"", "pixels off > 8", "%s"}, {"", "joint error mean / max mm", "%s"}, {"", "APP+CULL", "%.2f"},
+                          {"", "DRAW", "%.1f"}, {"", "memory MiB", "%s"}});
+    char cell[64];
+    const auto fixed = [&](const char* format, double v) {
+        std::snprintf(cell, sizeof cell, format, v);
+        return std::string(cell);
+    };
+    for (const std::string& camera : o.e.cameras) {
         const Figures& ref = settings[0].figures.at(camera);
-        std::snprintf(line, sizeof line, "| reference (every approximation off) | - | %s | - | - | - | - | %.2f | %.1f | 0 |\n", camera.c_str(),
-                      ref.appCull, ref.draw);
-        t << line;
+        t.add({"reference (every approximation off)", "-", camera, "-", "-", "-", "-", ref.appCull, ref.draw, "0"});
     }
     for (const std::string& knob : [&] {
              std::vector<std::string> order;
@@ -613,7 +609,7 @@ std::string table(const std::vector<Setting>& settings, const Options& o, std::s
                      if (std::find(order.begin(), order.end(), l.knob) == order.end()) order.push_back(l.knob);
              return order;
          }())
-        for (const std::string& camera : o.cameras)
+        for (const std::string& camera : o.e.cameras)
             for (bool off : {true, false})
                 for (const Setting& m : settings)
                     for (const Label& l : m.labels) {
@@ -621,19 +617,17 @@ std::string table(const std::vector<Setting>& settings, const Options& o, std::s
                         const Figures& f = m.figures.at(camera);
                         const std::string joints =
                             m.poses && f.joints.count() > 0 ? number(std::round(f.joints.meanMm() * 10) / 10) + " / " + number(std::round(f.joints.maxMm() * 10) / 10) : "-";
-                        std::snprintf(line, sizeof line, "| %s | %s | %s | %.2f | %.4f | %.3f %% | %s | %.2f | %.1f | %.2f |\n", l.knob.c_str(),
-                                      l.value.c_str(), camera.c_str(), f.psnr, f.ssim, 100.0 * f.off8, joints.c_str(), f.appCull, f.draw,
-                                      f.memory / 1048576.0);
-                        t << line;
+                        t.add({l.knob, l.value, camera, fixed("%.2f", f.psnr), fixed("%.4f", f.ssim), fixed("%.3f %%", 100.0 * f.off8), joints,
+                               f.appCull, f.draw, fixed("%.2f", f.memory / 1048576.0)});
                     }
-    return t.str();
+    return out.str() + t.markdown();
 }
 
 void writeCsv(const std::vector<Setting>& settings, const Options& o, std::size_t actors) {
-    sim::AccuracyCsv csv(o.accuracyCsv);
+    sim::AccuracyCsv csv(o.e.accuracyCsv);
     for (const Setting& m : settings)
         for (const Label& l : m.labels)
-            for (const std::string& camera : o.cameras) {
+            for (const std::string& camera : o.e.cameras) {
                 const Figures& f = m.figures.at(camera);
                 sim::AccuracyRecord r;
                 r.knob = l.knob;
@@ -647,7 +641,7 @@ void writeCsv(const std::vector<Setting>& settings, const Options& o, std::size_
                 r.ms = f.appCull + f.draw;
                 r.msPhase = "app_cull+draw";
                 r.memoryBytes = f.memory;
-                r.scene = sim::sceneName(o.scene);
+                r.scene = sim::sceneName(o.e.scene);
                 r.camera = camera;
                 r.actors = std::int64_t(actors);
                 csv.add(r);
@@ -657,69 +651,58 @@ void writeCsv(const std::vector<Setting>& settings, const Options& o, std::size_
 }  // namespace
 
 int main(int argc, char** argv) {
-    using support::wholeNumber;
     Options o;
-    support::CommandLine cl(kProgram,
-                            "The error of the frame a user sees for each approximation alone (PSNR, SSIM, pixels off, joint "
-                            "error) against every approximation off, with its APP+CULL and DRAW time, on the identical state.");
-    CLI::App& app = cl.app();
-    app.add_option("--scene", o.scene, "scene file (default: the town's apps/town/scenes/default.json)")->type_name("FILE")
-        ->check(support::existingFile());
-    app.add_option("--actors", o.actors, "actors (0: the scene's own count)")->type_name("N")->check(wholeNumber(0, 10'000'000))->capture_default_str();
-    app.add_option("--frames", o.frames, "measured ticks per camera")->type_name("N")->check(wholeNumber(1, 10000))->capture_default_str();
-    app.add_option("--warmup", o.warmup, "ticks simulated first")->type_name("N")->check(wholeNumber(0, 100000))->capture_default_str();
-    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192))->capture_default_str();
-    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192))->capture_default_str();
-    app.add_option("--cameras", o.cameras, "cameras measured")->delimiter(',')->type_name("NAME,...")
-        ->check(support::oneOf({"street", "overview"}))->capture_default_str();
-    app.add_option("--knobs", o.knobs, "knobs measured")->delimiter(',')->type_name("NAME,...")->check(support::oneOf(kKnobs))
-        ->capture_default_str();
-    app.add_option("--lod-scales", o.lodScales, "LOD scales (off: 1e-6)")->delimiter(',')->type_name("S,...")->check(support::positiveNumber())
-        ->capture_default_str();
-    app.add_option("--joint-angles", o.jointAngles, "skeletal LOD jointMinAngle values, radians")->delimiter(',')->type_name("A,...")
-        ->check(support::number(1e-6, 0.099))->capture_default_str();
-    app.add_option("--impostor-distances", o.impostorDistances, "impostor distances, m")->delimiter(',')->type_name("M,...")
-        ->check(support::positiveNumber())->capture_default_str();
-    app.add_option("--hystereses", o.hystereses, "impostor hystereses, fractions of the distance")->delimiter(',')->type_name("F,...")
-        ->check(support::number(0.0, 0.9))->capture_default_str();
-    app.add_option("--features", o.features, "impostor feature lines (1000: every bone)")->delimiter(',')->type_name("N,...")
-        ->check(wholeNumber(0, 1000))->capture_default_str();
-    app.add_option("--budgets", o.budgets, "impostor morph budgets, cells per atlas and frame (-1: unlimited)")->delimiter(',')
-        ->type_name("N,...")->check(wholeNumber(-1, 100000))->capture_default_str();
-    app.add_option("--cell-sizes", o.cellSizes, "impostor cell sizes, px (each another bake)")->delimiter(',')->type_name("PX,...")
-        ->check(wholeNumber(8, 512))->capture_default_str();
-    app.add_option("--azimuths", o.azimuths, "impostor views around (each another bake)")->delimiter(',')->type_name("N,...")
-        ->check(wholeNumber(2, 64))->capture_default_str();
-    app.add_option("--keyframes", o.keyframes, "impostor key-frames (each another bake)")->delimiter(',')->type_name("N,...")
-        ->check(wholeNumber(2, 128))->capture_default_str();
-    app.add_option("--cache-rows", o.cacheRows, "key-pose cache rows per template")->delimiter(',')->type_name("N,...")
-        ->check(wholeNumber(1, 100000))->capture_default_str();
-    app.add_option("--occlusion", o.occlusion, "occlusion buffer resolutions")->delimiter(',')->type_name("WxH,...")
+    bench::Experiment experiment(kProgram,
+                                 "The error of the frame a user sees for each approximation alone (PSNR, SSIM, pixels off, joint "
+                                 "error) against every approximation off, with its APP+CULL and DRAW time, on the identical state.",
+                                 bench::kScene | bench::kActorCount | bench::kCameras | bench::kFrames | bench::kWarmup | bench::kImageSize |
+                                     bench::kMarkdown | bench::kAccuracyCsv,
+                                 {.scene = testkit::townDefaultScene(), .actors = {2000}, .cameras = {"street", "overview"}, .frames = 2, .warmup = 30},
+                                 {.accuracyCsvHelp = "write every row in the common accuracy CSV"});
+    CLI::App& app = experiment.app();
+    app.add_option("--knobs", o.knobs, "knobs measured")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("NAME,...")->check(CLI::IsMember(kKnobs))
+        ;
+    app.add_option("--lod-scales", o.lodScales, "LOD scales (off: 1e-6)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("S,...")->check(bench::finiteNumber(1e-6, 1e6))
+        ;
+    app.add_option("--joint-angles", o.jointAngles, "skeletal LOD jointMinAngle values, radians")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("A,...")
+        ->check(bench::finiteNumber(1e-6, 0.099));
+    app.add_option("--impostor-distances", o.impostorDistances, "impostor distances, m")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("M,...")
+        ->check(bench::finiteNumber(1e-6, 1e6));
+    app.add_option("--hystereses", o.hystereses, "impostor hystereses, fractions of the distance")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("F,...")
+        ->check(bench::finiteNumber(0.0, 0.9));
+    app.add_option("--features", o.features, "impostor feature lines (1000: every bone)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,...")
+        ->check(CLI::Range(0, 1000));
+    app.add_option("--budgets", o.budgets, "impostor morph budgets, cells per atlas and frame (-1: unlimited)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->type_name("N,...")->check(CLI::Range(-1, 100000));
+    app.add_option("--cell-sizes", o.cellSizes, "impostor cell sizes, px (each another bake)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("PX,...")
+        ->check(CLI::Range(8, 512));
+    app.add_option("--azimuths", o.azimuths, "impostor views around (each another bake)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,...")
+        ->check(CLI::Range(2, 64));
+    app.add_option("--keyframes", o.keyframes, "impostor key-frames (each another bake)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,...")
+        ->check(CLI::Range(2, 128));
+    app.add_option("--cache-rows", o.cacheRows, "key-pose cache rows per template")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,...")
+        ->check(CLI::Range(1, 100000));
+    app.add_option("--occlusion", o.occlusion, "occlusion buffer resolutions")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("WxH,...")
         ->check(CLI::Validator([](std::string& v) { return resolution(v) ? std::string() : "'" + v + "' is not WxH with sides in [8, 4096]"; },
                                ""))
-        ->capture_default_str();
-    app.add_option("--render-scales", o.renderScales, "render scales (dynamic resolution; off: 1)")->delimiter(',')->type_name("S,...")
-        ->check(support::number(0.05, 0.99))->capture_default_str();
-    app.add_option("--town-lod-scales", o.townLodScales, "LOD scales of the town's levels (off: the scene's)")->delimiter(',')
-        ->type_name("S,...")->check(support::positiveNumber())->capture_default_str();
-    app.add_option("--markdown", o.markdown, "also write the table as Markdown")->type_name("FILE");
-    app.add_option("--accuracy-csv", o.accuracyCsv, "write every row in the common accuracy CSV")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ;
+    app.add_option("--render-scales", o.renderScales, "render scales (dynamic resolution; off: 1)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("S,...")
+        ->check(bench::finiteNumber(0.05, 0.99));
+    app.add_option("--town-lod-scales", o.townLodScales, "LOD scales of the town's levels (off: the scene's)")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->type_name("S,...")->check(bench::finiteNumber(1e-6, 1e6));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    o.e = experiment.spec();
     std::string report;
     try {
-        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
         AccuracyRun run(o, context);
         run.run();
         report = table(run.settings(), o, run.actors());
-        if (!o.accuracyCsv.empty()) writeCsv(run.settings(), o, run.actors());
+        if (!o.e.accuracyCsv.empty()) writeCsv(run.settings(), o, run.actors());
+        std::fputs(report.c_str(), stdout);
+        if (!o.e.markdown.empty()) bench::writeWhole(o.e.markdown, report);
     } catch (const std::exception& e) {
         fail(e.what());
-    }
-    std::fputs(report.c_str(), stdout);
-    if (!o.markdown.empty()) {
-        std::ofstream md(o.markdown);
-        if (!md) fail("cannot write " + o.markdown);
-        md << report;
     }
     return 0;
 }
