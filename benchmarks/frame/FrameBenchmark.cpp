@@ -44,7 +44,10 @@
 #include <string_view>
 #include <vector>
 
+#include "throng/bench/Experiment.h"
 #include "throng/bench/FrameWorld.h"
+#include "throng/bench/ResultTable.h"
+#include "throng/bench/SameState.h"
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
@@ -60,8 +63,6 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/sim/AccuracyCsv.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
 
 using namespace throng;
 
@@ -74,12 +75,10 @@ using bench::stateDigest;
 
 [[noreturn]] void fail(const std::string& why) { bench::fail("bench_frame", why); }
 
+// The experiment's settings: the common ones (e: actor counts, cameras, measured ticks per camera,
+// warm-up ticks so walkers spread along the streets, size, scene, outputs) and its own.
 struct Options {
-    std::vector<std::int64_t> actors{2000, 6000, 10000};
-    std::vector<std::string> cameras{"street", "overview"};
-    int frames = 30;            // measured ticks per camera
-    int warmup = 60;            // ticks simulated first, so walkers spread along the streets
-    int width = 1280, height = 720;
+    bench::ExperimentSpec e;
     std::int64_t scalingActors = 10000;  // actors of the thread-scaling section (0: skip)
     int scalingFrames = 30;
     std::int64_t pipelineActors = 0;     // actors of the pipeline section (0: the scene's own count)
@@ -87,8 +86,6 @@ struct Options {
     std::int64_t townActors = 10;        // actors of the town section
     int townSamples = 12;                // cameras along the path in the town section
     int townFrames = 5;                  // frames per camera and variant in the town section
-    std::string scene = testkit::townDefaultScene();
-    std::string csv, markdown;
     std::int64_t occlusionActors = 10000;  // actors of the occlusion-resolution section
     std::vector<int> occlusionRests;       // rest lengths of the occlusion section's resting rows (empty: the scene's)
     std::string occlusionCsv;              // where that section's rows go as CSV (empty: nowhere)
@@ -144,9 +141,9 @@ struct Row {
 // The methods on the same ticks, for each camera.
 std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std::shared_ptr<GlContext>& context,
                                 std::uint64_t* ticksChecked) {
-    auto world = bench::buildWorld(o.scene, actors);
+    auto world = bench::buildWorld(o.e.scene, actors);
     auto impostors = bakeImpostors(context, *world);
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     ActorProcessor traditional(world->crowd()), actor(world->crowd()), hybrid(world->crowd()), occluding(world->crowd()),
         hybridOccluding(world->crowd());
     traditional.setProcessing(Processing::Traditional);
@@ -160,36 +157,30 @@ std::vector<Row> compareMethods(const Options& o, std::int64_t actors, const std
     CrowdRendererOptions ro;
     ro.finishPasses = true;
     CrowdRenderer renderer(context, ro);
-    for (int f = 0; f < o.warmup; ++f) world->step();
+    for (int f = 0; f < o.e.warmup; ++f) world->step();
     std::vector<Row> rows;
-    for (const std::string& cameraName : o.cameras) {
-        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+    for (const std::string& cameraName : o.e.cameras) {
+        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.e.width) / double(o.e.height));
         Row r[kMethodCount];
         for (int m = 0; m < kMethodCount; ++m) {
             r[m].actors = std::int64_t(world->crowd().size());
             r[m].camera = cameraName;
             r[m].method = kMethods[m];
         }
-        for (int f = -2; f < o.frames; ++f) {  // two unmeasured ticks warm every method's caches
+        for (int f = -2; f < o.e.frames; ++f) {  // two unmeasured ticks warm every method's caches
             const FrameContext& now = world->step();
             const double stepMs = world->lastStepMs();
-            std::uint64_t digest = 0;
-            for (int m = 0; m < kMethodCount; ++m) {
+            bench::runOnSameState(world->crowd(), kMethodCount, f + 2, [&](std::size_t m) {
                 const ActorFrameStatistics s = processors[m]->processFrame(world->root(), camera, now.time);
-                const std::uint64_t d = stateDigest(world->crowd());
-                if (m == 0) digest = d;
-                else if (d != digest)
-                    fail("tick " + std::to_string(now.frame) + ": method '" + kMethods[m] + "' saw another state than '" +
-                         kMethods[0] + "'");
                 Stopwatch watch;
                 renderer.drawFrame(camera, processors[m]->drawList());
                 const double drawMs = watch.elapsedMs();
                 if (f >= 0) r[m].add(stepMs, s, renderer.statistics(), drawMs);
-            }
+            }, [&](std::size_t m) { return kMethods[m]; });
             if (f >= 0) ++*ticksChecked;
         }
         for (Row& row : r) {
-            row.divide(o.frames);
+            row.divide(o.e.frames);
             rows.push_back(row);
         }
         std::fprintf(stderr, "bench_frame: %lld actors, %s camera done\n", (long long)actors, cameraName.c_str());
@@ -212,9 +203,9 @@ struct VisibilityRow {
 constexpr int kTownGroups = 16;
 
 std::vector<VisibilityRow> visibilityBound(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actors) {
-    auto world = bench::buildWorld(o.scene, o.occlusionActors);
+    auto world = bench::buildWorld(o.e.scene, o.occlusionActors);
     auto impostors = bakeImpostors(context, *world);
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     *actors = std::int64_t(world->crowd().size());
     const auto [distance, hysteresis] = impostorDistance(*world);
     const OcclusionSettings occlusion = world->description().representation.occlusion.value_or(OcclusionSettings{});
@@ -230,7 +221,7 @@ std::vector<VisibilityRow> visibilityBound(const Options& o, const std::shared_p
     ids.flatTint = true;
     ids.clearColor = glm::vec4(0.0f);
     GlRenderer renderer(context, ids);
-    for (int f = 0; f < o.warmup; ++f) world->step();
+    for (int f = 0; f < o.e.warmup; ++f) world->step();
     const double time = world->now().time;
     // Six bits of the ID per channel, mid-step: the GL's rounding cannot change the ID read back.
     const auto colour = [](std::uint32_t id) {
@@ -245,8 +236,8 @@ std::vector<VisibilityRow> visibilityBound(const Options& o, const std::shared_p
         return a;
     };
     std::vector<VisibilityRow> rows;
-    for (const std::string& cameraName : o.cameras) {
-        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+    for (const std::string& cameraName : o.e.cameras) {
+        const Camera camera = world->camera().at(cameraTime(cameraName), double(o.e.width) / double(o.e.height));
         full.processFrame(world->root(), camera, time);
         // Group -1: every actor at once (actors hide actors). Groups 0-15: the town and every
         // sixteenth actor, so actors hardly hide each other: what the town alone leaves visible.
@@ -289,7 +280,7 @@ struct Scaling {
 };
 
 std::vector<Scaling> threadScaling(const Options& o) {
-    std::unique_ptr<sim::Simulation> worlds[2] = {bench::buildWorld(o.scene, o.scalingActors), bench::buildWorld(o.scene, o.scalingActors)};
+    std::unique_ptr<sim::Simulation> worlds[2] = {bench::buildWorld(o.e.scene, o.scalingActors), bench::buildWorld(o.e.scene, o.scalingActors)};
     std::unique_ptr<ActorProcessor> actor[2], traditional[2];
     for (int k = 0; k < 2; ++k) {
         worlds[k]->setThreads(unsigned(k + 1));
@@ -298,13 +289,13 @@ std::vector<Scaling> threadScaling(const Options& o) {
         actor[k]->setThreads(unsigned(k + 1));
         traditional[k]->setThreads(unsigned(k + 1));
         traditional[k]->setProcessing(Processing::Traditional);
-        for (int f = 0; f < o.warmup; ++f) worlds[k]->step();
+        for (int f = 0; f < o.e.warmup; ++f) worlds[k]->step();
     }
     std::vector<Scaling> out;
-    for (const std::string& cameraName : o.cameras) {
+    for (const std::string& cameraName : o.e.cameras) {
         Scaling s;
         s.camera = cameraName;
-        const Camera camera = worlds[0]->camera().at(cameraTime(cameraName), double(o.width) / double(o.height));
+        const Camera camera = worlds[0]->camera().at(cameraTime(cameraName), double(o.e.width) / double(o.e.height));
         for (int f = -2; f < o.scalingFrames; ++f) {
             std::uint64_t digest[2] = {};
             for (int i = 0; i < 2; ++i) {
@@ -368,7 +359,7 @@ std::vector<RegionRow> regionSweep(const Options& o) {
             RegionRow r;
             r.actors = n;
             r.layout = one ? "one region" : "the scene's regions";
-            sim::SceneDescription d = sim::parseSceneFile(o.scene);
+            sim::SceneDescription d = sim::parseSceneFile(o.e.scene);
             try {
                 sim::scaleActors(d, n);
             } catch (const std::invalid_argument& e) {
@@ -399,7 +390,7 @@ std::vector<RegionRow> regionSweep(const Options& o) {
             }
             r.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             r.regions = world->locomotion() ? world->locomotion()->regionCount() : 0;
-            for (int f = 0; f < o.warmup; ++f) world->step();
+            for (int f = 0; f < o.e.warmup; ++f) world->step();
             // Two rounds of 1 then 2 threads, so that a drift of the machine's load falls on both.
             const int half = std::max(1, o.regionFrames / 2);
             for (int round = 0; round < 2; ++round)
@@ -437,16 +428,16 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
         std::int64_t frames = 0;
     } runs[2];
     auto impostors = [&] {
-        auto world = bench::buildWorld(o.scene, o.pipelineActors);
+        auto world = bench::buildWorld(o.e.scene, o.pipelineActors);
         return bakeImpostors(context, *world);
     }();
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     CrowdRenderer renderer(context);
-    const double aspect = double(o.width) / double(o.height);
+    const double aspect = double(o.e.width) / double(o.e.height);
     PipelineResult result;
     for (int k = 0; k < 2; ++k) {
         Run& r = runs[k];
-        r.world = bench::buildWorld(o.scene, o.pipelineActors);
+        r.world = bench::buildWorld(o.e.scene, o.pipelineActors);
         r.processor = std::make_unique<ActorProcessor>(r.world->crowd());
         r.pipeline = std::make_unique<FramePipeline>(k == 1);
         // The same templates, baked once: the processor only needs the drawables of its templates.
@@ -476,7 +467,7 @@ PipelineResult pipelineFps(const Options& o, const std::shared_ptr<GlContext>& c
         r.frames += frames;
     };
     for (int k = 0; k < 2; ++k) {
-        for (int f = 0; f < o.warmup; ++f) runs[k].world->step();
+        for (int f = 0; f < o.e.warmup; ++f) runs[k].world->step();
         block(runs[k], std::min(o.pipelineFrames, 10));  // first uploads, morph cache: not measured
         runs[k].seconds = 0;
         runs[k].frames = 0;
@@ -505,7 +496,7 @@ struct OcclusionRow {
 // --occlusion-rests). The "path" camera
 // follows the scene's camera path once, tick by tick, so rests end as they would in the example.
 std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr<GlContext>& context, std::int64_t* actorsOut) {
-    auto world = bench::buildWorld(o.scene, o.occlusionActors);
+    auto world = bench::buildWorld(o.e.scene, o.occlusionActors);
     const OcclusionSettings declared = world->description().representation.occlusion.value_or(OcclusionSettings{});
     struct Variant {
         int width, height, rest;
@@ -526,14 +517,14 @@ std::vector<OcclusionRow> occlusionSweep(const Options& o, const std::shared_ptr
             processors.back()->setOcclusion(settings);
         }
     }
-    for (int f = 0; f < o.warmup; ++f) world->step();
+    for (int f = 0; f < o.e.warmup; ++f) world->step();
     std::vector<OcclusionRow> rows;
-    std::vector<std::string> cameras = o.cameras;
+    std::vector<std::string> cameras = o.e.cameras;
     if (o.occlusionPath) cameras.push_back("path");
-    const double aspect = double(o.width) / double(o.height);
+    const double aspect = double(o.e.width) / double(o.e.height);
     for (const std::string& cameraName : cameras) {
         const bool path = cameraName == "path";
-        const int frames = path ? int(std::ceil(world->camera().duration() / world->description().step)) + 1 : o.frames;
+        const int frames = path ? int(std::ceil(world->camera().duration() / world->description().step)) + 1 : o.e.frames;
         std::vector<OcclusionRow> r(variants.size());
         for (std::size_t k = 0; k < variants.size(); ++k)
             r[k].camera = cameraName, r[k].width = variants[k].width, r[k].height = variants[k].height, r[k].rest = variants[k].rest;
@@ -726,7 +717,7 @@ std::vector<double> pathTurnPixels(const sim::CameraPath& path, double step, dou
 
 TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context) {
     // Two worlds of one seed: the town as declared (with its LOD, if any) and at full detail.
-    sim::SceneDescription scene = sim::parseSceneFile(o.scene);
+    sim::SceneDescription scene = sim::parseSceneFile(o.e.scene);
     sim::scaleActors(scene, o.townActors);
     TownResult result;
     if (!scene.town) fail("--sections town: the scene declares no town");
@@ -736,7 +727,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
     sim::SceneDescription full = scene;
     full.town->lod.clear();
     std::unique_ptr<sim::Simulation> worlds[2] = {sim::Simulation::build(std::move(full)), sim::Simulation::build(std::move(scene))};
-    context->resize(o.width, o.height);
+    context->resize(o.e.width, o.e.height);
     // Lists: full tiles, LOD tiles, then each of them with the tiles occlusion hides left out.
     std::unique_ptr<ActorProcessor> processors[4];
     const OcclusionSettings occlusion = worlds[0]->description().representation.occlusion.value_or(OcclusionSettings{});
@@ -745,7 +736,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
         processors[w] = std::make_unique<ActorProcessor>(worlds[w]->crowd());
         processors[w + 2] = std::make_unique<ActorProcessor>(worlds[w]->crowd());
         processors[w + 2]->setOcclusion(occlusion);
-        for (int f = 0; f < std::max(o.warmup, 1); ++f) worlds[w]->step();
+        for (int f = 0; f < std::max(o.e.warmup, 1); ++f) worlds[w]->step();
     }
     result.variants = townVariants();
     // The town pass alone: clear, draw the town's items, finish (endFrame waits for the GL).
@@ -758,7 +749,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
         renderers.push_back(std::make_unique<GlRenderer>(context, ro));
     }
     DrawList lists[4];
-    const double aspect = double(o.width) / double(o.height), duration = worlds[0]->camera().duration();
+    const double aspect = double(o.e.width) / double(o.e.height), duration = worlds[0]->camera().duration();
     const std::size_t nv = result.variants.size();
     std::vector<double> wall(nv), cpu(nv);  // this sample's sums per variant
     const std::size_t defaultVariant = std::size_t(std::find_if(result.variants.begin(), result.variants.end(), [](const TownVariant& v) {
@@ -800,7 +791,7 @@ TownResult townDraw(const Options& o, const std::shared_ptr<GlContext>& context)
             result.variants[k].cpuMs.push_back(cpu[k] / o.townFrames);
         }
     }
-    result.turnPixels = pathTurnPixels(worlds[0]->camera(), worlds[0]->description().step, aspect, o.height);
+    result.turnPixels = pathTurnPixels(worlds[0]->camera(), worlds[0]->description().step, aspect, o.e.height);
     return result;
 }
 
@@ -812,7 +803,7 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / double(v.size());
     };
-    t << "Town DRAW alone (the GL finished after the town pass), " << o.townActors << " actors, " << o.width << " x " << o.height
+    t << "Town DRAW alone (the GL finished after the town pass), " << o.townActors << " actors, " << o.e.width << " x " << o.e.height
       << " headless, " << gl << "; " << r.times.size() << " cameras along the path, " << o.townFrames
       << " frames each per variant, variants interleaved:\n\n"
       << "| variant | mean ms | worst camera ms | vs old | CPU ms (all threads) | town triangles |\n|---|---:|---:|---:|---:|---:|\n";
@@ -838,7 +829,7 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
     std::snprintf(line, sizeof line,
                   "\nFragments per frame, in screens of %d x %d pixels (back faces culled): %.2f reach the depth test (%.2f to %.2f over the "
                   "cameras), %.2f pass it as drawn front to back.\n",
-                  o.width, o.height, mean(r.rasterised), *std::min_element(r.rasterised.begin(), r.rasterised.end()),
+                  o.e.width, o.e.height, mean(r.rasterised), *std::min_element(r.rasterised.begin(), r.rasterised.end()),
                   *std::max_element(r.rasterised.begin(), r.rasterised.end()), mean(r.passing));
     t << line;
     // What an image cache (drawing the town once and showing it again) would have to stay under.
@@ -885,109 +876,88 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
     return t.str();
 }
 
-std::string methodTable(const std::vector<Row>& rows) {
-    std::ostringstream t;
-    char line[1024];
-    t << "| actors | camera | method | step | APP | occlusion buffer | CULL 1 | roots | CULL 2 | poses | CULL 3 | list | APP+CULL | impostor batch | "
-         "morph | town draw | mesh draw | impostor draw | finish | DRAW | whole frame | fps | posed | impostors | hidden | triangles |\n"
-         "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const Row& r : rows) {
-        std::snprintf(line, sizeof line,
-                      "| %lld | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f | "
-                      "%.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %.0f | %.0f |\n",
-                      (long long)r.actors, r.camera.c_str(), r.method.c_str(), r.step, r.app, r.occlusionBuffer, r.cull1, r.roots, r.cull2,
-                      r.pose, r.cull3, r.list, r.appCull, r.batch, r.morph, r.town, r.meshes, r.quads, r.finish, r.draw, r.frame,
-                      1000.0 / r.frame, r.posed, r.impostors, r.hidden, r.triangles);
-        t << line;
-    }
-    return t.str();
+// The method rows: the CSV (its columns as scripts read them) and the Markdown table (fps added,
+// hidden before triangles).
+bench::ResultTable methodTable(const std::vector<Row>& rows) {
+    bench::ResultTable t({{"actors", "actors", "%lld"}, {"camera", "camera", "%s", true}, {"method", "method", "%s", true},
+                          {"step_ms", "step", "%.2f"}, {"app_ms", "APP", "%.2f"}, {"", "occlusion buffer", "%.2f"}, {"cull1_ms", "CULL 1", "%.2f"},
+                          {"roots_ms", "roots", "%.2f"}, {"cull2_ms", "CULL 2", "%.2f"}, {"pose_ms", "poses", "%.2f"}, {"cull3_ms", "CULL 3", "%.2f"},
+                          {"list_ms", "list", "%.2f"}, {"app_cull_ms", "APP+CULL", "%.2f"}, {"impostor_batch_ms", "impostor batch", "%.2f"},
+                          {"morph_ms", "morph", "%.2f"}, {"town_ms", "town draw", "%.1f"}, {"mesh_ms", "mesh draw", "%.1f"},
+                          {"impostor_draw_ms", "impostor draw", "%.1f"}, {"finish_ms", "finish", "%.1f"}, {"draw_ms", "DRAW", "%.1f"},
+                          {"frame_ms", "whole frame", "%.1f"}, {"", "fps", "%.1f"}, {"posed", "posed", "%.0f"}, {"impostors", "impostors", "%.0f"},
+                          {"draw_items", ""}, {"triangles", ""}, {"occlusion_buffer_ms", ""}, {"hidden", "hidden", "%.0f"}, {"", "triangles", "%.0f"}});
+    for (const Row& r : rows)
+        t.add({r.actors, r.camera, r.method, r.step, r.app, r.occlusionBuffer, r.cull1, r.roots, r.cull2, r.pose, r.cull3, r.list, r.appCull, r.batch,
+               r.morph, r.town, r.meshes, r.quads, r.finish, r.draw, r.frame, 1000.0 / r.frame, r.posed, r.impostors, r.items, r.triangles,
+               r.occlusionBuffer, r.hidden, r.triangles});
+    return t;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     Options o;
-    support::CommandLine cl("bench_frame",
-                            "The whole frame of the town crowd: traditional, actor, actor + impostor processing, each of the\n"
-                            "last two with occlusion culling, on the identical state, side by side; then APP+CULL with 1\n"
-                            "and 2 threads, the pipelined frame, and (when asked) the occlusion buffer's resolution.");
-    CLI::App& app = cl.app();
-    using support::wholeNumber;
-    app.add_option("--actors", o.actors, "actor counts (the scene's groups scaled to each)")
-        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
-    app.add_option("--cameras", o.cameras, "cameras")->delimiter(',')->type_name("NAME,...")
-        ->check(support::oneOf({"street", "overview"}));
-    app.add_option("--frames", o.frames, "measured ticks per camera")->type_name("N")->check(wholeNumber(1, 1'000'000));
-    app.add_option("--warmup", o.warmup, "ticks simulated before measuring")->type_name("N")->check(wholeNumber(0, 1'000'000));
-    app.add_option("--width", o.width, "image width")->type_name("W")->check(wholeNumber(16, 8192));
-    app.add_option("--height", o.height, "image height")->type_name("H")->check(wholeNumber(16, 8192));
+    bench::Experiment experiment("bench_frame",
+                                 "The whole frame of the town crowd: traditional, actor, actor + impostor processing, each of the\n"
+                                 "last two with occlusion culling, on the identical state, side by side; then APP+CULL with 1\n"
+                                 "and 2 threads, the pipelined frame, and (when asked) the occlusion buffer's resolution.",
+                                 bench::kScene | bench::kActorList | bench::kCameras | bench::kFrames | bench::kWarmup | bench::kImageSize |
+                                     bench::kCsv | bench::kMarkdown,
+                                 {.scene = testkit::townDefaultScene(), .actors = {2000, 6000, 10000}, .cameras = {"street", "overview"},
+                                  .frames = 30, .warmup = 60},
+                                 {.csvHelp = "also write the method rows as CSV"});
+    CLI::App& app = experiment.app();
     app.add_option("--scaling-actors", o.scalingActors, "actors of the 1-versus-2-threads section (0: skip)")
-        ->type_name("N")->check(wholeNumber(0, 10'000'000));
-    app.add_option("--scaling-frames", o.scalingFrames, "measured ticks of that section")->type_name("N")->check(wholeNumber(1, 1'000'000));
+        ->type_name("N")->check(CLI::Range(0, 10'000'000));
+    app.add_option("--scaling-frames", o.scalingFrames, "measured ticks of that section")->type_name("N")->check(CLI::Range(1, 1'000'000));
     app.add_option("--pipeline-actors", o.pipelineActors, "actors of the pipeline section (0: the scene's own)")
-        ->type_name("N")->check(wholeNumber(0, 10'000'000));
+        ->type_name("N")->check(CLI::Range(0, 10'000'000));
     app.add_option("--pipeline-frames", o.pipelineFrames, "frames of each pipeline run (0: skip)")
-        ->type_name("N")->check(wholeNumber(0, 1'000'000));
+        ->type_name("N")->check(CLI::Range(0, 1'000'000));
     app.add_option("--sections", o.sections,
                    "what to run: methods (all methods side by side), scaling (1 and 2 threads), pipeline; not run unless "
                    "named: town (the town's DRAW alone, old and new drawing), occlusion (buffer resolution against rejection and time), "
                    "visibility (what a perfect occlusion culler could reach, from an ID render with full depth), regions (the shared step "
                    "of large crowds, one region against the scene's, 1 and 2 threads)")
-        ->delimiter(',')->type_name("NAME,...")->check(support::oneOf({"methods", "scaling", "pipeline", "town", "occlusion", "visibility", "regions"}));
+        ->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("NAME,...")->check(CLI::IsMember({"methods", "scaling", "pipeline", "town", "occlusion", "visibility", "regions"}));
     app.add_option("--region-actors", o.regionActors, "crowds of the regions section (the shared step, one region against the scene's)")
-        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 10'000'000));
+        ->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,N,...")->check(CLI::Range(1, 10'000'000));
     app.add_option("--region-frames", o.regionFrames, "measured steps per thread count in the regions section")
-        ->type_name("N")->check(wholeNumber(2, 1'000'000));
+        ->type_name("N")->check(CLI::Range(2, 1'000'000));
     app.add_option("--occlusion-actors", o.occlusionActors, "actors of the occlusion section")
-        ->type_name("N")->check(wholeNumber(1, 10'000'000));
+        ->type_name("N")->check(CLI::Range(1, 10'000'000));
     app.add_option("--occlusion-rests", o.occlusionRests, "rest lengths of the occlusion section's resting rows (default: the scene's)")
-        ->delimiter(',')->type_name("N,N,...")->check(wholeNumber(1, 1000));
+        ->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->type_name("N,N,...")->check(CLI::Range(1, 1000));
     app.add_flag("--occlusion-path", o.occlusionPath, "the occlusion section also follows the scene's camera path once, tick by tick");
-    app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section in the common accuracy CSV (one record per buffer resolution and camera)")->type_name("FILE");
-    app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(wholeNumber(1, 10'000'000));
+    app.add_option("--occlusion-csv", o.occlusionCsv, "also write the occlusion section in the common accuracy CSV (one record per buffer resolution and camera)")->type_name("FILE")->check(bench::fileToWrite());
+    experiment.markOutput("--occlusion-csv");
+    app.add_option("--town-actors", o.townActors, "actors of the town section")->type_name("N")->check(CLI::Range(1, 10'000'000));
     app.add_option("--town-samples", o.townSamples, "cameras along the path in the town section")
-        ->type_name("N")->check(wholeNumber(1, 10'000));
+        ->type_name("N")->check(CLI::Range(1, 10'000));
     app.add_option("--town-frames", o.townFrames, "frames per camera and variant in the town section")
-        ->type_name("N")->check(wholeNumber(1, 10'000));
-    app.add_option("--scene", o.scene, "scene file")->type_name("FILE")->check(support::existingFile());
-    app.add_option("--csv", o.csv, "also write the method rows as CSV")->type_name("FILE");
-    app.add_option("--markdown", o.markdown, "also write the tables as Markdown")->type_name("FILE");
-    if (const auto code = cl.parse(argc, argv)) return *code;
+        ->type_name("N")->check(CLI::Range(1, 10'000));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
+    o.e = experiment.spec();
 
     std::ostringstream report;
     try {
-        auto context = createContext({.width = o.width, .height = o.height, .window = false});
+        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
         std::vector<Row> rows;
         std::uint64_t ticks = 0;
-        for (std::int64_t n : o.has("methods") ? o.actors : std::vector<std::int64_t>{}) {
+        for (std::int64_t n : o.has("methods") ? o.e.actors : std::vector<std::int64_t>{}) {
             std::fprintf(stderr, "bench_frame: %lld actors: building, baking impostors, %d ticks per camera...\n", (long long)n,
-                         o.frames);
+                         o.e.frames);
             const auto part = compareMethods(o, n, context, &ticks);
             rows.insert(rows.end(), part.begin(), part.end());
         }
         if (o.has("methods")) {
             report << "Identical state: every method saw the same state digest on each of " << ticks << " ticks.\n\n";
-            report << "Milliseconds per frame, " << o.width << " x " << o.height << " headless, " << context->description()
-                   << ", one thread; means over " << o.frames << " ticks (`bench_frame";
-            for (int i = 1; i < argc; ++i) {  // the options that change the figures, not where they go
-                const std::string_view arg = argv[i];
-                if (arg == "--markdown" || arg == "--csv" || arg == "--occlusion-csv") ++i;
-                else if (!arg.starts_with("--markdown=") && !arg.starts_with("--csv=") && !arg.starts_with("--occlusion-csv="))
-                    report << ' ' << arg;
-            }
-            report << "`).\n\n" << methodTable(rows);
+            report << "Milliseconds per frame, " << o.e.width << " x " << o.e.height << " headless, " << context->description()
+                   << ", one thread; means over " << o.e.frames << " ticks (`" << experiment.reproduction() << "`).\n\n"
+                   << methodTable(rows).markdown();
         }
-        if (!o.csv.empty()) {
-            std::ofstream csv(o.csv);
-            csv << "actors,camera,method,step_ms,app_ms,cull1_ms,roots_ms,cull2_ms,pose_ms,cull3_ms,list_ms,app_cull_ms,impostor_batch_ms,"
-                   "morph_ms,town_ms,mesh_ms,impostor_draw_ms,finish_ms,draw_ms,frame_ms,posed,impostors,draw_items,triangles,occlusion_buffer_ms,hidden\n";
-            for (const Row& r : rows)
-                csv << r.actors << ',' << r.camera << ',' << r.method << ',' << r.step << ',' << r.app << ',' << r.cull1 << ',' << r.roots
-                    << ',' << r.cull2 << ',' << r.pose << ',' << r.cull3 << ',' << r.list << ',' << r.appCull << ',' << r.batch << ','
-                    << r.morph << ',' << r.town << ',' << r.meshes << ',' << r.quads << ',' << r.finish << ',' << r.draw << ','
-                    << r.frame << ',' << r.posed << ',' << r.impostors << ',' << r.items << ',' << r.triangles << ',' << r.occlusionBuffer << ','
-                    << r.hidden << '\n';
-        }
+        if (!o.e.csv.empty()) bench::writeWhole(o.e.csv, methodTable(rows).csv());
         if (o.has("scaling") && o.scalingActors > 0) {
             std::fprintf(stderr, "bench_frame: %lld actors with 1 and 2 threads...\n", (long long)o.scalingActors);
             const auto scaling = threadScaling(o);
@@ -1008,7 +978,7 @@ int main(int argc, char** argv) {
             const auto regionRows = regionSweep(o);
             const double after = availableSpeedup();
             report << "\nThe shared step (walkers, idle groups, gaze, flock) of large crowds, the town grown at the scene's density, "
-                   << "milliseconds per step, means over " << o.regionFrames << " steps per thread count after " << o.warmup
+                   << "milliseconds per step, means over " << o.regionFrames << " steps per thread count after " << o.e.warmup
                    << " (ghosts and handovers per step; peak memory of the process so far). A loop with nothing shared ran "
                    << std::fixed << std::setprecision(2) << before << "x and " << after << "x as fast on 2 threads as on 1 before and "
                    << "after the section: the most the machine, shared with other work, could give.\n\n" << std::defaultfloat
@@ -1040,7 +1010,7 @@ int main(int argc, char** argv) {
             std::int64_t actors = 0;
             const auto sweep = occlusionSweep(o, context, &actors);
             report << "\nOcclusion buffer resolution against rejection and time, actor + impostors processing, " << actors
-                   << " actors, one thread, means over " << o.frames << " ticks (\"hidden\": actors rejected by occlusion, as a share of those "
+                   << " actors, one thread, means over " << o.e.frames << " ticks (\"hidden\": actors rejected by occlusion, as a share of those "
                    << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less"
                    << "; \"rested\": share of frames the stage rested after one that hid little; the path camera follows the "
                    << "scene's camera path once, means over its ticks):\n\n"
@@ -1061,7 +1031,7 @@ int main(int argc, char** argv) {
                 a.msPhase = "app_cull";
                 // A buffer and its pyramid: four bytes a pixel, a third more for the coarser levels.
                 a.memoryBytes = double(std::int64_t(row.width) * row.height * 16 / 3);
-                a.scene = sim::sceneName(o.scene);
+                a.scene = sim::sceneName(o.e.scene);
                 a.camera = row.camera;
                 a.actors = actors;
                 csv->add(a);
@@ -1086,7 +1056,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "bench_frame: the visibility bound, %lld actors...\n", (long long)o.occlusionActors);
             std::int64_t actors = 0;
             const auto bound = visibilityBound(o, context, &actors);
-            report << "\nWhat occlusion culling could reach, " << actors << " actors, " << o.width << "x" << o.height
+            report << "\nWhat occlusion culling could reach, " << actors << " actors, " << o.e.width << "x" << o.e.height
                    << " (an ID render with full depth: actors with a visible pixel; a conservative culler keeps them all):\n\n"
                    << "| camera | processing | drawn as meshes without occlusion | of those with a visible pixel | best possible reduction | "
                    << "visible past the town alone | best with the town as the only occluder | "
@@ -1105,10 +1075,10 @@ int main(int argc, char** argv) {
             const TownResult town = townDraw(o, context);
             report << (report.tellp() > 0 ? "\n" : "") << townTable(town, o, context->description());
         }
+        std::fputs(report.str().c_str(), stdout);
+        if (!o.e.markdown.empty()) bench::writeWhole(o.e.markdown, report.str());
     } catch (const std::exception& e) {
         fail(e.what());
     }
-    std::fputs(report.str().c_str(), stdout);
-    if (!o.markdown.empty()) std::ofstream(o.markdown) << report.str();
     return 0;
 }
