@@ -19,8 +19,7 @@
 #include <vector>
 
 #include "KeyPoseStudy.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
+#include "throng/bench/Experiment.h"
 #include "throng/vtk/Chart.h"
 
 using namespace throng;
@@ -32,36 +31,38 @@ int main(int argc, char** argv) {
     double sd = 0.0, next = 0.5, timeLimit = 10.0;
     bool intermittent = false;
     std::vector<std::uint32_t> capacities;
-    support::CommandLine cl("bench_keypose_selection",
-                            "Seed 004 Figure 7: actors a key-pose cache serves against its size, for the greedy, exact (GLPK),\n"
-                            "first-n and random-n selections, with the greedy/exact gap and the solve times. Writes\n"
-                            "keypose-selection.csv and .png (the plots through VTK: without a display, run under xvfb-run -a).");
-    CLI::App& app = cl.app();
+    // Not a frame-level experiment (no world, no ticks): the harness gives it its command line only.
+    bench::Experiment experiment("bench_keypose_selection",
+                                 "Seed 004 Figure 7: actors a key-pose cache serves against its size, for the greedy, exact (GLPK),\n"
+                                 "first-n and random-n selections, with the greedy/exact gap and the solve times. Writes\n"
+                                 "keypose-selection.csv and .png (the plots through VTK: without a display, run under xvfb-run -a).",
+                                 0, {});
+    CLI::App& app = experiment.app();
     app.add_option("--out", outText, "folder for the report")->type_name("DIR");
     app.add_option("--demands", demandsFile, "demands to measure instead of random instances (CSV: frame,a,b,actors)")
         ->type_name("FILE")
-        ->check(support::existingFile());
-    app.add_option("--frames", frames, "random instances (frames)")->type_name("N")->check(support::wholeNumber(1, 1000000));
-    app.add_option("--characters", characters, "actors per random instance")->type_name("N")->check(support::wholeNumber(1, 1000000));
+        ->check(CLI::ExistingFile);
+    app.add_option("--frames", frames, "random instances (frames)")->type_name("N")->check(CLI::Range(1, 1000000));
+    app.add_option("--characters", characters, "actors per random instance")->type_name("N")->check(CLI::Range(1, 1000000));
     app.add_option("--poses", poses, "key-poses of a random instance (with --demands: the key-poses first-n and random-n choose from; default the largest named + 1)")
         ->type_name("N")
-        ->check(support::wholeNumber(2, 1 << 24));
+        ->check(CLI::Range(2, 1 << 24));
     app.add_option("--sd", sd, "standard deviation of the normal pose distribution, in poses")
         ->type_name("X")
-        ->check(support::positiveNumber())
+        ->check(bench::finiteNumber(1e-9, 1e9))
         ->default_str("poses / 6");
     app.add_option("--next", next, "probability that an actor's second pose is the next one (else a random one)")
         ->type_name("P")
-        ->check(support::number(0.0, 1.0));
+        ->check(bench::finiteNumber(0.0, 1.0));
     app.add_flag("--intermittent", intermittent, "one pose per actor (seed 004 §3) instead of two");
-    app.add_option("--seed", seed, "seed of the first random instance")->type_name("N")->check(support::wholeNumber(0, 4000000000LL));
+    app.add_option("--seed", seed, "seed of the first random instance")->type_name("N")->check(CLI::Range(std::uint32_t(0), std::uint32_t(4000000000u)));
     app.add_option("--capacities", capacities, "cache sizes to measure")
         ->type_name("N,N,...")
         ->delimiter(',')
-        ->check(support::wholeNumber(0, 1 << 24))
+        ->check(CLI::Range(0, 1 << 24))
         ->default_str("1 to the number of key-poses");
-    app.add_option("--time-limit", timeLimit, "seconds allowed to each exact solve")->type_name("S")->check(support::positiveNumber());
-    if (const auto code = cl.parse(argc, argv)) return *code;
+    app.add_option("--time-limit", timeLimit, "seconds allowed to each exact solve")->type_name("S")->check(bench::finiteNumber(1e-9, 1e9));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
     const bool posesGiven = app.count("--poses") > 0;
     try {
         const std::filesystem::path out = outText;

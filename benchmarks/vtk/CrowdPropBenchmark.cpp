@@ -32,8 +32,7 @@
 #include "throng/render/GlContext.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/testkit/TownSpread.h"
-#include "throng/support/CommandLine.h"
-#include "throng/support/Validators.h"
+#include "throng/bench/Experiment.h"
 #include "throng/vtk/CameraFromVtk.h"
 #include "throng/vtk/Chart.h"
 #include "throng/vtk/CrowdProp.h"
@@ -154,13 +153,14 @@ void run(std::int64_t count, const Options& o) {
 
 int main(int argc, char** argv) {
     Options o;
-    support::CommandLine line("bench_vtk_crowd_prop", "A crowd drawn inside VTK (CrowdProp) beside Throng's own renderer, same state and camera");
-    CLI::App& app = line.app();
-    app.add_option("--actors", o.actors, "crowd sizes")->delimiter(',')->check(support::wholeNumber(1, 1000000));
-    app.add_option("--frames", o.frames, "measured frames per size")->check(support::wholeNumber(1, 100000));
-    app.add_option("--width", o.width, "image width")->check(support::wholeNumber(16, 8192));
-    app.add_option("--height", o.height, "image height")->check(support::wholeNumber(16, 8192));
-    if (const auto code = line.parse(argc, argv)) return *code;
+    bench::Experiment experiment("bench_vtk_crowd_prop", "A crowd drawn inside VTK (CrowdProp) beside Throng's own renderer, same state and camera",
+                                 0, {});
+    CLI::App& app = experiment.app();
+    app.add_option("--actors", o.actors, "crowd sizes")->delimiter(',')->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(1, 1000000));
+    app.add_option("--frames", o.frames, "measured frames per size")->check(CLI::Range(1, 100000));
+    app.add_option("--width", o.width, "image width")->check(CLI::Range(16, 8192));
+    app.add_option("--height", o.height, "image height")->check(CLI::Range(16, 8192));
+    if (const auto code = experiment.parse(argc, argv)) return *code;
     if (!throng::vtk::displayAvailable()) {
         std::fprintf(stderr, "bench_vtk_crowd_prop: no X display (Debian's VTK renders through X): run under xvfb-run -a\n");
         return 2;

@@ -5,13 +5,46 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
 namespace throng::bench {
+namespace {
+
+// --help as the tools lay it out: "--frames N   measured ticks per camera (INT in [1 - 1000000])
+// (default: 2)": the value's name beside the option, its checks and default after the description.
+class HelpLayout : public CLI::Formatter {
+public:
+    std::string make_option_opts(const CLI::Option* opt) const override {
+        if (opt->get_type_size() == 0 || opt->get_positional()) return {};
+        const std::string type = opt->get_type_name();
+        return " " + type.substr(0, type.find(':'));
+    }
+    std::string make_option_desc(const CLI::Option* opt) const override {
+        std::string out = opt->get_description();
+        const std::string type = opt->get_type_name();
+        const auto colon = type.find(':');
+        const std::string name = type.substr(0, colon);
+        if (colon != std::string::npos && type.substr(colon + 1) != name) out += " (" + type.substr(colon + 1) + ")";
+        if (!opt->get_default_str().empty()) out += " (default: " + opt->get_default_str() + ")";
+        return out;
+    }
+};
+
+// A number as people write it: 0.5, 1e+06.
+std::string shown(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+}  // namespace
 
 Experiment::Experiment(std::string program, std::string description, unsigned options, ExperimentSpec defaults, ExperimentNames names)
     : program_(std::move(program)), options_(options), spec_(std::move(defaults)), names_(std::move(names)), app_(std::move(description), program_) {
+    app_.formatter(std::make_shared<HelpLayout>());
     app_.option_defaults()->always_capture_default();
     // A single-valued option given twice is refused (CLI11's default), rather than one value silently winning.
     if (options & kScene) app_.add_option("--scene", spec_.scene, "scene file")->type_name("FILE")->check(CLI::ExistingFile);
@@ -95,10 +128,10 @@ CLI::Validator finiteNumber(double lo, double hi) {
             char* end = nullptr;
             const double v = std::strtod(text.c_str(), &end);
             if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-                return "expects a number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" + text + "'";
+                return "expects a number from " + shown(lo) + " to " + shown(hi) + ", got '" + text + "'";
             return {};
         },
-        "[" + std::to_string(lo) + " to " + std::to_string(hi) + "]");
+        "[" + shown(lo) + " to " + shown(hi) + "]");
 }
 
 CLI::Validator fileToWrite() {
