@@ -90,10 +90,7 @@ std::vector<WallClockRow> measureWallClock(const std::vector<std::size_t>& sizes
         }
         progress("wall clock: " + std::to_string(n) + " actors");
         Crowd crowd;
-        CostModelSceneOptions options;
-        options.counts = CascadeCounts::scaled(n);
-        options.group = true;
-        const CostModelScene scene = buildCostModelScene(crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
+        const CostModelScene scene = buildTable2Scene(crowd, n);
         ActorProcessor p(crowd);
         WallClockRow row;
         row.actors = n;

@@ -35,10 +35,7 @@ struct Scene {
 
 Scene table2Scene(std::size_t actors) {
     Scene s;
-    CostModelSceneOptions options;
-    options.counts = CascadeCounts::scaled(actors);
-    options.group = true;
-    CostModelScene built = buildCostModelScene(*s.crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
+    CostModelScene built = buildTable2Scene(*s.crowd, actors);
     s.root = built.root;
     s.camera = built.camera;
     s.time = built.time;

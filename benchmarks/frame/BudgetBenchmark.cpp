@@ -51,8 +51,6 @@ namespace {
 
 // The experiment's own settings (the common ones are in bench::ExperimentSpec).
 struct Options {
-    std::vector<double> starts{0.0, 9.0, 15.0};
-    int errorEvery = 3;
     std::vector<std::string> rungs{
         "lod-scale=0.5 impostor-distance=120 key-pose-distance=60 morph-budget=16",
         "lod-scale=0.75 impostor-distance=80 key-pose-distance=40 morph-budget=8",
@@ -105,13 +103,12 @@ int main(int argc, char** argv) {
     bench::Experiment experiment("bench_budget",
                                  "The ladder of throng-town --frame-budget: each rung's APP+CULL+DRAW and image error against every "
                                  "approximation off, on the identical states; the allocator at each --budgets against the fixed rungs.",
-                                 bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kImageSize | bench::kMarkdown,
-                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .frames = 12, .warmup = 30},
+                                 bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kImageSize | bench::kMarkdown |
+                                     bench::kStarts | bench::kErrorEvery,
+                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .frames = 12, .warmup = 30, .starts = {0.0, 9.0, 15.0},
+                                  .errorEvery = 3},
                                  {.frames = "--frames", .framesHelp = "measured ticks from each start"});
     CLI::App& app = experiment.app();
-    app.add_option("--starts", o.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(0.0, 1e6));
-    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(CLI::Range(1, 100000));
     app.add_option("--rungs", o.rungs, "the candidate rungs, most accurate first ('lod-scale=X impostor-distance=D key-pose-distance=K morph-budget=N [render-scale=S] [town-lod-scale=T]')")
         ->delimiter(';')->type_name("RUNG;RUNG;...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--budgets", o.budgets, "also run the allocator at these budgets (ms) on the measured ladder")->delimiter(',')
@@ -187,12 +184,12 @@ int main(int argc, char** argv) {
             const double step = world->description().step;
             std::vector<Image> frames(ms.size());
             int tick = 0;
-            const int total = int(o.starts.size()) * (e.frames + 2);
-            for (double start : o.starts)
+            const int total = int(e.starts.size()) * (e.frames + 2);
+            for (double start : e.starts)
                 for (int f = -2; f < e.frames; ++f, ++tick) {
                     const FrameContext& now = world->step();
                     const Camera camera = world->camera().at(start + step * (f + 2), aspect);
-                    const bool measureError = withReference && f >= 0 && f % o.errorEvery == 0;
+                    const bool measureError = withReference && f >= 0 && f % e.errorEvery == 0;
                     bench::runOnSameState(world->crowd(), ms.size(), tick, [&](std::size_t v) {
                         Method& m = ms[v];
                         if (m.allocator) {
@@ -249,7 +246,7 @@ int main(int argc, char** argv) {
         if (!o.fromLadder.empty()) ladder = sim::readBudgetLadder(o.fromLadder);
 
         if (fixedCount > 0) {
-            report << "### " << world->crowd().size() << " actors, " << e.frames << " frames from each of " << o.starts.size()
+            report << "### " << world->crowd().size() << " actors, " << e.frames << " frames from each of " << e.starts.size()
                    << " points of the camera path, " << e.width << "x" << e.height << "\n\n";
             bench::ResultTable rungs({{"", "rung", "%s", true}, {"", "APP+CULL+DRAW ms", "%.1f"}, {"", "PSNR dB", "%.2f"}, {"", "SSIM", "%.4f"},
                                       {"", "pixels off > 8", "%.2f %%"}, {"", "on the ladder", "%s", true}});

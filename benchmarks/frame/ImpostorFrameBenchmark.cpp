@@ -56,8 +56,6 @@ namespace {
 // The experiment's settings: the common ones (e) and its own.
 struct Options {
     bench::ExperimentSpec e;     // scene, actors (one count, 0: the scene's), frames from each start, warmup, size, outputs
-    std::vector<double> starts{0.0, 9.0, 15.0};  // camera path times where measured runs start
-    int errorEvery = 4;          // ticks between image comparisons
     int budget = 16;             // new morphed cells per atlas and frame
     int poolSlots = 48;          // pool layers per atlas
     int gridStep = 4;            // the CPU grid methods' warp grid (pixels)
@@ -193,11 +191,11 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
     const double aspect = double(o.e.width) / double(o.e.height);
     std::vector<Image> frames(methods.size());
     const double step = world->description().step;
-    for (double start : o.starts)
+    for (double start : o.e.starts)
     for (int f = -2; f < o.e.frames; ++f) {  // two unmeasured ticks warm the GL and the pools
         const FrameContext& now = world->step();
         const Camera camera = world->camera().at(start + step * (f + 2), aspect);
-        const bool measureError = f >= 0 && f % o.errorEvery == 0;
+        const bool measureError = f >= 0 && f % o.e.errorEvery == 0;
         bench::runOnSameState(world->crowd(), methods.size(), f + 2, [&](std::size_t m) {
             const ActorFrameStatistics s = methods[m].processor->processFrame(world->root(), camera, now.time);
             Stopwatch watch;
@@ -219,7 +217,7 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         rows[m].divide();
     }
     std::fprintf(stderr, "bench_impostor_frame: %zu actors, %zu runs of %d frames along the path done\n", world->crowd().size(),
-                 o.starts.size(), o.e.frames);
+                 o.e.starts.size(), o.e.frames);
     return rows;
 }
 
@@ -337,19 +335,17 @@ int main(int argc, char** argv) {
                                  "Far actors as impostors against drawing them as meshes, on the identical state: APP+CULL, DRAW, the "
                                  "impostor pass and its morphing, and the image error against all skinned.",
                                  bench::kScene | bench::kActorCount | bench::kFrames | bench::kWarmup | bench::kImageSize | bench::kMarkdown |
-                                     bench::kAccuracyCsv,
-                                 {.scene = testkit::townDefaultScene(), .actors = {0}, .frames = 16, .warmup = 30},
+                                     bench::kAccuracyCsv | bench::kStarts | bench::kErrorEvery,
+                                 {.scene = testkit::townDefaultScene(), .actors = {0}, .frames = 16, .warmup = 30, .starts = {0.0, 9.0, 15.0},
+                                  .errorEvery = 4},
                                  {.frames = "--frames", .framesHelp = "measured ticks from each start, the camera following its path",
                                   .accuracyCsvHelp = "write the methods' image error and DRAW time in the common accuracy CSV"});
     CLI::App& app = experiment.app();
-    app.add_option("--starts", o.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(0.0, 1e6));
     app.add_option("--grid", o.gridStep, "warp grid (pixels) of the CPU grid methods")->type_name("N")->check(CLI::Range(2, 64));
     app.add_option("--distances", o.distances, "other impostor distances (m), each with the default morphing")->delimiter(',')
         ->type_name("M,M,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(1e-3, 1e6));
     app.add_option("--grid-budgets", o.gridBudgets, "budgets of the CPU grid methods")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->check(CLI::Range(0, 100000));
-    app.add_option("--error-every", o.errorEvery, "ticks between image comparisons")->type_name("N")->check(CLI::Range(1, 100000));
     app.add_option("--budget", o.budget, "new morphed cells per atlas and frame for the budgeted pools")->type_name("N")->check(CLI::Range(0, 100000));
     app.add_option("--pool", o.poolSlots, "pool layers per atlas")->type_name("N")->check(CLI::Range(1, 2048));
     app.add_option("--crowd-actors", o.crowdActors, "crowd sizes of the crowd section")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
@@ -367,7 +363,7 @@ int main(int argc, char** argv) {
         if (o.has("methods")) {
             const std::vector<Row> rows = runMethods(o, context);
             report << "### " << (o.e.actors.front() ? std::to_string(o.e.actors.front()) : std::string("the scene's")) << " actors, " << o.e.frames
-                   << " frames from each of " << o.starts.size() << " points of the camera path, " << o.e.width << "x" << o.e.height << " (ms per frame)\n\n"
+                   << " frames from each of " << o.e.starts.size() << " points of the camera path, " << o.e.width << "x" << o.e.height << " (ms per frame)\n\n"
                    << methodsTable(rows) << "\n";
             if (!o.e.accuracyCsv.empty()) writeAccuracyCsv(o.e.accuracyCsv, rows, o);
         }

@@ -57,7 +57,6 @@ namespace {
 struct Options {
     bench::ExperimentSpec e;    // scene, actor counts, cameras, measured ticks per camera, warmup, size, outputs
     std::vector<std::int64_t> sizes{8, 16, 32, 64, 128, 256};
-    int errorEvery = 5;         // ticks between accuracy measurements (images read back, vertices compared)
     int errorSamples = 48;      // cached actors compared per method and measured tick
     int pathFrames = 90;        // frames along the camera path for Fig. 11 (0: skip)
     double distance = 0;        // start of the band (0: the scene's declaration, else 15 m)
@@ -237,7 +236,7 @@ Result run(const Options& o, std::int64_t actors, const std::shared_ptr<GlContex
         for (int f = -2; f < o.e.frames; ++f) {  // two unmeasured ticks fill the caches and warm the GL
             const FrameContext& now = world->step();
             const double stepMs = world->lastStepMs();
-            const bool measureError = f >= 0 && f % o.errorEvery == 0;
+            const bool measureError = f >= 0 && f % o.e.errorEvery == 0;
             bench::runOnSameState(world->crowd(), methods.size(), f + 2, [&](std::size_t m) {
                 ActorProcessor& p = *methods[m].processor;
                 const ActorFrameStatistics s = p.processFrame(world->root(), camera, now.time);
@@ -436,12 +435,13 @@ int main(int argc, char** argv) {
                                  "Seed 004's key-pose cache on the town crowd: plain skinning, intermittent and interpolative caches\n"
                                  "of each size, on the identical state, side by side; frame time, cache use and accuracy.",
                                  bench::kScene | bench::kActorList | bench::kCameras | bench::kFrames | bench::kWarmup | bench::kImageSize |
-                                     bench::kCsv | bench::kAccuracyCsv | bench::kMarkdown | bench::kPlots,
-                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .cameras = {"street", "overview"}, .frames = 20, .warmup = 60},
-                                 {.accuracyCsvHelp = "write the accuracy rows in the common accuracy CSV"});
+                                     bench::kCsv | bench::kAccuracyCsv | bench::kMarkdown | bench::kPlots | bench::kErrorEvery,
+                                 {.scene = testkit::townDefaultScene(), .actors = {10000}, .cameras = {"street", "overview"}, .frames = 20, .warmup = 60,
+                                  .errorEvery = 5},
+                                 {.accuracyCsvHelp = "write the accuracy rows in the common accuracy CSV",
+                                  .errorEveryHelp = "ticks between accuracy measurements"});
     CLI::App& app = experiment.app();
     app.add_option("--sizes", o.sizes, "cache sizes (key-poses per template)")->delimiter(',')->type_name("N,N,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(std::int64_t(1), std::int64_t(65535)));
-    app.add_option("--error-every", o.errorEvery, "ticks between accuracy measurements")->type_name("N")->check(CLI::Range(1, 1'000'000));
     app.add_option("--error-samples", o.errorSamples, "cached actors compared per method and measured tick")
         ->type_name("N")->check(CLI::Range(1, 1'000'000));
     app.add_option("--path-frames", o.pathFrames, "frames along the camera path for the served share (0: skip)")
@@ -483,7 +483,7 @@ int main(int argc, char** argv) {
                << ", one thread, the GL finished after each pass; means over " << o.e.frames << " ticks (`" << experiment.reproduction();
         std::vector<Row> all;
         for (const Result& r : results) all.insert(all.end(), r.rows.begin(), r.rows.end());
-        report << "`). Vertex and image errors against plain skinning of the same tick, every " << o.errorEvery << " ticks.\n\n"
+        report << "`). Vertex and image errors against plain skinning of the same tick, every " << o.e.errorEvery << " ticks.\n\n"
                << table(all).markdown();
         if (!o.e.csv.empty()) bench::writeWhole(o.e.csv, table(all).csv());
         if (!o.e.accuracyCsv.empty()) {

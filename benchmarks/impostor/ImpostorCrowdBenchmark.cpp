@@ -17,6 +17,7 @@
 #include <memory>
 #include <random>
 
+#include "throng/bench/MeanCounters.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
@@ -130,12 +131,8 @@ void ImpostorCrowd(benchmark::State& state) {
         t += 1.0 / 30.0;
         ++frames;
     }
-    const double f = static_cast<double>(frames);
-    state.counters["impostors"] = impostors / f;
-    state.counters["cellRequests"] = requests / f;
-    state.counters["cellsMorphed"] = morphed / f;
-    state.counters["morphMs"] = morphMs / f;
-    state.counters["processMs"] = processMs / f;
+    bench::setMeanCounters(state, double(frames), {{"impostors", impostors}, {"cellRequests", requests}, {"cellsMorphed", morphed},
+                                                   {"morphMs", morphMs}, {"processMs", processMs}});
 }
 BENCHMARK(ImpostorCrowd)->Arg(1000)->Arg(4000)->Arg(16000)->Iterations(6)->Unit(benchmark::kMillisecond);
 
@@ -166,14 +163,9 @@ void HybridScene(benchmark::State& state) {
         t += 1.0 / 30.0;
         ++frames;
     }
-    const double f = static_cast<double>(frames);
-    state.counters["impostors"] = impostors / f;
-    state.counters["actorsPosed"] = posed / f;
-    state.counters["skeletonNodes"] = nodes / f;
-    state.counters["cellsMorphed"] = morphed / f;
-    state.counters["processMs"] = processMs / f;
-    state.counters["batchMorphMs"] = batchMs / f;
-    state.counters["drawMs"] = drawMs / f;
+    bench::setMeanCounters(state, double(frames), {{"impostors", impostors}, {"actorsPosed", posed}, {"skeletonNodes", nodes},
+                                                   {"cellsMorphed", morphed}, {"processMs", processMs}, {"batchMorphMs", batchMs},
+                                                   {"drawMs", drawMs}});
 }
 BENCHMARK(HybridScene)->Arg(10000)->Iterations(4)->Unit(benchmark::kMillisecond);
 

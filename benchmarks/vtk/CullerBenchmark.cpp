@@ -27,6 +27,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 
+#include "throng/bench/MeanCounters.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/testkit/TownSpread.h"
@@ -133,23 +134,13 @@ void BM_CullActorProps(benchmark::State& state) {
     }
     const double n = double(frames);
     state.counters["props"] = double(actors);
-    state.counters["vtk_kept"] = keptVtk / n;
-    state.counters["cascade_kept"] = keptCascade / n;
-    state.counters["vtk_move_ms"] = vtkMoveMs / n;
-    state.counters["vtk_cull_ms"] = vtkCullMs / n;
-    state.counters["vtk_cull_cached_ms"] = vtkCachedMs / n;
     // The Reference Points are simulation state both ways need: the cascade computes them (phase 1),
     // VTK's way reads them, so its total counts the cascade's phase-1 time too.
-    state.counters["vtk_total_ms"] = (refpointMs + vtkMoveMs + vtkCullMs) / n;
-    state.counters["cascade_cull_ms"] = cascadeMs / n;
-    state.counters["cascade_cull12_ms"] = cascadePhasesMs / n;
-    state.counters["refpoint_ms"] = refpointMs / n;
-    state.counters["bounds_ms"] = boundsMs / n;
-    state.counters["cull1_ms"] = cull1Ms / n;
-    state.counters["roots_ms"] = rootsMs / n;
-    state.counters["cull2_ms"] = cull2Ms / n;
-    state.counters["cascade_move_kept_ms"] = keptMoveMs / n;
-    state.counters["cascade_total_ms"] = (cascadeMs + keptMoveMs) / n;
+    bench::setMeanCounters(state, n, {{"vtk_kept", keptVtk}, {"cascade_kept", keptCascade}, {"vtk_move_ms", vtkMoveMs}, {"vtk_cull_ms", vtkCullMs},
+                                      {"vtk_cull_cached_ms", vtkCachedMs}, {"vtk_total_ms", refpointMs + vtkMoveMs + vtkCullMs},
+                                      {"cascade_cull_ms", cascadeMs}, {"cascade_cull12_ms", cascadePhasesMs}, {"refpoint_ms", refpointMs},
+                                      {"bounds_ms", boundsMs}, {"cull1_ms", cull1Ms}, {"roots_ms", rootsMs}, {"cull2_ms", cull2Ms},
+                                      {"cascade_move_kept_ms", keptMoveMs}, {"cascade_total_ms", cascadeMs + keptMoveMs}});
     state.counters["cull_ratio"] = vtkCullMs / cascadeMs;
     state.counters["total_ratio"] = (refpointMs + vtkMoveMs + vtkCullMs) / (cascadeMs + keptMoveMs);
 }

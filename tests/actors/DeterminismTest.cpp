@@ -13,7 +13,7 @@
 #include "throng/scenegraph/ThreadTeam.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 template <class T>

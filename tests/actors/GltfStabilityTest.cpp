@@ -14,9 +14,7 @@
 #include "throng/scenegraph/MeshDrawable.h"
 
 using namespace throng;
-using throng::test::GltfTestFile;
-using throng::test::animate;
-using throng::test::twoJointRig;
+using namespace throng::testkit;
 using J = nlohmann::json;
 
 namespace {

@@ -15,7 +15,7 @@
 #include "throng/scenegraph/Camera.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 

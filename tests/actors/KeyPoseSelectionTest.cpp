@@ -394,9 +394,9 @@ namespace {
 // The skinned bar of ActorTestScenes with clips "bend" (2 s: the arm turns to 90 degrees over the
 // first second and holds) and "wave" (1 s: -45 degrees and back).
 ActorTemplateBuilder barBuilder(const std::string& name, bool withClips = true) {
-    ActorTemplateBuilder b = throng::testing::skinnedBarBuilder(name, std::numeric_limits<double>::infinity());
+    ActorTemplateBuilder b = throng::testkit::skinnedBarBuilder(name, std::numeric_limits<double>::infinity());
     if (withClips) {
-        b.addClip(throng::testing::barBendClip());
+        b.addClip(throng::testkit::barBendClip());
         ClipChannel wave;
         wave.node = 1;
         wave.times = {0.0f, 0.5f, 1.0f};

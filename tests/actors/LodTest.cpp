@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/scenegraph/Camera.h"
@@ -19,7 +20,7 @@
 #include "throng/scenegraph/OpCounter.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 
@@ -37,21 +38,21 @@ std::unique_ptr<OneActor> standingActor(std::shared_ptr<const ActorTemplate> tmp
     return s;
 }
 
-Camera cameraAt(double distance) {
-    Camera c;
-    c.setPerspective(0.8, 1.0, 0.1, 5000.0);
-    c.setLookAt(Vec3(0, 1, distance), Vec3(0, 1, 0), Vec3(0, 1, 0));
-    return c;
+// One actor of `tmpl` playing its keyframes, alone in its scene.
+std::unique_ptr<OneActor> keyframedActor(std::shared_ptr<const ActorTemplate> tmpl) {
+    auto b = std::make_shared<KeyframeBehaviour>();
+    KeyframeBehaviour::Actor a;
+    a.tmpl = tmpl;
+    return standingActor(tmpl, b, b->addActor(a));
 }
+
+Camera cameraAt(double distance) { return testkit::lookingAt(Vec3(0, 1, distance), Vec3(0, 1, 0), {0.8, 1.0, 0.1, 5000.0}); }
 
 }  // namespace
 
 TEST(SkeletalLod, BeyondItsDistanceANodeIsNotEvaluatedAndItsSubtreeNotTraversed) {
     const auto tmpl = makeTable3Template();  // the 20 distal nodes switch off beyond 50 m
-    auto b = std::make_shared<KeyframeBehaviour>();
-    KeyframeBehaviour::Actor a;
-    a.tmpl = tmpl;
-    auto scene = standingActor(tmpl, b, b->addActor(a));
+    auto scene = keyframedActor(tmpl);
     ActorProcessor p(scene->crowd);
     p.counter().setEnabled(true);
 
@@ -108,10 +109,7 @@ TEST(SkeletalLod, PriorityScalesTheDistances) {
 
 TEST(SkeletalLod, FarActorsProcessNoSkeletonNodeAtAll) {
     const auto tmpl = makeSeedHumanoid();
-    auto b = std::make_shared<KeyframeBehaviour>();
-    KeyframeBehaviour::Actor a;
-    a.tmpl = tmpl;
-    auto scene = standingActor(tmpl, b, b->addActor(a));
+    auto scene = keyframedActor(tmpl);
     ActorProcessor p(scene->crowd);
     const auto s = p.processFrame(*scene->root, cameraAt(400.0), 0.0);
     EXPECT_EQ(s.skeletonNodesEvaluated, 0u);
@@ -265,10 +263,7 @@ TEST(SkeletalLod, OneEyeDistancePerActorThatPassesCull2) {
 // it whole, whatever LOD the actors are at.
 TEST(SceneLod, ANodesDistanceScaleMovesItsLevelsAndLeavesTheActorsAlone) {
     const auto tmpl = makeTable3Template();  // the 20 distal nodes switch off beyond 50 m
-    auto b = std::make_shared<KeyframeBehaviour>();
-    KeyframeBehaviour::Actor a;
-    a.tmpl = tmpl;
-    auto scene = standingActor(tmpl, b, b->addActor(a));
+    auto scene = keyframedActor(tmpl);
     const auto nearMesh = std::make_shared<MeshDrawable>(makeBox("near", glm::vec3(0.0f), glm::vec3(1.0f), glm::vec4(1.0f)));
     const auto farMesh = std::make_shared<MeshDrawable>(makeBox("far", glm::vec3(0.0f), glm::vec3(1.0f), glm::vec4(1.0f)));
     auto tile = std::make_shared<LOD>();

@@ -21,7 +21,7 @@
 #include "throng/actors/detail/SinCos.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "throng/testkit/ActorTestScenes.h"
+#include "throng/testkit/Cameras.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/scenegraph/Camera.h"
@@ -14,7 +15,7 @@
 #include "throng/scenegraph/MeshShapes.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 TEST(Skin, PaletteIsIdentityInTheBindPoseAndMovesVerticesWithTheirJoint) {
     const auto t = skinnedBar();
@@ -43,14 +44,9 @@ TEST(Skin, PaletteIsIdentityInTheBindPoseAndMovesVerticesWithTheirJoint) {
 TEST(Skin, BothMethodsDrawTheSkinnedMeshWithItsPaletteAndCullItByItsJoints) {
     const auto t = skinnedBar();
     Crowd crowd;
-    auto b = std::make_shared<KeyframeBehaviour>();
-    KeyframeBehaviour::Actor a;
-    a.tmpl = t;
     auto root = std::make_shared<Group>();
-    root->addChild(crowd.makeActorNode(crowd.add(t, b, b->addActor(a))));
-    Camera camera;
-    camera.setPerspective(1.0, 1.0, 0.1, 100.0);
-    camera.setLookAt(Vec3(0, 1, 5), Vec3(0, 1, 0), Vec3(0, 1, 0));
+    root->addChild(crowd.makeActorNode(testkit::addKeyframed(crowd, t, std::make_shared<KeyframeBehaviour>())));
+    const Camera camera = testkit::lookingAt(Vec3(0, 1, 5), Vec3(0, 1, 0), {1.0, 1.0, 0.1, 100.0});
     ActorProcessor p(crowd);
     for (Processing m : {Processing::Actor, Processing::Traditional}) {
         p.setProcessing(m);

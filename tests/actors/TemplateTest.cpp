@@ -9,6 +9,8 @@
 #include <random>
 #include <set>
 
+#include "throng/testkit/ActorTestScenes.h"
+#include "throng/testkit/Errors.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"
@@ -36,14 +38,7 @@ SkeletonNode joint(const char* name, int parent, double deactivation = std::nume
 }
 
 template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+std::string errorOf(F&& f) { return testkit::errorOf<std::invalid_argument>(std::forward<F>(f)); }
 
 }  // namespace
 
@@ -187,9 +182,7 @@ TEST(Templates, ClonesShareTheTemplateAndOneMoreCloneIsSmall) {
     const auto h = makeSeedHumanoid();
     Crowd crowd;
     auto behaviour = std::make_shared<KeyframeBehaviour>();
-    KeyframeBehaviour::Actor a;
-    a.tmpl = h;
-    for (int i = 0; i < 100; ++i) crowd.add(h, behaviour, behaviour->addActor(a));
+    for (int i = 0; i < 100; ++i) testkit::addKeyframed(crowd, h, behaviour);
     for (ActorId id = 0; id < crowd.size(); ++id) EXPECT_EQ(crowd.state().tmpl[id], h.get()) << "clones share the template";
     const std::size_t perClone = crowd.bytesPerActor(*h);
     const std::size_t shared = h->sharedBytes();

@@ -13,6 +13,7 @@
 #include <random>
 #include <set>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GlRenderer.h"
@@ -55,10 +56,7 @@ protected:
 sim::Simulation* OcclusionOracle::world_ = nullptr;
 
 Camera camera(const Vec3& eye, const Vec3& target) {
-    Camera c;
-    c.setPerspective(glm::radians(60.0), double(kWidth) / kHeight, 0.2, 800.0);
-    c.setLookAt(eye, target);
-    return c;
+    return testkit::lookingAt(eye, target, {glm::radians(60.0), double(kWidth) / kHeight, 0.2, 800.0});
 }
 
 // Cameras of the four kinds the conservative test must survive.

@@ -2,7 +2,7 @@
 // loader and played by KeyframeBehaviour / ActorProcessor (CPU-skinned with each draw item's
 // palette), against the same files read, animated and skinned by VTK 9.1's vtkGLTFReader.
 //
-// Frame: the world frame of an actor standing at the origin facing +Z (test::Stage), which is the
+// Frame: the world frame of an actor standing at the origin facing +Z (testkit::Stage), which is the
 // glTF default scene's frame scaled by GltfLoadOptions::scale. Each file is loaded with the scale
 // the town gives it (apps/town/scenes/default.json: CesiumMan 1, robot 0.32, Fox 0.01, Fox being
 // modelled in centimetres), VTK's points (file units) are multiplied by the same scale, so errors are
@@ -46,6 +46,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/testkit/CharacterStage.h"
 #include "ThrongPoses.h"
 #include "VtkGltfPoser.h"
@@ -97,10 +98,7 @@ std::vector<Sample> samplesOf(double d) {
 
 // A camera from which the whole actor is drawn (the processor culls nothing).
 Camera farCamera(double r) {
-    Camera far;
-    far.setPerspective(std::numbers::pi / 4.0, 1.0, 0.01 * r, 200.0 * r);
-    far.setLookAt(Vec3(0.0, 0.0, 50.0 * r), Vec3(0.0));
-    return far;
+    return testkit::lookingAt(Vec3(0.0, 0.0, 50.0 * r), Vec3(0.0), {std::numbers::pi / 4.0, 1.0, 0.01 * r, 200.0 * r});
 }
 
 // The palette of the template's skin for clip `clip` at `t`, sampled by the pose kernels without
@@ -154,7 +152,7 @@ TEST_P(PoseOracleTest, SkinnedVerticesAgreeWithVtk) {
     Worst overall;
     {
         // At rest: no animation applied (the node hierarchy, inverse binds and skinning alone).
-        test::Stage stage(tmpl, 0);
+        testkit::Stage stage(tmpl, 0);
         stage.processor.processFrame(*stage.root, farCamera(stage.crowd.skeletonRootRadius(stage.id)), 0.0);
         const std::vector<glm::dvec3> throng = test::drawnPositions(stage.processor.drawList(), clampedPalette(*tmpl, -1, 0.0));
         const test::VtkPosedMesh posed = vtk.pose(-1, 0.0);
@@ -170,7 +168,7 @@ TEST_P(PoseOracleTest, SkinnedVerticesAgreeWithVtk) {
         const int animation = ch->clipSource[std::size_t(clip)];
         const double d = tmpl->clips()[std::size_t(clip)]->duration();
         EXPECT_NEAR(vtk.duration(animation), d, 1e-6) << "the two readings disagree on the clip's duration";
-        test::Stage stage(tmpl, clip);
+        testkit::Stage stage(tmpl, clip);
         const Camera far = farCamera(stage.crowd.skeletonRootRadius(stage.id));
         Worst clipWorst;
         for (const Sample& s : samplesOf(d)) {
@@ -208,7 +206,7 @@ TEST_P(PoseOracleTest, OneJointTurnedByOneDegreeIsDetected) {
     const LoadedCharacter& ch = asset.characters.front();
     const int clip = c.clips.front().empty() ? 0 : tmpl->findClip(c.clips.front());
     const double t = 0.37 * tmpl->clips()[std::size_t(clip)]->duration();
-    test::Stage stage(tmpl, clip);
+    testkit::Stage stage(tmpl, clip);
     stage.processor.processFrame(*stage.root, farCamera(stage.crowd.skeletonRootRadius(stage.id)), t);
     ASSERT_EQ(stage.processor.drawList().size(), 1u);
     const DrawItem& item = stage.processor.drawList().items()[0];

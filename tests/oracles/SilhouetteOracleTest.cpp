@@ -1,6 +1,6 @@
 // Pictures checked against another implementation: the character golden images
 // (tests/render/golden/character_*.png, kept by CharacterRenderTest, which only records what the
-// renderer drew when they were made) and Throng's frames drawn the same way now (test::Stage,
+// renderer drew when they were made) and Throng's frames drawn the same way now (testkit::Stage,
 // GlRenderer, GPU skinning, headless OSMesa, 160 x 160), against a CPU rasterisation (Silhouette.h)
 // of the mesh VTK's vtkGLTFReader animates and skins, seen by the same camera.
 //
@@ -39,7 +39,7 @@ namespace throng {
 namespace {
 
 constexpr double kMinIoU = 0.98;
-constexpr int kSize = test::kCharacterFrameSize;
+constexpr int kSize = testkit::kCharacterFrameSize;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 // The joint moving each character's head.
@@ -59,13 +59,13 @@ void writeOutput(const Image& image, const std::string& name) {
 
 // One golden view of one character, with VTK's reading of the same file.
 struct View {
-    const test::CharacterGoldenCase& c;
+    const testkit::CharacterGoldenCase& c;
     const LoadedCharacter& character;
     int clip;
-    test::Stage stage;
+    testkit::Stage stage;
     test::VtkGltfPoser vtk;
 
-    explicit View(const test::CharacterGoldenCase& gc)
+    explicit View(const testkit::CharacterGoldenCase& gc)
         : c(gc),
           character(test::loadedCharacter(gc.file, 1.0).characters.front()),
           clip(std::string(gc.clip).empty() ? 0 : character.tmpl->findClip(gc.clip)),
@@ -90,7 +90,7 @@ protected:
 
 TEST_F(SilhouetteOracleTest, GoldenImagesAndFramesMatchVtksMesh) {
     std::map<std::string, double> worst;
-    for (const test::CharacterGoldenCase& c : test::kCharacterGoldenCases) {
+    for (const testkit::CharacterGoldenCase& c : testkit::kCharacterGoldenCases) {
         SCOPED_TRACE(c.golden);
         View view(c);
         ASSERT_GE(view.clip, 0) << "no clip " << c.clip;
@@ -130,7 +130,7 @@ TEST_F(SilhouetteOracleTest, GoldenImagesAndFramesMatchVtksMesh) {
 }
 
 TEST_F(SilhouetteOracleTest, HeadTurnedByTenDegreesIsDetected) {
-    for (const test::CharacterGoldenCase& c : test::kCharacterGoldenCases) {
+    for (const testkit::CharacterGoldenCase& c : testkit::kCharacterGoldenCases) {
         SCOPED_TRACE(c.golden);
         View view(c);
         ASSERT_GE(view.clip, 0);
@@ -148,12 +148,7 @@ TEST_F(SilhouetteOracleTest, HeadTurnedByTenDegreesIsDetected) {
         ASSERT_LT(k, joints.size());
         palette[k] = test::rotatedAboutJoint(palette[k], tmpl.nodes()[std::size_t(head)].inverseBind, 10.0 * kDeg, glm::dvec3(1, 0, 0));
         item.skinPalette = palette.data();
-        DrawList list;
-        list.add(item, item.drawable->primitiveCount());
-        renderer.beginFrame(camera);
-        renderer.draw(list);
-        const Image perturbed = renderer.readFrame();
-        renderer.endFrame();
+        const Image perturbed = testkit::drawAlone(renderer, camera, item);
         const double before = test::intersectionOverUnion(test::silhouetteOf(unperturbed, clearColour()), oracle);
         const double after = test::intersectionOverUnion(test::silhouetteOf(perturbed, clearColour()), oracle);
         EXPECT_GE(before, kMinIoU);

@@ -151,7 +151,7 @@ struct Rig {
     // The rig as a .gltf document.
     std::vector<std::uint8_t> gltf() const {
         using J = nlohmann::json;
-        test::GltfTestFile f;
+        testkit::GltfTestFile f;
         for (const Node& n : nodes) {
             J node = {{"name", n.name}, {"translation", {n.t.x, n.t.y, n.t.z}}, {"rotation", {n.r.x, n.r.y, n.r.z, n.r.w}},
                       {"scale", {n.s.x, n.s.y, n.s.z}}};

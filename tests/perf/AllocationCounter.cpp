@@ -8,10 +8,10 @@
 
 #if defined(__SANITIZE_ADDRESS__)
 
-namespace throng::testing {
+namespace throng::testkit {
 bool allocationsCounted() { return false; }
 std::uint64_t heapAllocations() { return 0; }
-}  // namespace throng::testing
+}  // namespace throng::testkit
 
 #else
 
@@ -61,17 +61,17 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) {
 }
 }
 
-namespace throng::testing {
+namespace throng::testkit {
 bool allocationsCounted() { return true; }
 std::uint64_t heapAllocations() { return gAllocations.load(std::memory_order_relaxed); }
-}  // namespace throng::testing
+}  // namespace throng::testkit
 
 #endif
 
-namespace throng::testing {
+namespace throng::testkit {
 long minorPageFaults() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return usage.ru_minflt;
 }
-}  // namespace throng::testing
+}  // namespace throng::testkit

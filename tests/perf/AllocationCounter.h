@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace throng::testing {
+namespace throng::testkit {
 
 /// Whether allocations are counted (false under AddressSanitizer).
 bool allocationsCounted();
@@ -17,4 +17,4 @@ std::uint64_t heapAllocations();
 /// Minor page faults of the process so far (pages the kernel had to map in for it).
 long minorPageFaults();
 
-}  // namespace throng::testing
+}  // namespace throng::testkit

@@ -26,7 +26,7 @@
 #include "throng/testkit/TownSpread.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 

@@ -24,6 +24,7 @@
 #include "throng/testkit/CharacterStage.h"
 #include "RenderTestSupport.h"
 #include "throng/testkit/Assets.h"
+#include "throng/testkit/Characters.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
@@ -38,7 +39,7 @@
 namespace throng {
 namespace {
 
-constexpr int kSize = test::kCharacterFrameSize;  // square frames
+constexpr int kSize = testkit::kCharacterFrameSize;  // square frames
 
 // CPU and GPU skinning compute the same linear-blend skinning (CpuSkinning.h); they differ only by
 // float rounding (the vertex shader's order of operations is not skinMesh's), which may move a few
@@ -48,17 +49,10 @@ constexpr int kSize = test::kCharacterFrameSize;  // square frames
 // with Mesa 22.3.6 llvmpipe: no pixel over the threshold, largest difference 1/255, PSNR 74.7 dB.
 const test::GoldenTolerance kSkinningAgreement{8, 0.003, 40.0};
 
-std::string assetPath(const std::string& file) { return testkit::sharedAssets() + "/characters/" + file; }
-
 // Each file is loaded once for the whole test program.
-const CharacterAsset& asset(const std::string& file) {
-    static std::map<std::string, CharacterAsset> cache;
-    auto it = cache.find(file);
-    if (it == cache.end()) it = cache.emplace(file, loadCharacter(assetPath(file))).first;
-    return it->second;
-}
+const CharacterAsset& asset(const std::string& file) { return testkit::sharedCharacter(file); }
 
-using test::Stage;
+using testkit::Stage;
 
 int clipIndex(const ActorTemplate& tmpl, const std::string& name) {
     return name.empty() ? 0 : tmpl.findClip(name);
@@ -78,9 +72,9 @@ protected:
 };
 
 TEST_F(CharacterRenderTest, GoldenImagesOfLoadedCharacters) {
-    for (const test::CharacterGoldenCase& c : test::kCharacterGoldenCases) {
+    for (const testkit::CharacterGoldenCase& c : testkit::kCharacterGoldenCases) {
         SCOPED_TRACE(c.golden);
-        ASSERT_TRUE(std::filesystem::exists(assetPath(c.file))) << assetPath(c.file) << " is missing";
+        ASSERT_TRUE(std::filesystem::exists(testkit::characterPath(c.file))) << testkit::characterPath(c.file) << " is missing";
         const auto tmpl = asset(c.file).primaryTemplate();
         ASSERT_TRUE(tmpl);
         const int clip = clipIndex(*tmpl, c.clip);
@@ -218,12 +212,7 @@ TEST_F(CharacterRenderTest, DeactivatedJointsUseTheirNearestActiveAncestorsSkinn
     EXPECT_GT(testkit::compareImages(full, lod, 8).pixelsOverThreshold, 30u) << "deactivating the knee did not move the leg";
     // And the renderer draws exactly what the ancestor's matrix gives.
     fullItem.skinPalette = expected.data();
-    DrawList list;
-    list.add(fullItem, fullItem.drawable->primitiveCount());
-    renderer.beginFrame(camera);
-    renderer.draw(list);
-    const Image substituted = renderer.readFrame();
-    renderer.endFrame();
+    const Image substituted = testkit::drawAlone(renderer, camera, fullItem);
     const std::string failure = disagreement(lod, substituted, {0, 0.0, 0.0});
     EXPECT_TRUE(failure.empty()) << failure;
     if (!failure.empty()) {

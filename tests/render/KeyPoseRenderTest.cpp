@@ -32,6 +32,7 @@
 
 #include "RenderTestSupport.h"
 #include "throng/testkit/Assets.h"
+#include "throng/testkit/Characters.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/gltf/GltfLoader.h"
@@ -49,14 +50,8 @@ constexpr int kSize = 160;  // square frames, as the character goldens
 
 const test::GoldenTolerance kGolden{};  // the project's golden-image tolerance
 
-std::string assetPath(const std::string& file) { return testkit::sharedAssets() + "/characters/" + file; }
-
-const CharacterAsset& asset(const std::string& file) {
-    static std::map<std::string, CharacterAsset> cache;
-    auto it = cache.find(file);
-    if (it == cache.end()) it = cache.emplace(file, loadCharacter(assetPath(file))).first;
-    return it->second;
-}
+// Each file is loaded once for the whole test program.
+const CharacterAsset& asset(const std::string& file) { return testkit::sharedCharacter(file); }
 
 // A character's template, its highest-detail skinned mesh and that mesh's skin.
 struct Character {
@@ -231,7 +226,7 @@ TEST_F(KeyPoseRenderTest, IntermittentMatchesSkinningAtTheKeyPose) {
     const View views[] = {{30.0, 10.0}, {150.0, 25.0}, {-95.0, 0.0}};
     for (const char* file : {"CesiumMan.glb", "robot.glb"}) {
         SCOPED_TRACE(file);
-        ASSERT_TRUE(std::filesystem::exists(assetPath(file))) << assetPath(file) << " is missing";
+        ASSERT_TRUE(std::filesystem::exists(testkit::characterPath(file))) << testkit::characterPath(file) << " is missing";
         const Character c = character(file);
         const int clip = walkClip(c, file);
         ASSERT_GE(clip, 0);

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/ImageIO.h"
 #include "throng/render/RendererOptions.h"
@@ -13,10 +14,7 @@
 namespace throng::test {
 
 Camera makeCamera(const Vec3& eye, const Vec3& target) {
-    Camera camera;
-    camera.setPerspective(std::numbers::pi / 4.0, double(kWidth) / kHeight, 0.1, 100.0);
-    camera.setLookAt(eye, target);
-    return camera;
+    return testkit::lookingAt(eye, target, {std::numbers::pi / 4.0, double(kWidth) / kHeight, 0.1, 100.0});
 }
 
 void Scene::add(std::shared_ptr<const Drawable> drawable, const Mat4& world, const glm::vec4& tint,

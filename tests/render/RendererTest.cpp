@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "RenderTestSupport.h"
+#include "throng/testkit/Errors.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/render/ProceduralMeshes.h"
@@ -28,14 +29,7 @@ protected:
 };
 
 template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "(no exception)";
-}
+std::string errorOf(F&& f) { return testkit::errorOf<std::exception>(std::forward<F>(f)); }
 
 // Boxes and skinned tubes of two meshes, interleaved in the list, placed around `origin`.
 void buildMixedScene(test::Scene& scene, const Vec3& origin) {

@@ -13,7 +13,7 @@
 #include "throng/scenegraph/OccluderFitting.h"
 
 using namespace throng;
-using throng::testing::TriangleSoup;
+using throng::testkit::TriangleSoup;
 
 namespace {
 
@@ -56,7 +56,7 @@ TEST(OccluderFittingAssets, BoxesOfEveryTownTileAreHiddenBehindFrontFaces) {
         OccluderFitStatistics stats;
         const auto boxes = fitOccluderBoxes(model.meshes, {}, &stats);
         const TriangleSoup soup(model.meshes);
-        const auto report = throng::testing::probeBoxes(soup, boxes, 4000, std::hash<std::string>{}(file));
+        const auto report = throng::testkit::probeBoxes(soup, boxes, 4000, std::hash<std::string>{}(file));
         std::printf("%-30s %6zu triangles, grid %dx%dx%d, solid cells %6zu (%5.1f %% of bounds), %zu boxes, %5.1f %% of bounds; "
                     "%d segments, %d first crossing a back face, %d unseen\n",
                     file.c_str(), soup.count(), stats.cells.x, stats.cells.y, stats.cells.z, stats.solidCells,
@@ -90,7 +90,7 @@ TEST(OccluderFittingAssets, OracleCatchesBoxesPushedOutOfTheBuildings) {
         const float out = 2.0f * std::max({stats.cellSize.x, stats.cellSize.y, stats.cellSize.z});
         const AxisBox inflated = boxes[0].shrunk(-out);
         const TriangleSoup soup(model.meshes);
-        const auto report = throng::testing::probeBoxes(soup, std::span<const AxisBox>(&inflated, 1), 2000, 5);
+        const auto report = throng::testkit::probeBoxes(soup, std::span<const AxisBox>(&inflated, 1), 2000, 5);
         EXPECT_GT(report.misses, 0) << file << ": a box " << out << " larger than fitted is never seen";
         std::printf("%-30s box moved out by %.3f: %d of %d segments reach it unseen\n", file.c_str(), double(out), report.misses, report.segments);
     }

@@ -14,7 +14,7 @@
 #include "throng/scenegraph/OccluderFitting.h"
 
 using namespace throng;
-using throng::testing::TriangleSoup;
+using throng::testkit::TriangleSoup;
 
 namespace {
 
@@ -97,7 +97,7 @@ std::vector<AxisBox> fit(const MeshData& m, const OccluderFitOptions& o = {}, Oc
 void expectHidden(const MeshData& m, const std::vector<AxisBox>& boxes) {
     const MeshData* list[] = {&m};
     const TriangleSoup soup(list);
-    const auto report = throng::testing::probeBoxes(soup, boxes, 3000, 7);
+    const auto report = throng::testkit::probeBoxes(soup, boxes, 3000, 7);
     EXPECT_EQ(report.misses, 0) << m.name << ": " << report.misses << " of " << report.segments << " segments reach a box unseen";
 }
 
@@ -282,7 +282,7 @@ TEST(OccluderFitting, OverlappingClosedPartsFillTheirUnion) {
     // Faces of one part inside the other split the solid: the first box takes most of the larger part.
     EXPECT_GT(boxes[0].volume(), 0.6 * ba.volume());
     const TriangleSoup soup(list);
-    const auto report = throng::testing::probeBoxes(soup, boxes, 3000, 11);
+    const auto report = throng::testkit::probeBoxes(soup, boxes, 3000, 11);
     EXPECT_EQ(report.misses, 0);
 }
 

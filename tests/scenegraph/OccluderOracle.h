@@ -19,7 +19,7 @@
 #include "throng/scenegraph/AxisBox.h"
 #include "throng/scenegraph/MeshData.h"
 
-namespace throng::testing {
+namespace throng::testkit {
 
 /// One failing segment, for messages.
 struct OracleMiss {
@@ -169,4 +169,4 @@ inline OracleReport probeBoxes(const TriangleSoup& soup, std::span<const AxisBox
     return report;
 }
 
-}  // namespace throng::testing
+}  // namespace throng::testkit

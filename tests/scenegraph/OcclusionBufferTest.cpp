@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/scenegraph/AxisBox.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/CullVisitor.h"
@@ -30,10 +31,7 @@ std::array<Vec3, 8> corners(const Vec3& lo, const Vec3& hi) {
 }
 
 Camera lookingDownMinusZ(double nearDistance = 0.1) {
-    Camera camera;
-    camera.setPerspective(glm::radians(60.0), 16.0 / 9.0, nearDistance, 1000.0);
-    camera.setLookAt(Vec3(0, 0, 0), Vec3(0, 0, -1));
-    return camera;
+    return testkit::lookingAt(Vec3(0, 0, 0), Vec3(0, 0, -1), {glm::radians(60.0), 16.0 / 9.0, nearDistance, 1000.0});
 }
 
 // A wall 20 m wide and 10 m high, 10 m in front of the eye, 1 m thick.

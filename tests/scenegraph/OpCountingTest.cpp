@@ -28,21 +28,14 @@ using CMat4 = glm::mat<4, 4, CDouble>;
 }  // namespace
 
 TEST(OpCounting, UnitCostsAreThoseOfTheCostModel) {
-    OpTally t;
-    t.mults = 1;
-    EXPECT_EQ(t.fmult(), 1u);
-    t = OpTally{};
-    t.adds = 1;
-    EXPECT_EQ(t.fmult(), 1u);
-    t = OpTally{};
-    t.divs = 1;
-    EXPECT_EQ(t.fmult(), 5u);
-    t = OpTally{};
-    t.sqrts = 1;
-    EXPECT_EQ(t.fmult(), 7u);
-    t = OpTally{};
-    t.gpuMatrixProducts = 1;
-    EXPECT_EQ(t.fmult(), 10u);
+    // One operation of each kind costs what the cost model charges it, in FMULT.
+    const std::pair<std::uint64_t OpTally::*, std::uint64_t> costs[] = {
+        {&OpTally::mults, 1}, {&OpTally::adds, 1}, {&OpTally::divs, 5}, {&OpTally::sqrts, 7}, {&OpTally::gpuMatrixProducts, 10}};
+    for (const auto& [kind, fmult] : costs) {
+        OpTally t;
+        t.*kind = 1;
+        EXPECT_EQ(t.fmult(), fmult);
+    }
 }
 
 TEST(OpCounting, TraversalCountsOperationsPerCategory) {

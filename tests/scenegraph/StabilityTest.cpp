@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/SphereArrayCuller.h"
@@ -21,10 +22,7 @@ using namespace throng;
 namespace {
 
 Camera cameraAt(const Vec3& eye, const Vec3& target, double fov = 1.0, double nearD = 0.1, double farD = 1000.0) {
-    Camera c;
-    c.setPerspective(fov, 1.5, nearD, farD);
-    c.setLookAt(eye, target, Vec3(0, 1, 0));
-    return c;
+    return testkit::lookingAt(eye, target, {fov, 1.5, nearD, farD});
 }
 
 }  // namespace

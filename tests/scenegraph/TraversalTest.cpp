@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/scenegraph/AppVisitor.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Geometry.h"
@@ -47,10 +48,7 @@ private:
 };
 
 Camera lookingDownMinusZ(double far = 1000.0) {
-    Camera cam;
-    cam.setPerspective(std::numbers::pi / 2, 1.0, 0.1, far);
-    cam.setLookAt(Vec3(0.0), Vec3(0, 0, -1), Vec3(0, 1, 0));
-    return cam;
+    return testkit::lookingAt(Vec3(0.0), Vec3(0, 0, -1), {std::numbers::pi / 2, 1.0, 0.1, far});
 }
 
 }  // namespace

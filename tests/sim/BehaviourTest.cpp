@@ -7,6 +7,7 @@
 #include <cstring>
 #include <numbers>
 
+#include "throng/testkit/Cameras.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
@@ -27,10 +28,7 @@ using namespace throng::sim;
 namespace {
 
 Camera overview() {
-    Camera c;
-    c.setPerspective(1.2, 1.5, 0.1, 1000.0);
-    c.setLookAt(Vec3(0, 60, 120), Vec3(0.0), Vec3(0, 1, 0));
-    return c;
+    return testkit::lookingAt(Vec3(0, 60, 120), Vec3(0.0), {.fovY = 1.2});
 }
 
 struct Birds {
@@ -119,12 +117,7 @@ std::unique_ptr<Group4> standingGroup(bool gaze, Vec3 where = Vec3(0.0)) {
     return g;
 }
 
-Camera at(double distance) {
-    Camera c;
-    c.setPerspective(0.9, 1.5, 0.1, 1000.0);
-    c.setLookAt(Vec3(0, 1.6, distance), Vec3(0, 1.2, 0), Vec3(0, 1, 0));
-    return c;
-}
+Camera at(double distance) { return testkit::lookingAt(Vec3(0, 1.6, distance), Vec3(0, 1.2, 0), {.fovY = 0.9}); }
 
 }  // namespace
 

@@ -19,7 +19,7 @@
 #include "throng/vtk/Chart.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 TEST(CascadeCullerRender, TheRendererDrawsTheKeptPropsOnly) {
     if (!throng::vtk::displayAvailable()) GTEST_SKIP() << "no X display (run under xvfb-run)";

@@ -20,7 +20,7 @@
 #include "throng/vtk/CascadeCuller.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 
 namespace {
 

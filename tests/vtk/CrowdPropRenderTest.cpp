@@ -195,7 +195,7 @@ TEST(CrowdPropRender, SkinnedMeshesAreBlendedByTheirPalette) {
     // first second of "bend": the top vertices go from (+-0.05, 2) to (-1, 1 +- 0.05).
     Crowd crowd;
     auto root = std::make_shared<Group>();
-    const auto bar = throng::testing::skinnedBar();
+    const auto bar = throng::testkit::skinnedBar();
     auto play = std::make_shared<KeyframeBehaviour>();
     KeyframeBehaviour::Actor a;
     a.tmpl = bar;

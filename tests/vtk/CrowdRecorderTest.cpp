@@ -13,6 +13,7 @@
 #include <vtkXMLImageDataReader.h>
 
 #include "VtkFiles.h"
+#include "throng/testkit/Cameras.h"
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ActorProcessor.h"
@@ -30,7 +31,7 @@
 #include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
-using namespace throng::testing;
+using namespace throng::testkit;
 namespace fs = std::filesystem;
 
 namespace {
@@ -93,10 +94,7 @@ template <class Predicate>
 std::size_t countIf(const std::vector<double>& v, Predicate p) { return std::size_t(std::count_if(v.begin(), v.end(), p)); }
 
 Camera camera() {
-    Camera c;
-    c.setPerspective(0.9, 1.5, 0.1, 1000.0);
-    c.setLookAt(Vec3(40.0, 3.0, 20.0), Vec3(40.0, 1.0, -30.0));
-    return c;
+    return testkit::lookingAt(Vec3(40.0, 3.0, 20.0), Vec3(40.0, 1.0, -30.0), {.fovY = 0.9});
 }
 
 }  // namespace

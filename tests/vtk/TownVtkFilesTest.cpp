@@ -15,7 +15,7 @@
 
 #include "VtkFiles.h"
 
-using namespace throng::testing;
+using namespace throng::testkit;
 namespace fs = std::filesystem;
 
 namespace {

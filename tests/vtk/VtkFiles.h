@@ -19,7 +19,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUtilities.h>
 
-namespace throng::testing {
+namespace throng::testkit {
 
 /// The poly data in `path`, read by vtkXMLPolyDataReader; fails the test (null) if it cannot be read.
 inline vtkSmartPointer<vtkPolyData> readPolyData(const std::filesystem::path& path) {
@@ -74,4 +74,4 @@ inline std::vector<PvdEntry> readPvd(const std::filesystem::path& path) {
     return entries;
 }
 
-}  // namespace throng::testing
+}  // namespace throng::testkit

@@ -10,6 +10,7 @@
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SkeletonPose.h"
+#include "throng/actors/Table3Template.h"
 #include "throng/scenegraph/Validation.h"
 
 namespace throng {
@@ -137,6 +138,13 @@ CostModelScene buildCostModelScene(Crowd& crowd, std::shared_ptr<const ActorTemp
     else
         for (ActorId id : all) scene.root->addChild(crowd.makeActorNode(id));
     return scene;
+}
+
+CostModelScene buildTable2Scene(Crowd& crowd, std::size_t actors) {
+    CostModelSceneOptions options;
+    options.counts = CascadeCounts::scaled(actors);
+    options.group = true;
+    return buildCostModelScene(crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
 }
 
 }  // namespace throng

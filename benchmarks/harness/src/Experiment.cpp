@@ -66,6 +66,10 @@ Experiment::Experiment(std::string program, std::string description, unsigned op
         app_.add_option("--height", spec_.height, "image height")->type_name("H")->check(CLI::Range(16, 8192));
     }
     if (options & kThreads) app_.add_option("--threads", spec_.threads, "threads of the step")->type_name("N")->check(CLI::Range(1, 256));
+    if (options & kStarts)
+        app_.add_option("--starts", spec_.starts, "camera path times (s) where measured runs start")->delimiter(',')->type_name("T,T,...")
+            ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(finiteNumber(0.0, 1e6));
+    if (options & kErrorEvery) app_.add_option("--error-every", spec_.errorEvery, names_.errorEveryHelp)->type_name("N")->check(CLI::Range(1, 1'000'000));
     if (options & kCsv) app_.add_option("--csv", spec_.csv, names_.csvHelp)->type_name("FILE")->check(fileToWrite());
     if (options & kAccuracyCsv) app_.add_option("--accuracy-csv", spec_.accuracyCsv, names_.accuracyCsvHelp)->type_name("FILE")->check(fileToWrite());
     if (options & kMarkdown) app_.add_option("--markdown", spec_.markdown, "also write the report as Markdown")->type_name("FILE")->check(fileToWrite());

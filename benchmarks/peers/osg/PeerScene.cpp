@@ -16,10 +16,7 @@ PeerScene buildPeerScene(const std::string& name, std::size_t actors) {
     s.name = name;
     if (name == "table2") {
         // As bench_actor_processing: Table 2's proportions, every actor in one ActorGroup.
-        CostModelSceneOptions options;
-        options.counts = CascadeCounts::scaled(actors);
-        options.group = true;
-        CostModelScene built = buildCostModelScene(*s.crowd, makeTable3Template(), std::make_shared<KeyframeBehaviour>(), options);
+        CostModelScene built = buildTable2Scene(*s.crowd, actors);
         s.root = built.root;
         s.camera = built.camera;
         s.startTime = built.time;

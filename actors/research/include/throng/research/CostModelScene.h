@@ -56,4 +56,9 @@ struct CostModelScene {
 CostModelScene buildCostModelScene(Crowd& crowd, std::shared_ptr<const ActorTemplate> tmpl,
                                    std::shared_ptr<KeyframeBehaviour> behaviour, const CostModelSceneOptions& options = {});
 
+/// The Table 2 layout scaled to `actors` (CascadeCounts::scaled), every actor of the Table 3 template
+/// playing its keyframes in one ActorGroup: the scene bench_actor_processing, the OpenSceneGraph
+/// peer, throng-costmodel and the steady-frame test measure.
+CostModelScene buildTable2Scene(Crowd& crowd, std::size_t actors);
+
 }  // namespace throng

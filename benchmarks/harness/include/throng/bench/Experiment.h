@@ -28,6 +28,8 @@ struct ExperimentSpec {
     int width = 1280;                          ///< image width
     int height = 720;                          ///< image height
     int threads = 1;                           ///< threads of the step
+    std::vector<double> starts{};              ///< camera path times (s) where measured runs start
+    int errorEvery = 4;                        ///< measured ticks between accuracy measurements
     std::string csv{};                           ///< the experiment's own CSV
     std::string accuracyCsv{};                   ///< the common accuracy CSV (throng/sim/AccuracyCsv.h)
     std::string markdown{};                      ///< the report as Markdown
@@ -48,6 +50,8 @@ enum ExperimentOption : unsigned {
     kAccuracyCsv = 1u << 9,  ///< --accuracy-csv FILE
     kMarkdown = 1u << 10,    ///< --markdown FILE
     kPlots = 1u << 11,       ///< --plots DIR
+    kStarts = 1u << 12,      ///< --starts T,T,... (runs along the camera path)
+    kErrorEvery = 1u << 13,  ///< --error-every N
 };
 
 /// How an experiment words its common options where they differ in meaning.
@@ -59,6 +63,7 @@ struct ExperimentNames {
     int minFrames = 1;                                   ///< the fewest measured ticks accepted
     std::string csvHelp = "also write the rows as CSV";  ///< what --csv writes
     std::string accuracyCsvHelp = "write the rows in the common accuracy CSV";  ///< what --accuracy-csv writes
+    std::string errorEveryHelp = "ticks between image comparisons";  ///< what --error-every measures
 };
 
 /// One frame-level experiment's command line and reporting.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "throng/actors/Actor.h"
+#include "throng/actors/ActorFrameStatistics.h"
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyframeBehaviour.h"
@@ -22,7 +23,7 @@
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/Transform.h"
 
-namespace throng::testing {
+namespace throng::testkit {
 
 /// A primitive's identity: node, instance, part, drawable.
 using PrimitiveKey = std::tuple<const void*, std::uint32_t, std::uint32_t, const void*>;
@@ -134,4 +135,18 @@ inline std::shared_ptr<const ActorTemplate> skinnedBar() {
     return b.build();
 }
 
-}  // namespace throng::testing
+/// Adds to `crowd` an actor of `tmpl` playing its keyframes through `behaviour`; returns its id.
+inline ActorId addKeyframed(Crowd& crowd, const std::shared_ptr<const ActorTemplate>& tmpl, const std::shared_ptr<KeyframeBehaviour>& behaviour) {
+    KeyframeBehaviour::Actor a;
+    a.tmpl = tmpl;
+    return crowd.add(tmpl, behaviour, behaviour->addActor(a));
+}
+
+/// A frame's actors per cascade class, "A B C1 C2 C3_1 C3_2", so a test states them in one line
+/// and a failure shows them all.
+inline std::string classCounts(const ActorFrameStatistics& s) {
+    return std::to_string(s.a) + " " + std::to_string(s.b) + " " + std::to_string(s.c1) + " " + std::to_string(s.c2) + " " +
+           std::to_string(s.c3_1) + " " + std::to_string(s.c3_2);
+}
+
+}  // namespace throng::testkit

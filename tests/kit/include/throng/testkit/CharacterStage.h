@@ -20,10 +20,23 @@
 #include "throng/render/CpuSkinning.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
-namespace throng::test {
+namespace throng::testkit {
+
+/// One item drawn alone by `renderer` seen by `camera`, and the frame read back: what a test
+/// compares when it changes one palette or one matrix by hand.
+inline Image drawAlone(GlRenderer& renderer, const Camera& camera, const DrawItem& item) {
+    DrawList list;
+    list.add(item, item.drawable->primitiveCount());
+    renderer.beginFrame(camera);
+    renderer.draw(list);
+    Image image = renderer.readFrame();
+    renderer.endFrame();
+    return image;
+}
 
 /// One actor of a template playing one clip at the origin, facing +Z, in a scene of its own: its
 /// Skeleton Root frame is the world frame.
@@ -107,4 +120,4 @@ inline constexpr CharacterGoldenCase kCharacterGoldenCases[] = {
     {"character_robot_walk_back", "robot.glb", "Robot_Walking", 0.85, 160.0, 20.0},
 };
 
-}  // namespace throng::test
+}  // namespace throng::testkit

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace throng::test {
+namespace throng::testkit {
 
 /// A glTF document under construction.
 struct GltfTestFile {
@@ -100,4 +100,4 @@ inline void animate(GltfTestFile& f, int node, const char* path, const char* int
     f.push("animations", {{"name", "anim"}, {"samplers", J::array({sampler})}, {"channels", J::array({channel})}});
 }
 
-}  // namespace throng::test
+}  // namespace throng::testkit
