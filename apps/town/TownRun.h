@@ -1,0 +1,85 @@
+#pragma once
+// A throng-town run on rank 0 (or alone): the world drawn frame by frame, headless or in a window,
+// stats.csv written as it goes and summary.json at the end. Every frame is prepared (step, then APP
+// and CULL) and drawn (DRAW, then its line of stats.csv); with --pipeline, DRAW of frame N overlaps
+// the preparation of N+1. With --frame-budget the allocator picks each prepared frame's rung.
+
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "TownOptions.h"
+#include "TownRecords.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/render/CrowdRenderer.h"
+#include "throng/render/GlContext.h"
+#include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/FramePipeline.h"
+#include "throng/sim/FrameBudgetAllocator.h"
+#include "throng/sim/Ranks.h"
+#include "throng/sim/Simulation.h"
+#include "throng/vtk/CrowdRecorder.h"
+
+namespace throng::town {
+
+/// Message tag of the start signal rank 0 sends the other ranks when it is ready to step.
+inline constexpr int kStartTag = 1;
+
+/// Rank 0's run of the town.
+class TownRun {
+public:
+    /// Sets up drawing `world` as `o` asks (context, processor, impostors, renderer), opens stats.csv
+    /// in o.out. `budget` and `recorder` may be null. Throws when the GL or a file cannot be made.
+    TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks, std::unique_ptr<sim::FrameBudgetAllocator> budget,
+            std::unique_ptr<vtk::CrowdRecorder> recorder);
+    /// Whether the frames go to a window (else headless).
+    bool windowed() const { return window_; }
+    /// Runs o.frames frames headless: a PNG every o.every frames, a progress bar.
+    void runHeadless();
+    /// Runs in the window until it closes, Esc, or o.frames when --frames was given.
+    void runWindowed();
+    /// Finishes the VTK files, writes summary.json and says where the files are.
+    void finish();
+
+private:
+    void applyRung(int rung);
+    void prepare(PreparedFrame& f, std::int64_t number, const Camera& camera, bool step);
+    void draw(const PreparedFrame& f, const std::function<void()>& beforePresent);
+    void allocate();
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+    const TownOptions& o_;
+    sim::Simulation& world_;
+    sim::Ranks& ranks_;
+    std::unique_ptr<sim::FrameBudgetAllocator> budget_;
+    std::unique_ptr<vtk::CrowdRecorder> recorder_;
+    bool distributed_ = false;
+    std::shared_ptr<GlContext> context_;
+    bool window_ = false;
+    double lodScale_ = 1.0;
+    double townLodScale_ = 0.0;  // the scene's; rungs may set their own
+    double aspect_ = 1.0;
+    std::unique_ptr<ActorProcessor> processor_;
+    std::unique_ptr<ImpostorSet> impostors_;
+    std::unique_ptr<CrowdRenderer> renderer_;
+    std::ofstream csv_;
+    Sums sums_;
+    std::chrono::steady_clock::time_point start_;
+    double firstFrame_ = 0.0, lastFrameEnd_ = 0.0;
+    PreparedFrame prepared_[2];
+    bool showOcclusion_ = false;  // the window's O key
+    // --frame-budget: the rung of the next frame prepared (set between frames, on the main thread),
+    // the rung the processor is set to, and the last frame drawn's rung and APP+CULL+DRAW.
+    int nextRung_ = -1, appliedRung_ = -1, drawnRung_ = -1;
+    double drawnCost_ = 0.0;
+    std::vector<std::int64_t> rungFrames_;
+    std::int64_t framesWithin_ = 0;
+    bool caches_ = false;
+    double hysteresis_ = 0.0;
+    FramePipeline pipeline_;
+};
+
+}  // namespace throng::town
