@@ -962,16 +962,19 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "bench_frame: %lld actors with 1 and 2 threads...\n", (long long)o.scalingActors);
             const auto scaling = threadScaling(o);
             report << "\nAPP+CULL and the step with 1 and 2 threads, " << o.scalingActors
-                   << " actors, two worlds of the same seed (identical digests on every tick):\n\n"
-                   << "| camera | step 1 / 2 threads | speed-up | actor 1 / 2 threads | speed-up | traditional 1 / 2 threads | speed-up |\n"
-                   << "|---|---:|---:|---:|---:|---:|---:|\n";
-            char line[512];
-            for (const Scaling& s : scaling) {
-                std::snprintf(line, sizeof line, "| %s | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f | %.2f / %.2f | %.2f |\n", s.camera.c_str(),
-                              s.step[0], s.step[1], s.step[0] / s.step[1], s.actor[0], s.actor[1], s.actor[0] / s.actor[1],
-                              s.traditional[0], s.traditional[1], s.traditional[0] / s.traditional[1]);
-                report << line;
-            }
+                   << " actors, two worlds of the same seed (identical digests on every tick):\n\n";
+            bench::ResultTable t({{"", "camera", "%s", true}, {"", "step 1 / 2 threads", "%s"}, {"", "speed-up", "%.2f"},
+                                  {"", "actor 1 / 2 threads", "%s"}, {"", "speed-up", "%.2f"}, {"", "traditional 1 / 2 threads", "%s"},
+                                  {"", "speed-up", "%.2f"}});
+            const auto pair = [](const double (&v)[2]) {
+                char cell[64];
+                std::snprintf(cell, sizeof cell, "%.2f / %.2f", v[0], v[1]);
+                return std::string(cell);
+            };
+            for (const Scaling& s : scaling)
+                t.add({s.camera, pair(s.step), s.step[0] / s.step[1], pair(s.actor), s.actor[0] / s.actor[1], pair(s.traditional),
+                       s.traditional[0] / s.traditional[1]});
+            report << t.markdown();
         }
         if (o.has("regions")) {
             const double before = availableSpeedup();
@@ -981,19 +984,22 @@ int main(int argc, char** argv) {
                    << "milliseconds per step, means over " << o.regionFrames << " steps per thread count after " << o.e.warmup
                    << " (ghosts and handovers per step; peak memory of the process so far). A loop with nothing shared ran "
                    << std::fixed << std::setprecision(2) << before << "x and " << after << "x as fast on 2 threads as on 1 before and "
-                   << "after the section: the most the machine, shared with other work, could give.\n\n" << std::defaultfloat
-                   << "| actors | layout | regions | step 1 thread | step 2 threads | speed-up | ghosts | handovers | build s | peak GB |\n"
-                   << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-            char line[1024];
+                   << "after the section: the most the machine, shared with other work, could give.\n\n" << std::defaultfloat;
+            bench::ResultTable t({{"", "actors", "%lld"}, {"", "layout", "%s", true}, {"", "regions", "%s"}, {"", "step 1 thread", "%s"},
+                                  {"", "step 2 threads", "%s"}, {"", "speed-up", "%s"}, {"", "ghosts", "%s"}, {"", "handovers", "%s"},
+                                  {"", "build s", "%s"}, {"", "peak GB", "%s"}});
+            const auto fixed = [](const char* format, double v) {
+                char cell[64];
+                std::snprintf(cell, sizeof cell, format, v);
+                return std::string(cell);
+            };
             for (const RegionRow& r : regionRows) {
-                if (!r.note.empty()) {
-                    std::snprintf(line, sizeof line, "| %lld | %s | | %s | | | | | | |\n", (long long)r.actors, r.layout.c_str(), r.note.c_str());
-                } else {
-                    std::snprintf(line, sizeof line, "| %lld | %s | %u | %.2f | %.2f | %.2f | %.0f | %.1f | %.1f | %.2f |\n", (long long)r.actors,
-                                  r.layout.c_str(), r.regions, r.ms[0], r.ms[1], r.ms[0] / r.ms[1], r.ghosts, r.handovers, r.buildSeconds, r.peakGb);
-                }
-                report << line;
+                if (!r.note.empty()) t.add({r.actors, r.layout, "", r.note, "", "", "", "", "", ""});
+                else
+                    t.add({r.actors, r.layout, std::to_string(r.regions), fixed("%.2f", r.ms[0]), fixed("%.2f", r.ms[1]), fixed("%.2f", r.ms[0] / r.ms[1]),
+                           fixed("%.0f", r.ghosts), fixed("%.1f", r.handovers), fixed("%.1f", r.buildSeconds), fixed("%.2f", r.peakGb)});
             }
+            report << t.markdown();
         }
         if (o.has("pipeline") && o.pipelineFrames > 0) {
             std::fprintf(stderr, "bench_frame: the pipelined frame, %d frames each way...\n", o.pipelineFrames);
@@ -1013,9 +1019,10 @@ int main(int argc, char** argv) {
                    << " actors, one thread, means over " << o.e.frames << " ticks (\"hidden\": actors rejected by occlusion, as a share of those "
                    << "reaching CULL 1; the rejection is conservative at every resolution: lower ones only reject less"
                    << "; \"rested\": share of frames the stage rested after one that hid little; the path camera follows the "
-                   << "scene's camera path once, means over its ticks):\n\n"
-                   << "| camera | buffer | buffer ms | APP+CULL ms | hidden | hidden share | posed | tiles hidden | rested |\n"
-                   << "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+                   << "scene's camera path once, means over its ticks):\n\n";
+            bench::ResultTable table({{"", "camera", "%s", true}, {"", "buffer", "%s", true}, {"", "buffer ms", "%.3f"}, {"", "APP+CULL ms", "%.2f"},
+                                      {"", "hidden", "%.0f"}, {"", "hidden share", "%.1f %%"}, {"", "posed", "%.0f"}, {"", "tiles hidden", "%.0f"},
+                                      {"", "rested", "%.0f %%"}});
             // The common accuracy CSV. Occlusion is conservative (no visible actor is rejected at any
             // resolution), so its measures are what it achieves: the share hidden, and the posing left.
             std::unique_ptr<sim::AccuracyCsv> csv;
@@ -1036,12 +1043,9 @@ int main(int argc, char** argv) {
                 a.actors = actors;
                 csv->add(a);
             };
-            char line[512];
             for (const OcclusionRow& r : sweep) {
                 const std::string size = r.label();
-                std::snprintf(line, sizeof line, "| %s | %s | %.3f | %.2f | %.0f | %.1f %% | %.0f | %.0f | %.0f %% |\n", r.camera.c_str(),
-                              size.c_str(), r.bufferMs, r.appCullMs, r.hidden, 100.0 * r.hiddenShare(), r.posed, r.tiles, 100.0 * r.rested);
-                report << line;
+                table.add({r.camera, size, r.bufferMs, r.appCullMs, r.hidden, 100.0 * r.hiddenShare(), r.posed, r.tiles, 100.0 * r.rested});
                 if (csv && !r.rest) record(r, "occlusion buffer resolution", size, r.width == 0);
                 // Knob "occlusion rest": its "off" is the same resolution testing every frame.
                 if (csv && r.rest) {
@@ -1051,24 +1055,24 @@ int main(int argc, char** argv) {
                     record(r, "occlusion rest", std::to_string(r.rest) + " frames", false);
                 }
             }
+            report << table.markdown();
         }
         if (o.has("visibility")) {
             std::fprintf(stderr, "bench_frame: the visibility bound, %lld actors...\n", (long long)o.occlusionActors);
             std::int64_t actors = 0;
             const auto bound = visibilityBound(o, context, &actors);
             report << "\nWhat occlusion culling could reach, " << actors << " actors, " << o.e.width << "x" << o.e.height
-                   << " (an ID render with full depth: actors with a visible pixel; a conservative culler keeps them all):\n\n"
-                   << "| camera | processing | drawn as meshes without occlusion | of those with a visible pixel | best possible reduction | "
-                   << "visible past the town alone | best with the town as the only occluder | "
-                   << "drawn as meshes with occlusion | reduction reached |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
-            char line[512];
-            for (const VisibilityRow& r : bound) {
-                std::snprintf(line, sizeof line, "| %s | %s | %zu | %zu | %.2fx | %zu | %.2fx | %zu | %.2fx |\n", r.camera.c_str(), r.method.c_str(),
-                              r.meshActors, r.visible, double(r.meshActors) / double(std::max<std::size_t>(r.visible, 1)), r.visibleTown,
-                              double(r.meshActors) / double(std::max<std::size_t>(r.visibleTown, 1)), r.withOcclusion,
-                              double(r.meshActors) / double(std::max<std::size_t>(r.withOcclusion, 1)));
-                report << line;
-            }
+                   << " (an ID render with full depth: actors with a visible pixel; a conservative culler keeps them all):\n\n";
+            bench::ResultTable t({{"", "camera", "%s", true}, {"", "processing", "%s", true}, {"", "drawn as meshes without occlusion", "%lld"},
+                                  {"", "of those with a visible pixel", "%lld"}, {"", "best possible reduction", "%.2fx"},
+                                  {"", "visible past the town alone", "%lld"}, {"", "best with the town as the only occluder", "%.2fx"},
+                                  {"", "drawn as meshes with occlusion", "%lld"}, {"", "reduction reached", "%.2fx"}});
+            const auto ratio = [](std::size_t a, std::size_t b) { return double(a) / double(std::max<std::size_t>(b, 1)); };
+            for (const VisibilityRow& r : bound)
+                t.add({r.camera, r.method, std::int64_t(r.meshActors), std::int64_t(r.visible), ratio(r.meshActors, r.visible),
+                       std::int64_t(r.visibleTown), ratio(r.meshActors, r.visibleTown), std::int64_t(r.withOcclusion),
+                       ratio(r.meshActors, r.withOcclusion)});
+            report << t.markdown();
         }
         if (o.has("town")) {
             std::fprintf(stderr, "bench_frame: the town's DRAW, %d cameras along the path...\n", o.townSamples);
