@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
+#include "DrawPlan.h"
 #include "GlMesh.h"
 #include "Shaders.h"
 #include "throng/render/CpuSkinning.h"
@@ -28,24 +29,7 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-// Distance bands of front-to-back drawing: [0, 16 m), then each band twice as deep as the last
-// (infinite distances share the last band).
-std::int32_t distanceBand(float distance) {
-    if (!(distance >= 16.0f)) return 0;
-    return 1 + static_cast<std::int32_t>(std::log2(std::min(distance, 1e30f) / 16.0f));
-}
-
-// Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix
-// (key-pose items: the first texel of row 0, the first texel of row 1 and row 1's weight).
-struct InstanceData {
-    float model[16];
-    float tint[4];
-    std::int32_t paletteBase;
-    std::int32_t row1Base;
-    float blend;
-    std::int32_t pad;
-};
-static_assert(sizeof(InstanceData) == 96, "instance attributes assume a 96-byte stride");
+using detail::InstanceData;
 static_assert(GlRenderer::kKeyPoseVertexBytes == detail::kKeyPoseVertexBytes, "one key-pose vertex layout");
 
 // One key-pose cache on the GPU: the rows of one (mesh, KeyPoseSource) pair, rowCount() x the mesh's
@@ -63,9 +47,9 @@ struct KeyPoseGpu {
     // and the first item that wanted it (named in a conflict).
     std::vector<std::uint32_t> wantPose, wantSkin, wantItem;
     std::vector<std::uint64_t> wantStamp;
-    std::uint64_t stamp = 0;  // draw() call that set `group` and `order`
+    std::uint64_t stamp = 0;  // draw() call that set `order`
     std::uint32_t order = 0;  // first appearance among this draw's caches (fills go in that order)
-    std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [interpolative * 2 + mirrored]
+    detail::BatchSlots batches;  // this draw's groups: [interpolative * 2 + mirrored]
 };
 
 struct MeshEntry {
@@ -74,8 +58,7 @@ struct MeshEntry {
     GLuint cpuVao = 0;    // CPU-skinned drawing: positions and normals from the stream buffer
     GLuint texture = 0;   // owned by the texture cache
     glm::vec4 baseColor{1.0f};
-    std::uint64_t stamp = 0;  // draw() call that set `group`
-    std::uint32_t group[4] = {kNone, kNone, kNone, kNone};  // this draw's groups: [skinned * 2 + mirrored]
+    detail::BatchSlots batches;  // this draw's groups: [skinned * 2 + mirrored]
     std::vector<std::unique_ptr<KeyPoseGpu>> keyPoses;       // its key-pose caches, one per source
 };
 
@@ -93,7 +76,6 @@ struct Group {
     bool mirrored = false;            // negative determinant: triangles wind the other way on screen
     std::uint32_t count = 0;          // items
     std::uint32_t first = 0;          // first slot in the instance buffer
-    std::uint32_t filled = 0;         // slots written so far
     std::uint32_t cpuVertexBase = 0;  // CPU-skinned: first vertex in the stream buffer
     std::int32_t band = 0;            // front-to-back: distance band of its items (see distanceBand)
     KeyPoseGpu* keyPose = nullptr;    // key-pose paths: the cache its items read
@@ -162,9 +144,8 @@ struct GlRenderer::Impl {
     // Scratch reused by every draw(): no allocation once the crowd's size has been seen.
     std::vector<const DrawItem*> items;                     // the list's items, indexable
     std::vector<std::uint32_t> itemGroup;
-    std::vector<std::uint32_t> order;                       // items in drawing order
-    std::vector<std::pair<float, std::uint32_t>> byDistance;  // (nearest distance, item) when sorting
-    std::vector<std::int32_t> band;                         // each item's distance band (front-to-back)
+    detail::DrawOrder drawOrder;                            // items in drawing order, and their distance bands
+    detail::BatchPlanner planner;                           // which items share an instanced draw
     std::vector<Group> groups;
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
@@ -337,7 +318,6 @@ struct GlRenderer::Impl {
         if (c.stamp != drawStamp) {
             c.stamp = drawStamp;
             c.order = keyPoseCaches++;
-            c.group[0] = c.group[1] = c.group[2] = c.group[3] = kNone;
         }
         const int slots = k.blend != 0.0f ? 2 : 1;  // intermittent: row[1] is not read
         for (int s = 0; s < slots; ++s) {
@@ -433,35 +413,6 @@ struct GlRenderer::Impl {
         if (bytes <= capacity) return;
         capacity = std::max(bytes, capacity * 2);
         gl.BufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
-    }
-
-    // Fills `order` with the items' indices, nearest first when options.frontToBack (by the nearest
-    // point of each item's bounding sphere; ties keep list order), else in list order.
-    void orderItems() {
-        order.resize(items.size());
-        if (!options.frontToBack) {
-            for (std::size_t i = 0; i < items.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-            return;
-        }
-        byDistance.resize(items.size());
-        band.assign(items.size(), 0);
-        for (std::size_t i = 0; i < items.size(); ++i) {
-            const DrawItem& item = *items[i];
-            float key = 0.0f;
-            if (item.drawable) {
-                const glm::dmat3 l(item.world.linear);
-                const BoundingSphere& b = item.drawable->localBound();
-                const Vec3 centre = item.world.transformPoint(b.center());
-                const double scale = std::sqrt(std::max({glm::dot(l[0], l[0]), glm::dot(l[1], l[1]), glm::dot(l[2], l[2])}));
-                key = static_cast<float>(std::max(glm::length(centre - eye) - b.radius() * scale, 0.0));
-                if (std::isnan(key)) key = 0.0f;  // a NaN would break the sort's ordering
-            }
-            byDistance[i] = {key, static_cast<std::uint32_t>(i)};
-            band[i] = distanceBand(key);
-        }
-        std::stable_sort(byDistance.begin(), byDistance.end(),
-                         [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (std::size_t i = 0; i < items.size(); ++i) order[i] = byDistance[i].second;
     }
 
     void loadFrameUniforms(ProgramState& p) {
@@ -633,14 +584,15 @@ void GlRenderer::draw(const DrawList& list) {
     r.lastMesh = nullptr;
     r.itemGroup.resize(items.size());
     r.groups.clear();
+    r.planner.begin(r.options.instancing);
     r.fills.clear();
     r.keyPoseCaches = 0;
 
     // 1. Check every item and sort it into a group (first appearance in drawing order: with
     // frontToBack, groups by their nearest item), before any drawing.
-    r.orderItems();
+    r.drawOrder.plan(items, r.eye, r.options.frontToBack);
     std::size_t paletteMatrices = 0, cpuVertices = 0;
-    for (const std::uint32_t i : r.order) {
+    for (const std::uint32_t i : r.drawOrder.order()) {
         const DrawItem& item = *items[i];
         if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
         const auto* meshDrawable = dynamic_cast<const MeshDrawable*>(item.drawable);
@@ -657,17 +609,14 @@ void GlRenderer::draw(const DrawList& list) {
         const bool mirrored = glm::determinant(glm::dmat3(item.world.linear)) < 0.0;
         // Front to back, a mesh's instances are split by distance band, so that an instanced
         // draw covering the whole town does not put far instances before near ones of other meshes.
-        const std::int32_t band = r.options.frontToBack ? r.band[i] : 0;
+        const std::int32_t band = r.drawOrder.band()[i];
         if (item.representation == Representation::KeyPose) {
             // Grouped by mesh, cache, one row or two, mirroring and band: one instanced draw each.
             KeyPoseGpu& c = r.wantKeyPoses(i, item, e);
             const bool blended = item.keyPose.blend != 0.0f;
-            std::uint32_t& g = c.group[(blended ? 2 : 0) + (mirrored ? 1 : 0)];
-            if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
-                g = static_cast<std::uint32_t>(r.groups.size());
-                r.groups.push_back(Group{&e, blended ? Path::KeyPoseBlend : Path::KeyPose, mirrored, 0, 0, 0, 0, band, &c});
-            }
-            ++r.groups[g].count;
+            bool opened = false;
+            const std::uint32_t g = r.planner.join(c.batches, (blended ? 2 : 0) + (mirrored ? 1 : 0), band, opened);
+            if (opened) r.groups.push_back(Group{&e, blended ? Path::KeyPoseBlend : Path::KeyPose, mirrored, 0, 0, 0, band, &c});
             r.itemGroup[i] = g;
             continue;
         }
@@ -678,22 +627,15 @@ void GlRenderer::draw(const DrawList& list) {
                                         std::to_string(e.gpu.requiredPalette));
         const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
         if (path == Path::CpuSkinned) {
-            r.itemGroup[i] = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, mirrored, 1, 0, 0, static_cast<std::uint32_t>(cpuVertices)});
+            r.itemGroup[i] = r.planner.alone(band);
+            r.groups.push_back(Group{&e, path, mirrored, 1, 0, static_cast<std::uint32_t>(cpuVertices), band});
             cpuVertices += e.gpu.vertexCount;
             continue;
         }
         if (path == Path::GpuSkinned) paletteMatrices += e.gpu.requiredPalette;
-        if (e.stamp != r.drawStamp) {
-            e.stamp = r.drawStamp;
-            e.group[0] = e.group[1] = e.group[2] = e.group[3] = kNone;
-        }
-        std::uint32_t& g = e.group[(path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0)];
-        if (g == kNone || !r.options.instancing || r.groups[g].band != band) {
-            g = static_cast<std::uint32_t>(r.groups.size());
-            r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, 0, band});
-        }
-        ++r.groups[g].count;
+        bool opened = false;
+        const std::uint32_t g = r.planner.join(e.batches, (path == Path::GpuSkinned ? 2 : 0) + (mirrored ? 1 : 0), band, opened);
+        if (opened) r.groups.push_back(Group{&e, path, mirrored, 0, 0, 0, band});
         r.itemGroup[i] = g;
     }
     // Rows to skin, cache by cache in order of first appearance, rows ascending (runs of
@@ -711,10 +653,10 @@ void GlRenderer::draw(const DrawList& list) {
                                  std::to_string(r.maxTextureBufferTexels));
 
     // 2. Lay the groups out in the instance buffer, then fill it in drawing order.
-    std::uint32_t slots = 0;
-    for (Group& g : r.groups) {
-        g.first = slots;
-        slots += g.count;
+    const std::uint32_t slots = r.planner.layOut();
+    for (std::size_t k = 0; k < r.groups.size(); ++k) {
+        r.groups[k].first = r.planner.batches()[k].first;
+        r.groups[k].count = r.planner.batches()[k].count;
     }
     r.instances.resize(slots);
     r.palette.resize(paletteMatrices);
@@ -723,30 +665,12 @@ void GlRenderer::draw(const DrawList& list) {
     r.cpuNormals.resize(cpuVertices);
     std::size_t paletteCursor = 0;  // the items' palettes come first, then the fills'
     const Vec3 eye = r.eye;
-    for (const std::uint32_t i : r.order) {
+    for (const std::uint32_t i : r.drawOrder.order()) {
         if (r.itemGroup[i] == kNone) continue;
         const DrawItem& item = *items[i];
-        Group& g = r.groups[r.itemGroup[i]];
-        InstanceData& d = r.instances[g.first + g.filled++];
-        // T(-eye) * world: the linear part as it is (already float), the translation made
-        // eye-relative in double, then rounded.
-        const glm::mat3& l = item.world.linear;
-        for (int c = 0; c < 3; ++c) {
-            d.model[4 * c + 0] = l[c].x;
-            d.model[4 * c + 1] = l[c].y;
-            d.model[4 * c + 2] = l[c].z;
-            d.model[4 * c + 3] = 0.0f;
-        }
-        const Vec3 t = item.world.translation - eye;
-        d.model[12] = static_cast<float>(t.x);
-        d.model[13] = static_cast<float>(t.y);
-        d.model[14] = static_cast<float>(t.z);
-        d.model[15] = 1.0f;
-        std::memcpy(d.tint, &item.tint[0], sizeof d.tint);
-        d.paletteBase = 0;
-        d.row1Base = 0;
-        d.blend = 0.0f;
-        d.pad = 0;
+        const Group& g = r.groups[r.itemGroup[i]];
+        InstanceData& d = r.instances[r.planner.nextSlot(r.itemGroup[i])];
+        detail::writeInstance(d, item, eye);
         if (g.path == Path::KeyPose || g.path == Path::KeyPoseBlend) {
             const KeyPoseRef& k = item.keyPose;
             const std::uint32_t n = g.mesh->gpu.vertexCount;  // rows * n fits the texel limit, checked above
