@@ -805,27 +805,25 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
     };
     t << "Town DRAW alone (the GL finished after the town pass), " << o.townActors << " actors, " << o.e.width << " x " << o.e.height
       << " headless, " << gl << "; " << r.times.size() << " cameras along the path, " << o.townFrames
-      << " frames each per variant, variants interleaved:\n\n"
-      << "| variant | mean ms | worst camera ms | vs old | CPU ms (all threads) | town triangles |\n|---|---:|---:|---:|---:|---:|\n";
+      << " frames each per variant, variants interleaved:\n\n";
+    bench::ResultTable variants({{"", "variant", "%s", true}, {"", "mean ms", "%.1f"}, {"", "worst camera ms", "%.1f"}, {"", "vs old", "%.2fx"},
+                                 {"", "CPU ms (all threads)", "%.1f"}, {"", "town triangles", "%.0f"}});
     const double old = mean(r.variants.front().ms);
-    for (const TownVariant& v : r.variants) {
-        if (v.isProbe()) continue;
-        std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.2fx | %.1f | %.0f |\n", v.name.c_str(), mean(v.ms),
-                      *std::max_element(v.ms.begin(), v.ms.end()), old / mean(v.ms), mean(v.cpuMs), v.triangles);
-        t << line;
-    }
+    for (const TownVariant& v : r.variants)
+        if (!v.isProbe())
+            variants.add({v.name, mean(v.ms), *std::max_element(v.ms.begin(), v.ms.end()), old / mean(v.ms), mean(v.cpuMs), v.triangles});
+    t << variants.markdown();
     // Where the default scene's pass goes: the same list and renderer with part of the work left out.
-    t << "\nWhere the default scene's town pass goes (its list and renderer, part of the work left out; the same frames):\n\n"
-         "| probe | mean ms | share of the whole pass | CPU ms (all threads) |\n|---|---:|---:|---:|\n";
+    t << "\nWhere the default scene's town pass goes (its list and renderer, part of the work left out; the same frames):\n\n";
+    bench::ResultTable probes({{"", "probe", "%s", true}, {"", "mean ms", "%.1f"}, {"", "share of the whole pass", "%.0f %%"},
+                               {"", "CPU ms (all threads)", "%.1f"}});
     double whole = 0;
     for (const TownVariant& v : r.variants)
         if (!v.isProbe() && v.asDefaultScene()) whole = mean(v.ms);
-    for (const TownVariant& v : r.variants) {
-        if (!v.asDefaultScene()) continue;
-        std::snprintf(line, sizeof line, "| %s | %.1f | %.0f %% | %.1f |\n", !v.isProbe() ? "the whole pass" : v.name.c_str(),
-                      mean(v.ms), 100.0 * mean(v.ms) / std::max(whole, 1e-9), mean(v.cpuMs));
-        t << line;
-    }
+    for (const TownVariant& v : r.variants)
+        if (v.asDefaultScene())
+            probes.add({!v.isProbe() ? std::string("the whole pass") : v.name, mean(v.ms), 100.0 * mean(v.ms) / std::max(whole, 1e-9), mean(v.cpuMs)});
+    t << probes.markdown();
     std::snprintf(line, sizeof line,
                   "\nFragments per frame, in screens of %d x %d pixels (back faces culled): %.2f reach the depth test (%.2f to %.2f over the "
                   "cameras), %.2f pass it as drawn front to back.\n",
@@ -843,36 +841,33 @@ std::string townTable(const TownResult& r, const Options& o, const std::string& 
                       "\nAn image cache of the town (drawn once, shown again) against the golden-image tolerance (at most 0.5 %% of the pixels "
                       "over 8/255): along the camera path the view turns %.2f px a tick at the image centre (median of %zu ticks; %.0f %% "
                       "of the ticks turn 0.1 px or more, %.0f %% 0.5 px or more). The default pass drawn again with the view moved by a "
-                      "fraction of a pixel, against its image before (kept) or shifted bilinearly to follow, over the cameras:\n\n"
-                      "| view moved by | pixels over 8/255, kept (mean, worst) | PSNR dB kept (worst) | pixels over 8/255, shifted (mean, worst) | "
-                      "PSNR dB shifted (worst) |\n|---:|---:|---:|---:|---:|\n",
+                      "fraction of a pixel, against its image before (kept) or shifted bilinearly to follow, over the cameras:\n\n",
                       turns[turns.size() / 2], turns.size(), turnedAtLeast(0.1), turnedAtLeast(0.5));
         t << line;
+        bench::ResultTable reuse({{"", "view moved by", "%.2f px"}, {"", "pixels over 8/255, kept (mean, worst)", "%s"}, {"", "PSNR dB kept (worst)", "%.1f"},
+                                  {"", "pixels over 8/255, shifted (mean, worst)", "%s"}, {"", "PSNR dB shifted (worst)", "%.1f"}});
+        const auto meanAndWorst = [&](const std::vector<double>& v) {
+            char cell[64];
+            std::snprintf(cell, sizeof cell, "%.2f %%, %.2f %%", 100.0 * mean(v), 100.0 * *std::max_element(v.begin(), v.end()));
+            return std::string(cell);
+        };
         for (std::size_t i = 0; i < r.reuse.size(); ++i) {
             const ImageReuse& u = r.reuse[i];
-            std::snprintf(line, sizeof line, "| %.2f px | %.2f %%, %.2f %% | %.1f | %.2f %%, %.2f %% | %.1f |\n", kReuseOffsets[i],
-                          100.0 * mean(u.keptOver), 100.0 * *std::max_element(u.keptOver.begin(), u.keptOver.end()),
-                          *std::min_element(u.keptPsnr.begin(), u.keptPsnr.end()), 100.0 * mean(u.shiftedOver),
-                          100.0 * *std::max_element(u.shiftedOver.begin(), u.shiftedOver.end()),
-                          *std::min_element(u.shiftedPsnr.begin(), u.shiftedPsnr.end()));
-            t << line;
+            reuse.add({kReuseOffsets[i], meanAndWorst(u.keptOver), *std::min_element(u.keptPsnr.begin(), u.keptPsnr.end()),
+                       meanAndWorst(u.shiftedOver), *std::min_element(u.shiftedPsnr.begin(), u.shiftedPsnr.end())});
         }
+        t << reuse.markdown();
     }
     if (!r.lodDeclared) t << "\nThe scene declares no town LOD; the LOD rows use 50 m full, 100 m half the triangles, a quarter beyond.\n";
-    t << "\nPer camera (path time in s), ms:\n\n| time |";
-    for (const TownVariant& v : r.variants) t << ' ' << v.name << " |";
-    t << "\n|---:|";
-    for (std::size_t k = 0; k < r.variants.size(); ++k) t << "---:|";
-    t << '\n';
+    std::vector<bench::ResultTable::Column> columns{{"", "time", "%.1f"}};
+    for (const TownVariant& v : r.variants) columns.push_back({"", v.name, "%.1f"});
+    bench::ResultTable perCamera(columns);
     for (std::size_t i = 0; i < r.times.size(); ++i) {
-        std::snprintf(line, sizeof line, "| %.1f |", r.times[i]);
-        t << line;
-        for (const TownVariant& v : r.variants) {
-            std::snprintf(line, sizeof line, " %.1f |", v.ms[i]);
-            t << line;
-        }
-        t << '\n';
+        std::vector<bench::ResultTable::Cell> row{r.times[i]};
+        for (const TownVariant& v : r.variants) row.push_back(v.ms[i]);
+        perCamera.add(std::move(row));
     }
+    t << "\nPer camera (path time in s), ms:\n\n" << perCamera.markdown();
     return t.str();
 }
 
