@@ -116,6 +116,120 @@ std::shared_ptr<Node> tileModelNode(const std::shared_ptr<const MeshDrawable>& m
     return node;
 }
 
+// Placing a scene's actor groups, group by group in scene order: one behaviour object per kind,
+// made when a group first needs it (one DetourCrowd for every walker), and the actors' random
+// streams numbered in that order, so that a scene places the same actors wherever it is built.
+struct Placement {
+    const SceneDescription& d;
+    const std::string& file;
+    Crowd& crowd;
+    EffectCounters& effects;
+    const NavMesh* nav;
+    std::shared_ptr<Locomotion> walkers;
+    std::shared_ptr<IdleGroups> idlers;
+    std::shared_ptr<GazeLayer> walkGaze, idleGaze;
+    GazeLayer::Settings gazeSettings;
+    std::uint64_t stream = 0;
+    CounterRng rng;
+
+    Placement(const SceneDescription& description, const std::string& sceneFile, Crowd& c, EffectCounters& e, const NavMesh* mesh)
+        : d(description), file(sceneFile), crowd(c), effects(e), nav(mesh), rng(description.seed, 0x5ce7e) {
+        gazeSettings.levels = d.effects.gazeLevels;
+        gazeSettings.range = d.effects.gazeRange;
+        gazeSettings.seed = d.seed;
+    }
+
+    // A random point of the navigation mesh inside `area` (or the nearest one found).
+    glm::vec3 pointIn(const AreaDescription& area, std::uint64_t s) const {
+        const CounterRng r(d.seed, s);
+        for (std::uint64_t k = 0; k < 64; ++k) {
+            const glm::vec3 p = nav->randomPoint(r, k);
+            if (std::abs(p.x - area.center.x) <= 0.5 * area.size.x && std::abs(p.z - area.center.y) <= 0.5 * area.size.y) return p;
+        }
+        return nav->randomPoint(r, 64);
+    }
+
+    // Walkers of group `g`, each from a random point of its area at a speed of its own.
+    void walk(const ActorGroupDescription& g, const ResolvedTemplate& t, const ActorLook& look, const std::vector<double>& levels,
+              const std::shared_ptr<const NavMesh>& navMesh, std::vector<ActorId>& ids) {
+        if (!walkers) {
+            Locomotion::Settings s;
+            s.avoidance = d.effects.avoidance;
+            s.avoidanceQuality = d.effects.avoidanceQuality;
+            s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
+            s.farDistance = d.effects.farUpdateDistance;
+            s.farEvery = d.effects.farUpdateEvery;
+            s.seed = d.seed;
+            s.regions = townRegions(*d.town, file);
+            // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
+            if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
+            walkers = std::make_shared<Locomotion>(navMesh, s, levels, &effects);
+            if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects);
+        }
+        const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
+        for (std::int64_t i = 0; i < g.count; ++i, ++stream) {
+            Locomotion::Actor a;
+            a.tmpl = t.tmpl;
+            a.walkClip = t.walkClip;
+            a.walkClipSpeed = t.walkClipSpeed;
+            a.runClip = t.runClip;
+            a.runClipSpeed = t.runClipSpeed;
+            a.start = pointIn(g.area, stream);
+            a.speed = rng.uniform(stream, speed.x, speed.y);
+            a.stream = stream;
+            std::uint32_t slot = walkers->addActor(a);
+            if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
+            ids.push_back(crowd.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, look));
+        }
+    }
+
+    // Standing people of group `g`, in circles of a random size facing their middle.
+    void stand(const ActorGroupDescription& g, const ResolvedTemplate& t, const ActorLook& look, const std::vector<double>& levels,
+               std::vector<ActorId>& ids) {
+        if (!idlers) {
+            idlers = std::make_shared<IdleGroups>(levels, &effects);
+            if (d.effects.gaze) idleGaze = std::make_shared<GazeLayer>(idlers, gazeSettings, &effects);
+        }
+        const int clip = t.idleClip >= 0 ? t.idleClip : t.walkClip;
+        std::int64_t placed = 0;
+        while (placed < g.count) {
+            const std::uint64_t groupStream = stream;
+            const int size = int(std::min<std::int64_t>(g.count - placed,
+                g.groupSize.x + std::int64_t(rng.below(groupStream * 7 + 1, std::uint64_t(g.groupSize.y - g.groupSize.x + 1)))));
+            const glm::vec3 centre = pointIn(g.area, groupStream);
+            const double radius = 0.6 + 0.45 * std::sqrt(double(size));
+            for (int k = 0; k < size; ++k, ++placed, ++stream) {
+                const double angle = 2.0 * std::numbers::pi * k / size + rng.uniform(stream * 3 + 2, -0.2, 0.2);
+                KeyframeBehaviour::Actor a;
+                a.tmpl = t.tmpl;
+                a.clip = clip;
+                a.position = Vec3(centre) + Vec3(radius * std::sin(angle), 0.0, radius * std::cos(angle));
+                a.heading = angle + std::numbers::pi;  // facing the middle of the group
+                // An idle clip plays; a walk clip is held at some instant (standing still).
+                a.timeScale = t.idleClip >= 0 ? 1.0 : 0.0;
+                a.timeOffset = rng.uniform(stream * 3 + 1, 0.0, t.tmpl->clips()[std::size_t(clip)]->duration());
+                std::uint32_t slot = idlers->addPerson(a);
+                if (idleGaze) slot = idleGaze->wrap(slot, t.tmpl, stream);
+                ids.push_back(crowd.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, look));
+            }
+        }
+    }
+
+    // A flock of its own for group `g` (the group's index `gi` seeds it).
+    std::shared_ptr<Flock> fly(const ActorGroupDescription& g, std::size_t gi, const ResolvedTemplate& t, const ActorLook& look,
+                               const std::vector<double>& levels, std::vector<ActorId>& ids) {
+        Flock::Settings s;
+        s.center = g.area.center;
+        s.size = g.area.size;
+        s.altitude = g.altitude;
+        s.speed = g.speed.value_or(glm::dvec2(6.0, 11.0));
+        s.seed = d.seed + gi;
+        auto flock = std::make_shared<Flock>(s, levels, &effects);
+        for (std::int64_t i = 0; i < g.count; ++i, ++stream) ids.push_back(crowd.add(t.tmpl, flock, flock->addBird({t.tmpl, t.walkClip, stream}), look));
+        return flock;
+    }
+};
+
 }  // namespace
 
 Simulation::~Simulation() = default;
@@ -277,27 +391,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
     }
     navGeometry_ = NavGeometry{};
 
-    // One behaviour object per kind (one DetourCrowd for every walker), made only when declared.
-    std::shared_ptr<Locomotion> walkers;
-    std::shared_ptr<IdleGroups> idlers;
-    std::shared_ptr<GazeLayer> walkGaze, idleGaze;
-    GazeLayer::Settings gazeSettings;
-    gazeSettings.levels = d.effects.gazeLevels;
-    gazeSettings.range = d.effects.gazeRange;
-    gazeSettings.seed = d.seed;
-    std::uint64_t stream = 0;
-    const CounterRng rng(d.seed, 0x5ce7e);
-
-    // A random point of the navigation mesh inside `area` (or the nearest one found).
-    auto pointIn = [&](const AreaDescription& area, std::uint64_t s) {
-        const CounterRng r(d.seed, s);
-        for (std::uint64_t k = 0; k < 64; ++k) {
-            const glm::vec3 p = nav_->randomPoint(r, k);
-            if (std::abs(p.x - area.center.x) <= 0.5 * area.size.x && std::abs(p.z - area.center.y) <= 0.5 * area.size.y) return p;
-        }
-        return nav_->randomPoint(r, 64);
-    };
-
+    Placement place(d, file, crowd_, effects_, nav_.get());
     for (std::size_t gi = 0; gi < d.actors.size(); ++gi) {
         const ActorGroupDescription& g = d.actors[gi];
         ActorGroupInfo info{g.name, g.behaviour, {}};
@@ -308,76 +402,9 @@ void Simulation::buildActors(const BuildProgress& progress) {
         const ResolvedTemplate& t = templates.at(copyKey(g));
         const ActorLook look{float(g.priority), glm::vec4(1.0f)};
         const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
-        if (g.behaviour == "walk") {
-            if (!walkers) {
-                Locomotion::Settings s;
-                s.avoidance = d.effects.avoidance;
-                s.avoidanceQuality = d.effects.avoidanceQuality;
-                s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
-                s.farDistance = d.effects.farUpdateDistance;
-                s.farEvery = d.effects.farUpdateEvery;
-                s.seed = d.seed;
-                s.regions = townRegions(*d.town, file);
-                // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
-                if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
-                walkers = std::make_shared<Locomotion>(nav_, s, levels, &effects_);
-                if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects_);
-            }
-            const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
-            for (std::int64_t i = 0; i < g.count; ++i, ++stream) {
-                Locomotion::Actor a;
-                a.tmpl = t.tmpl;
-                a.walkClip = t.walkClip;
-                a.walkClipSpeed = t.walkClipSpeed;
-                a.runClip = t.runClip;
-                a.runClipSpeed = t.runClipSpeed;
-                a.start = pointIn(g.area, stream);
-                a.speed = rng.uniform(stream, speed.x, speed.y);
-                a.stream = stream;
-                std::uint32_t slot = walkers->addActor(a);
-                if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
-                info.actors.push_back(crowd_.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, look));
-            }
-        } else if (g.behaviour == "idle") {
-            if (!idlers) {
-                idlers = std::make_shared<IdleGroups>(levels, &effects_);
-                if (d.effects.gaze) idleGaze = std::make_shared<GazeLayer>(idlers, gazeSettings, &effects_);
-            }
-            const int clip = t.idleClip >= 0 ? t.idleClip : t.walkClip;
-            std::int64_t placed = 0;
-            while (placed < g.count) {
-                const std::uint64_t groupStream = stream;
-                const int size = int(std::min<std::int64_t>(g.count - placed,
-                    g.groupSize.x + std::int64_t(rng.below(groupStream * 7 + 1, std::uint64_t(g.groupSize.y - g.groupSize.x + 1)))));
-                const glm::vec3 centre = pointIn(g.area, groupStream);
-                const double radius = 0.6 + 0.45 * std::sqrt(double(size));
-                for (int k = 0; k < size; ++k, ++placed, ++stream) {
-                    const double angle = 2.0 * std::numbers::pi * k / size + rng.uniform(stream * 3 + 2, -0.2, 0.2);
-                    KeyframeBehaviour::Actor a;
-                    a.tmpl = t.tmpl;
-                    a.clip = clip;
-                    a.position = Vec3(centre) + Vec3(radius * std::sin(angle), 0.0, radius * std::cos(angle));
-                    a.heading = angle + std::numbers::pi;  // facing the middle of the group
-                    // An idle clip plays; a walk clip is held at some instant (standing still).
-                    a.timeScale = t.idleClip >= 0 ? 1.0 : 0.0;
-                    a.timeOffset = rng.uniform(stream * 3 + 1, 0.0, t.tmpl->clips()[std::size_t(clip)]->duration());
-                    std::uint32_t slot = idlers->addPerson(a);
-                    if (idleGaze) slot = idleGaze->wrap(slot, t.tmpl, stream);
-                    info.actors.push_back(crowd_.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, look));
-                }
-            }
-        } else {  // flight
-            Flock::Settings s;
-            s.center = g.area.center;
-            s.size = g.area.size;
-            s.altitude = g.altitude;
-            s.speed = g.speed.value_or(glm::dvec2(6.0, 11.0));
-            s.seed = d.seed + gi;
-            auto flock = std::make_shared<Flock>(s, levels, &effects_);
-            for (std::int64_t i = 0; i < g.count; ++i, ++stream)
-                info.actors.push_back(crowd_.add(t.tmpl, flock, flock->addBird({t.tmpl, t.walkClip, stream}), look));
-            behaviours_.push_back(flock);
-        }
+        if (g.behaviour == "walk") place.walk(g, t, look, levels, nav_, info.actors);
+        else if (g.behaviour == "idle") place.stand(g, t, look, levels, info.actors);
+        else behaviours_.push_back(place.fly(g, gi, t, look, levels, info.actors));
         auto node = crowd_.makeGroupNode(info.actors);
         node->setName(g.name);
         if (g.behaviour == "walk") {
@@ -394,16 +421,16 @@ void Simulation::buildActors(const BuildProgress& progress) {
             const Vec3 low(lo), high(hi);
             node->setRoamingBound(BoundingSphere(0.5 * (low + high), 0.5 * glm::length(high - low) + reach + 1.0));
             const double height = high.y - low.y;
-            const double gaze = walkGaze ? std::sqrt(gazeSettings.range * gazeSettings.range + height * height) : 0.0;
+            const double gaze = place.walkGaze ? std::sqrt(place.gazeSettings.range * place.gazeSettings.range + height * height) : 0.0;
             gatherMargin_ = std::max(gatherMargin_, reach + gaze + 1.0);
         }
         root_->addChild(node);
         groups_.push_back(std::move(info));
         progress("placing actors", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
     }
-    walkers_ = walkers;
-    for (const auto& b : {std::shared_ptr<Behaviour>(walkers), std::shared_ptr<Behaviour>(idlers), std::shared_ptr<Behaviour>(walkGaze),
-                          std::shared_ptr<Behaviour>(idleGaze)})
+    walkers_ = place.walkers;
+    for (const auto& b : {std::shared_ptr<Behaviour>(place.walkers), std::shared_ptr<Behaviour>(place.idlers),
+                          std::shared_ptr<Behaviour>(place.walkGaze), std::shared_ptr<Behaviour>(place.idleGaze)})
         if (b) behaviours_.push_back(b);
 }
 
