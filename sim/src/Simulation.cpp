@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ActorProcessor.h"
@@ -124,7 +125,7 @@ struct Placement {
     const std::string& file;
     Crowd& crowd;
     EffectCounters& effects;
-    const NavMesh* nav;
+    std::shared_ptr<const NavMesh> nav;  // null when no group walks or stands
     std::shared_ptr<Locomotion> walkers;
     std::shared_ptr<IdleGroups> idlers;
     std::shared_ptr<GazeLayer> walkGaze, idleGaze;
@@ -132,8 +133,9 @@ struct Placement {
     std::uint64_t stream = 0;
     CounterRng rng;
 
-    Placement(const SceneDescription& description, const std::string& sceneFile, Crowd& c, EffectCounters& e, const NavMesh* mesh)
-        : d(description), file(sceneFile), crowd(c), effects(e), nav(mesh), rng(description.seed, 0x5ce7e) {
+    Placement(const SceneDescription& description, const std::string& sceneFile, Crowd& c, EffectCounters& e,
+              std::shared_ptr<const NavMesh> mesh)
+        : d(description), file(sceneFile), crowd(c), effects(e), nav(std::move(mesh)), rng(description.seed, 0x5ce7e) {
         gazeSettings.levels = d.effects.gazeLevels;
         gazeSettings.range = d.effects.gazeRange;
         gazeSettings.seed = d.seed;
@@ -151,7 +153,7 @@ struct Placement {
 
     // Walkers of group `g`, each from a random point of its area at a speed of its own.
     void walk(const ActorGroupDescription& g, const ResolvedTemplate& t, const ActorLook& look, const std::vector<double>& levels,
-              const std::shared_ptr<const NavMesh>& navMesh, std::vector<ActorId>& ids) {
+              std::vector<ActorId>& ids) {
         if (!walkers) {
             Locomotion::Settings s;
             s.avoidance = d.effects.avoidance;
@@ -163,7 +165,7 @@ struct Placement {
             s.regions = townRegions(*d.town, file);
             // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
             if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
-            walkers = std::make_shared<Locomotion>(navMesh, s, levels, &effects);
+            walkers = std::make_shared<Locomotion>(nav, s, levels, &effects);
             if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects);
         }
         const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
@@ -391,7 +393,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
     }
     navGeometry_ = NavGeometry{};
 
-    Placement place(d, file, crowd_, effects_, nav_.get());
+    Placement place(d, file, crowd_, effects_, nav_);
     for (std::size_t gi = 0; gi < d.actors.size(); ++gi) {
         const ActorGroupDescription& g = d.actors[gi];
         ActorGroupInfo info{g.name, g.behaviour, {}};
@@ -402,7 +404,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
         const ResolvedTemplate& t = templates.at(copyKey(g));
         const ActorLook look{float(g.priority), glm::vec4(1.0f)};
         const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
-        if (g.behaviour == "walk") place.walk(g, t, look, levels, nav_, info.actors);
+        if (g.behaviour == "walk") place.walk(g, t, look, levels, info.actors);
         else if (g.behaviour == "idle") place.stand(g, t, look, levels, info.actors);
         else behaviours_.push_back(place.fly(g, gi, t, look, levels, info.actors));
         auto node = crowd_.makeGroupNode(info.actors);
