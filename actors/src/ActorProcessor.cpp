@@ -4,6 +4,14 @@
 #include <stdexcept>
 
 #include "cascade/CascadeFrame.h"
+#include "throng/actors/cascade/BehavioursJob.h"
+#include "throng/actors/cascade/DrawListJob.h"
+#include "throng/actors/cascade/InternalCullingJob.h"
+#include "throng/actors/cascade/ReferencePointsJob.h"
+#include "throng/actors/cascade/RefpointPlacementJob.h"
+#include "throng/actors/cascade/SkeletalLodJob.h"
+#include "throng/actors/cascade/SkeletonRootCullingJob.h"
+#include "throng/actors/cascade/SkeletonRootsJob.h"
 #include "throng/actors/Crowd.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/AppVisitor.h"
@@ -155,27 +163,25 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     list.clear();
 
     cascade::CascadeFrame& f = *cascade_;
-    f.crowd = &crowd_;
     f.frustum = cullingFrustum_ ? *cullingFrustum_ : camera.frustum();
     f.eye = camera.eye();
     f.context = FrameContext{time, frame_ == 0 ? 0.0 : time - lastTime_, frame_, c};
     f.settings = cascade::Settings{lodScale_ * lodScale_, skeletalLod_,           behaviouralLod_,    impostorDistance_,
                                    impostorHysteresis_,   &impostors_,            keyPoseDistance_,   keyPoseHysteresis_,
                                    &keyPoseCaches_};
-    f.stats = &stats_;
-    f.drawList = &list;
-    f.impostorTier = &impostorTier_;
-    f.keyPoseTier = &keyPoseTier_;
+    f.loop.begin(stats_, c, &list);
     f.candidates.clear();
     f.occlusion = nullptr;
+    Crowd::State& s = crowd_.state();
 
     // Generic APP: update callbacks of generic nodes (actor nodes wait for phase 1).
     timed(stats_.appMs, [&] {
         WithActorTraversal<AppVisitor> app(this, f.context);
         root.accept(app);
     });
-    // Phase 1: every actor's Reference Point; the generic matrices traversal places them in the world.
-    timed(stats_.refpointMs, [&] { cascade::computeReferencePoints(f); });
+    // Phase 1: every actor's Reference Point; the generic matrices traversal places them in the
+    // world (bound() below, a RefpointPlacementJob per actor node).
+    timed(stats_.refpointMs, [&] { cascade::ReferencePointsJob{&crowd_, f.context}.run(f.loop); });
     timed(stats_.matricesBoundsMs, [&] {
         WithActorTraversal<MatrixBoundsVisitor> matrices(this, c, false);
         root.accept(matrices);
@@ -190,8 +196,8 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         f.occlusion = &occlusion_->buffer();
     }
     stats_.occlusionRested = occlusion_ && occlusion_->statistics().rested;
-    // Generic CULL, which meets actor nodes after the generic groups above them; phase 2: CULL 1,
-    // then occlusion of the survivors.
+    // Generic CULL, which meets actor nodes after the generic groups above them (cull() below
+    // gathers the candidates); phase 2: CULL 1, then occlusion of the survivors.
     timed(stats_.cullMs, [&] {
         WithActorTraversal<CullVisitor> cull(this, camera, list, c, lodScale_);
         if (cullingFrustum_) cull.setCullingFrustum(*cullingFrustum_);
@@ -204,16 +210,42 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         stats_.lodDistances += cull.statistics().lodDistances;
         stats_.drawItems += cull.statistics().drawItems;
         stats_.primitives += cull.statistics().primitives;
-        cascade::cullReferencePoints(f);
+        cascade::RefpointCullingJob{&s, &f.frustum, f.eye, f.candidates, &f.survivors, s.actorClass, &f.cullScratch}.run(f.loop);
     });
     stats_.culledWithGroup = stats_.actorsInScene - f.candidates.size() - stats_.occludedWithGroup -
                              (stats_.a - (f.candidates.size() - f.survivors.size()));
-    timed(stats_.refpointOcclusionMs, [&] { cascade::occludeReferencePoints(f); });
-    timed(stats_.skeletonRootMs, [&] { cascade::computeSkeletonRoots(f); });  // phase 3
-    timed(stats_.cull2Ms, [&] { cascade::cullSkeletonRoots(f); });            // phase 4: CULL 2
-    timed(stats_.poseMs, [&] { cascade::evaluateBehaviours(f); });            // phase 5
-    timed(stats_.cull3Ms, [&] { cascade::cullInternalSpheres(f); });          // phase 6: CULL 3
-    timed(stats_.drawListMs, [&] { cascade::buildDrawList(f); });             // phase 7
+    timed(stats_.refpointOcclusionMs, [&] {
+        cascade::RefpointOcclusionJob{&s, f.occlusion, f.candidates, &f.survivors, s.actorClass, &f.occlusionScratch}.run(f.loop);
+    });
+    // Phase 3.
+    timed(stats_.skeletonRootMs, [&] {
+        cascade::SkeletonRootsJob{&s,     f.candidates,           f.survivors,         f.eye, time, f.settings.behaviouralLod,
+                                  f.settings.lodScale2, s.root, s.sklsWorld}
+            .run(f.loop);
+    });
+    // Phase 4: CULL 2, the key-pose caches' poses for the frame, skeletal LOD.
+    timed(stats_.cull2Ms, [&] {
+        cascade::SkeletonRootCullingJob{&s,          &f.frustum,    f.eye,         time,         &f.settings,
+                                        f.occlusion, f.candidates,  f.survivors,   &impostorTier_, &keyPoseTier_,
+                                        s.actorClass, s.eyeDistance, &f.decisions}
+            .run(f.loop);
+        if (f.settings.keyPoseCachesOn())
+            timed(stats_.keyPoseSelectMs,
+                  [&] { cascade::KeyPoseSelectingJob{&keyPoseCaches_, frame_, &f.decisions, &f.keyPoseScratch}.run(f.loop); });
+        cascade::SkeletalLodJob{&s, f.candidates, f.survivors, &f.decisions, skeletalLod_, &f.posed}.run(f.loop);
+    });
+    // Phase 5.
+    timed(stats_.poseMs, [&] { cascade::BehavioursJob{&s, f.candidates, f.survivors, time, &f.posed, s.dofs}.run(f.loop); });
+    // Phase 6: CULL 3.
+    timed(stats_.cull3Ms, [&] {
+        cascade::InternalCullingJob{&s, &f.frustum, f.candidates, f.survivors, &f.decisions, &f.posed, s.actorClass, &f.visibility}
+            .run(f.loop);
+    });
+    // Phase 7.
+    timed(stats_.drawListMs, [&] {
+        cascade::DrawListJob{&s, &f.frustum, time, &f.settings, f.candidates, f.survivors, &f.decisions, &f.posed, &f.visibility}
+            .run(f.loop);
+    });
     if (f.occlusion)
         occlusion_->settle(stats_.occludedWithGroup + stats_.occludedRefpoint + stats_.occludedSklsroot + stats_.nodesOccluded,
                            stats_.occlusionTests);
@@ -223,7 +255,9 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
 BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor, const BoundingSphere& roaming) {
     visitor.statistics().worldMatricesComposed += ids.size();
     visitor.statistics().spheresRecomputed += ids.size();
-    return cascade::placeReferencePoints(*cascade_, ids, visitor.parentWorld(), visitor.parentIsIdentity(), roaming);
+    Crowd::State& s = crowd_.state();
+    return cascade::RefpointPlacementJob{&s, ids, visitor.parentWorld(), visitor.parentIsIdentity(), roaming, s.refWorld, s.refSphereWorld}
+        .run(cascade_->loop);
 }
 
 void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor, bool boundIsMemberSphere) {

@@ -1,11 +1,8 @@
-// Phase 7 of actor processing: the draw list. Impostors are placed at their Reference Point; posed
-// actors give their actor-level geometry (skinned with its palette) and each visible active node's
-// geometry at its vaLod level, and their held objects. Each chunk writes its own segment of the list.
+// Phase 7 of actor processing: the draw list (see DrawListJob.h).
 
 #include "../ActorDrawItem.h"
-#include "CascadeFrame.h"
 #include "HeldObjects.h"
-#include "throng/actors/Crowd.h"
+#include "throng/actors/cascade/DrawListJob.h"
 #include "throng/scenegraph/Transform.h"
 #include "throng/actors/SkeletonPose.h"
 #include "throng/actors/detail/PoseKernels.h"
@@ -14,8 +11,8 @@
 namespace throng::cascade {
 namespace {
 
-const Drawable* impostorOf(const CascadeFrame& f, const ActorTemplate& tmpl) {
-    for (const auto& [t, d] : *f.settings.impostors)
+const Drawable* impostorOf(const Settings& settings, const ActorTemplate& tmpl) {
+    for (const auto& [t, d] : *settings.impostors)
         if (t == &tmpl) return d.get();
     return nullptr;
 }
@@ -30,21 +27,23 @@ DrawItem& emit(ChunkOutput& out, const detail::ActorItemBase& a, const Drawable&
 }
 
 // The items of posed actor j (its index among the posed).
-void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const detail::ActorItemBase& a, OpTally* nodeOps) {
-    const Crowd::State& s = f.crowd->state();
-    const Candidate& cand = f.candidates[f.survivors[f.posed[j]]];
+void emitPosed(const DrawListJob& job, ChunkOutput& out, std::size_t j, const detail::ActorItemBase& a, OpTally* nodeOps) {
+    const Crowd::State& s = *job.crowd;
+    const PosedActors& p = *job.posed;
+    const InternalVisibility& v = *job.visibility;
+    const Candidate& cand = job.candidates[job.survivors[p.posed[j]]];
     const ActorId id = cand.id;
     const ActorTemplate& t = *s.tmpl[id];
     const std::size_t n = t.nodeCount();
-    const std::uint32_t base = f.nodeBase[j];
-    const std::span<const std::uint8_t> active(f.active.data() + base, n);
-    const std::span<const Affine> model(f.model.data() + base, n);
+    const std::uint32_t base = p.nodeBase[j];
+    const std::span<const std::uint8_t> active(p.active.data() + base, n);
+    const std::span<const Affine> model(p.model.data() + base, n);
     const Mat4& skls = s.sklsWorld[id];
-    const double d2 = f.detail2[f.posed[j]];
-    const bool all = f.visibility[j] == kAllVisible;
+    const double d2 = job.decisions->detail2[p.posed[j]];
+    const bool all = v.visibility[j] == kAllVisible;
     const auto self = static_cast<std::uint32_t>(n);  // the part number of the actor-level geometry
     const int rootLevel = t.rootGeometry().selectSquared(d2);
-    if (rootLevel >= 0 && (all || f.rootVisible[j])) {
+    if (rootLevel >= 0 && (all || v.rootVisible[j])) {
         const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(rootLevel)];
         if (lv.drawable && lv.skin >= 0) {  // the palette is computed straight into the list
             const Skin& skin = t.skins()[static_cast<std::size_t>(lv.skin)];
@@ -61,7 +60,7 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
             i = t.subtreeEnd(i) - 1;
             continue;
         }
-        if (!all && !f.visible[base + i]) continue;
+        if (!all && !v.visible[base + i]) continue;
         const int level = tnodes[i].geometry.selectSquared(d2);
         if (level < 0) continue;
         const auto& d = tnodes[i].geometry.levels()[static_cast<std::size_t>(level)].drawable;
@@ -75,10 +74,10 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
         const int holder = holderNode(t, active, held[k].node);
         const Mat4 world = holder < 0 ? skls : composeAffine(skls, model[static_cast<std::size_t>(holder)].toDMat4(), nodeOps);
         if (!all) {
-            if (holder >= 0 && f.masks[base + static_cast<std::size_t>(holder)] == kCulled) continue;
-            PlaneMask m = holder < 0 ? cand.mask : f.masks[base + static_cast<std::size_t>(holder)];
+            if (holder >= 0 && v.masks[base + static_cast<std::size_t>(holder)] == kCulled) continue;
+            PlaneMask m = holder < 0 ? cand.mask : v.masks[base + static_cast<std::size_t>(holder)];
             ++out.counts.spheresTested;
-            if (f.frustum.classify(held[k].drawable->localBound().transformed(world), m) == Containment::Outside) continue;
+            if (job.frustum->classify(held[k].drawable->localBound().transformed(world), m) == Containment::Outside) continue;
         }
         emit(out, a, *held[k].drawable, self + 1 + k, 0).world = ItemTransform(world);
     }
@@ -86,10 +85,10 @@ void emitPosed(const CascadeFrame& f, ChunkOutput& out, std::size_t j, const det
 
 // The item of an actor drawn from its template's key-pose cache: the skinned mesh of its vaLod
 // level, placed by its Skeleton Root, its vertices read from the cache rows `ref` names.
-void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, const detail::ActorItemBase& a) {
-    const Crowd::State& s = f.crowd->state();
+void emitCached(const DrawListJob& job, ChunkOutput& out, std::size_t survivor, const detail::ActorItemBase& a) {
+    const Crowd::State& s = *job.crowd;
     const ActorTemplate& t = *s.tmpl[a.id];
-    const int level = t.rootGeometry().selectSquared(f.detail2[survivor]);
+    const int level = t.rootGeometry().selectSquared(job.decisions->detail2[survivor]);
     if (level < 0) return;
     const VaLodLevel& lv = t.rootGeometry().levels()[static_cast<std::size_t>(level)];
     if (!lv.drawable) return;
@@ -97,35 +96,53 @@ void emitCached(const CascadeFrame& f, ChunkOutput& out, std::size_t survivor, c
     DrawItem& item = emit(out, a, *lv.drawable, part, level, 0, lv.skin >= 0 ? Representation::KeyPose : Representation::Mesh);
     item.world = ItemTransform(s.sklsWorld[a.id]);
     if (lv.skin >= 0) {
-        item.keyPose = f.keyPoseOf[survivor];
+        item.keyPose = job.decisions->keyPoseOf[survivor];
         item.keyPose.skin = static_cast<std::uint32_t>(lv.skin);
     }
 }
 
 }  // namespace
 
-void buildDrawList(CascadeFrame& f) {
-    const Crowd::State& s = f.crowd->state();
-    const double time = f.context.time;
-    f.parallelDrawing(f.shown.size(), kHeavyGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
-        OpTally* nodeOps = tallyFor(f.counterOf(out), OpCategory::SkeletonMatrix);
+const char* DrawListJob::problem(const PhaseLoop& loop) const {
+    if (!loop.drawing()) return "the loop has no draw list";
+    if (!crowd || !frustum || !settings || !decisions || !posed || !visibility)
+        return "crowd, frustum, settings, decisions, posed and visibility are required";
+    if (survivors.size() > candidates.size()) return "more survivors than candidates";
+    if (decisions->outcome.size() != survivors.size() || decisions->detail2.size() != survivors.size())
+        return "the decisions must have one entry per survivor";
+    const PosedActors& p = *posed;
+    if (p.posedOf.size() != p.shown.size() || p.nodeBase.size() != p.posed.size() || p.model.size() != p.active.size())
+        return "the posed actors' arrays disagree in size";
+    if (visibility->visibility.size() != p.posed.size() || visibility->rootVisible.size() != p.posed.size() ||
+        visibility->visible.size() != p.active.size() || visibility->masks.size() != p.active.size())
+        return "the visibility does not match the posed actors";
+    return nullptr;
+}
+
+void DrawListJob::run(PhaseLoop& loop) const {
+    throwIfInvalid("DrawListJob", loop.ready() ? problem(loop) : "the loop has no frame");
+    const Crowd::State& s = *crowd;
+    const PosedActors& p = *posed;
+    loop.parallelDrawing(p.shown.size(), kHeavyGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        OpTally* nodeOps = tallyFor(loop.counterOf(out), OpCategory::SkeletonMatrix);
         for (std::size_t k = begin; k < end; ++k) {
-            const std::uint32_t j = f.posedOf[k];
-            if (j != CascadeFrame::kNotPosed && f.visibility[j] == kNoneVisible) continue;
-            const Candidate& cand = f.candidates[f.survivors[f.shown[k]]];
+            const std::uint32_t j = p.posedOf[k];
+            if (j != PosedActors::kNotPosed && visibility->visibility[j] == kNoneVisible) continue;
+            const Candidate& cand = candidates[survivors[p.shown[k]]];
             const detail::ActorItemBase a = detail::actorItemBase(s, cand.id, cand.node, cand.member, time);
-            if (j != CascadeFrame::kNotPosed) {
-                emitPosed(f, out, j, a, nodeOps);
+            if (j != PosedActors::kNotPosed) {
+                emitPosed(*this, out, j, a, nodeOps);
                 continue;
             }
-            if (f.outcome[f.shown[k]] == kCached) {
-                emitCached(f, out, f.shown[k], a);
+            if (decisions->outcome[p.shown[k]] == kCached) {
+                emitCached(*this, out, p.shown[k], a);
                 continue;
             }
             // An impostor: one item at the Reference Point, no Skeleton node processed.
             const ActorTemplate& t = *s.tmpl[cand.id];
-            const Drawable& impostor = *impostorOf(f, t);
-            emit(out, a, impostor, static_cast<std::uint32_t>(t.nodeCount()), 0, 0, Representation::Impostor).world =
+            const Drawable* impostor = impostorOf(*settings, t);
+            if (!impostor) continue;  // decided by other settings: nothing to draw it with
+            emit(out, a, *impostor, static_cast<std::uint32_t>(t.nodeCount()), 0, 0, Representation::Impostor).world =
                 ItemTransform(s.refWorld[cand.id]);
         }
     });

@@ -4,20 +4,26 @@
 #include <limits>
 
 #include "../ReferencePointRuns.h"
-#include "CascadeFrame.h"
-#include "throng/actors/Crowd.h"
-#include "throng/scenegraph/Transform.h"
+#include "throng/actors/cascade/ReferencePointsJob.h"
+#include "throng/actors/cascade/RefpointPlacementJob.h"
 #include "throng/scenegraph/Node.h"
+#include "throng/scenegraph/Transform.h"
 
 namespace throng::cascade {
 
-void computeReferencePoints(CascadeFrame& f) {
-    Crowd::State& s = f.crowd->state();
-    f.parallel(f.crowd->size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
-        FrameContext context = f.context;
-        context.counter = f.counterOf(out);
-        OpTally* ops = tallyFor(context.counter, OpCategory::RefpointDofValues);
-        detail::computeReferencePointRuns(s, begin, end, [](std::size_t id) { return ActorId(id); }, context, ops);
+const char* ReferencePointsJob::problem() const {
+    if (!crowd) return "no crowd";
+    return nullptr;
+}
+
+void ReferencePointsJob::run(PhaseLoop& loop) const {
+    throwIfInvalid("ReferencePointsJob", loop.ready() ? problem() : "the loop has no frame");
+    Crowd::State& s = crowd->state();
+    loop.parallel(crowd->size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        FrameContext chunkContext = context;
+        chunkContext.counter = loop.counterOf(out);
+        OpTally* ops = tallyFor(chunkContext.counter, OpCategory::RefpointDofValues);
+        detail::computeReferencePointRuns(s, begin, end, [](std::size_t id) { return ActorId(id); }, chunkContext, ops);
         for (std::size_t id = begin; id < end; ++id) {
             s.eyeDistance[id] = std::numeric_limits<double>::infinity();
             const bool inScene = s.owner[id] != nullptr;
@@ -25,32 +31,30 @@ void computeReferencePoints(CascadeFrame& f) {
             out.counts.actorsInScene += inScene;
         }
     });
-    for (Node* node : f.crowd->nodes()) node->dirtyBound();  // every actor moved
+    for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved
 }
 
 namespace {
 
-// Places members [begin, end) of `ids` and grows `bound` over their Refpoint Bspheres (see
-// placeReferencePoints), with their costs in `c` (null when not counting).
-void placeRange(Crowd::State& s, std::span<const ActorId> ids, std::size_t begin, std::size_t end, const Mat4& parent,
-                bool parentIsIdentity, const BoundingSphere& roaming, BoundingSphere& bound, OpCounter* c) {
-    const bool group = ids.size() > 1;
-    const bool grow = !roaming.valid();
+// Places members [begin, end) of the job's actors and grows `bound` over their Refpoint Bspheres
+// (see RefpointPlacementJob::run), with their costs in `c` (null when not counting).
+void placeRange(const RefpointPlacementJob& job, std::size_t begin, std::size_t end, BoundingSphere& bound, OpCounter* c) {
+    const Crowd::State& s = *job.crowd;
+    const bool group = job.ids.size() > 1;
+    const bool grow = !job.roaming.valid();
     OpTally* refOps = tallyFor(c, OpCategory::RefpointMatrix);
     OpTally* sphereOps = tallyFor(c, OpCategory::BsphereRecompute);
     for (std::size_t k = begin; k < end; ++k) {
-        const ActorId id = ids[k];
-        s.refWorld[id] = parentIsIdentity ? s.refLocal[id] : composeAffine(parent, s.refLocal[id], refOps);
-        s.refSphereWorld[id] = s.refSphereLocal[id].transformed(s.refWorld[id], sphereOps);
+        const ActorId id = job.ids[k];
+        const Mat4& world = job.refWorld[id] = job.parentIsIdentity ? s.refLocal[id] : composeAffine(job.parent, s.refLocal[id], refOps);
+        const BoundingSphere& sphere = job.refSphereWorld[id] = s.refSphereLocal[id].transformed(world, sphereOps);
         if (!grow) {  // a declared roaming bound: only a member outside it (never, if it holds) widens it
-            if (!roaming.clearlyContains(s.refSphereWorld[id]) && !roaming.contains(s.refSphereWorld[id]))
-                bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
+            if (!job.roaming.clearlyContains(sphere) && !job.roaming.contains(sphere)) bound.expandBy(sphere, group ? sphereOps : nullptr);
             continue;
         }
         // Most members lie well inside the bound grown so far: no square root for them (when
         // counting operations, every member goes through expandBy as the model prices it).
-        if (sphereOps || !bound.clearlyContains(s.refSphereWorld[id]))
-            bound.expandBy(s.refSphereWorld[id], group ? sphereOps : nullptr);
+        if (sphereOps || !bound.clearlyContains(sphere)) bound.expandBy(sphere, group ? sphereOps : nullptr);
     }
     countOperations(c, OpCategory::RefpointMatrix, end - begin);
     countOperations(c, OpCategory::BsphereRecompute, end - begin);
@@ -58,24 +62,30 @@ void placeRange(Crowd::State& s, std::span<const ActorId> ids, std::size_t begin
 
 }  // namespace
 
-BoundingSphere placeReferencePoints(CascadeFrame& f, std::span<const ActorId> ids, const Mat4& parent, bool parentIsIdentity,
-                                   const BoundingSphere& roaming) {
-    Crowd::State& s = f.crowd->state();
-    OpTally* sphereOps = tallyFor(f.context.counter, OpCategory::BsphereRecompute);
+const char* RefpointPlacementJob::problem() const {
+    if (!crowd) return "no crowd";
+    const std::size_t n = crowd->tmpl.size();
+    if (refWorld.size() != n || refSphereWorld.size() != n) return "refWorld and refSphereWorld must have one entry per actor";
+    return nullptr;
+}
+
+BoundingSphere RefpointPlacementJob::run(PhaseLoop& loop) const {
+    throwIfInvalid("RefpointPlacementJob", loop.ready() ? problem() : "the loop has no frame");
+    OpTally* sphereOps = tallyFor(loop.counter(), OpCategory::BsphereRecompute);
     BoundingSphere bound = roaming;
     if (ids.size() <= kLightGrain) {
         // One chunk (a town's small groups, a lone actor): the same work and the same merge as
         // below, without the chunk outputs a parallel loop needs.
         BoundingSphere grown;
-        placeRange(s, ids, 0, ids.size(), parent, parentIsIdentity, roaming, grown, f.context.counter);
+        placeRange(*this, 0, ids.size(), grown, loop.counter());
         bound.expandBy(grown, sphereOps);
         return bound;
     }
-    f.parallel(ids.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
-        placeRange(s, ids, begin, end, parent, parentIsIdentity, roaming, out.bound, f.counterOf(out));
+    loop.parallel(ids.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        placeRange(*this, begin, end, out.bound, loop.counterOf(out));
     });
     // The chunks' bounds, merged in chunk order (after the roaming bound, when declared).
-    for (std::size_t c = 0; c < chunkCount(ids.size(), kLightGrain); ++c) bound.expandBy(f.chunks[c].bound, sphereOps);
+    for (std::size_t c = 0; c < chunkCount(ids.size(), kLightGrain); ++c) bound.expandBy(loop.chunk(c).bound, sphereOps);
     return bound;
 }
 

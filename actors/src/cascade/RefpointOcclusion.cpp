@@ -1,13 +1,9 @@
-// Phase 2 of actor processing, occlusion: the Refpoint Bspheres that passed CULL 1 against the
-// frame's occlusion buffer, before any Skeleton Root, behaviour or pose is computed for them.
-// Nearby actors are binned into cells on the ground plane and each cell is tested as one sphere
-// first: a street hidden behind a block costs one test, not one per actor.
+// Phase 2 of actor processing, occlusion (see RefpointOcclusionJob.h).
 
 #include <algorithm>
 #include <cmath>
 
-#include "CascadeFrame.h"
-#include "throng/actors/Crowd.h"
+#include "throng/actors/cascade/RefpointOcclusionJob.h"
 #include "throng/scenegraph/OcclusionBuffer.h"
 
 namespace throng::cascade {
@@ -19,48 +15,59 @@ constexpr std::size_t kCellGrain = 16;    // cells per chunk of the parallel loo
 
 }  // namespace
 
-void occludeReferencePoints(CascadeFrame& f) {
-    const std::size_t n = f.survivors.size();
-    if (!f.occlusion || n == 0) return;
-    Crowd::State& s = f.crowd->state();
-    const OcclusionBuffer& buffer = *f.occlusion;
+const char* RefpointOcclusionJob::problem() const {
+    if (!crowd || !survivors || !scratch) return "crowd, survivors and scratch are required";
+    if (actorClass.size() != crowd->tmpl.size()) return "actorClass must have one entry per actor";
+    if (survivors->size() > candidates.size()) return "more survivors than candidates";
+    return nullptr;
+}
+
+void RefpointOcclusionJob::run(PhaseLoop& loop) const {
+    throwIfInvalid("RefpointOcclusionJob", loop.ready() ? problem() : "the loop has no frame");
+    std::vector<std::uint32_t>& alive = *survivors;
+    const std::size_t n = alive.size();
+    if (!occlusion || n == 0) return;
+    const Crowd::State& s = *crowd;
+    const OcclusionBuffer& buffer = *occlusion;
+    Scratch& w = *scratch;
+    const auto sphereOf = [&](std::size_t k) -> const BoundingSphere& { return s.refSphereWorld[candidates[alive[k]].id]; };
 
     // Bin the survivors into cells by their Refpoint on the ground plane (counting sort: stable, so
     // the order inside a cell is the survivors' order).
-    double minX = s.refSphereWorld[f.candidates[f.survivors[0]].id].center().x, maxX = minX;
-    double minZ = s.refSphereWorld[f.candidates[f.survivors[0]].id].center().z, maxZ = minZ;
+    double minX = sphereOf(0).center().x, maxX = minX;
+    double minZ = sphereOf(0).center().z, maxZ = minZ;
     for (std::size_t k = 1; k < n; ++k) {
-        const Vec3& c = s.refSphereWorld[f.candidates[f.survivors[k]].id].center();
+        const Vec3& c = sphereOf(k).center();
         minX = std::min(minX, c.x), maxX = std::max(maxX, c.x);
         minZ = std::min(minZ, c.z), maxZ = std::max(maxZ, c.z);
     }
     const double cell = std::max({kCellSize, (maxX - minX) / kMaxCellsPerSide, (maxZ - minZ) / kMaxCellsPerSide});
     const auto cellsAlong = [&](double extent) { return std::min<std::uint32_t>(kMaxCellsPerSide, static_cast<std::uint32_t>(extent / cell) + 1); };
     const std::uint32_t cx = cellsAlong(maxX - minX), cz = cellsAlong(maxZ - minZ), cells = cx * cz;
-    f.cellOf.resize(n);
-    f.cellStart.assign(cells + 1, 0);
+    w.cellOf.resize(n);
+    w.cellStart.assign(cells + 1, 0);
     for (std::size_t k = 0; k < n; ++k) {
-        const Vec3& c = s.refSphereWorld[f.candidates[f.survivors[k]].id].center();
+        const Vec3& c = sphereOf(k).center();
         const auto ix = std::min(cx - 1, static_cast<std::uint32_t>((c.x - minX) / cell));
         const auto iz = std::min(cz - 1, static_cast<std::uint32_t>((c.z - minZ) / cell));
-        f.cellOf[k] = iz * cx + ix;
-        ++f.cellStart[f.cellOf[k] + 1];
+        w.cellOf[k] = iz * cx + ix;
+        ++w.cellStart[w.cellOf[k] + 1];
     }
-    for (std::uint32_t c = 0; c < cells; ++c) f.cellStart[c + 1] += f.cellStart[c];
-    f.cellMembers.resize(n);
-    f.cellCursor.assign(f.cellStart.begin(), f.cellStart.end() - 1);
-    for (std::size_t k = 0; k < n; ++k) f.cellMembers[f.cellCursor[f.cellOf[k]]++] = static_cast<std::uint32_t>(k);
+    for (std::uint32_t c = 0; c < cells; ++c) w.cellStart[c + 1] += w.cellStart[c];
+    w.cellMembers.resize(n);
+    w.cellCursor.assign(w.cellStart.begin(), w.cellStart.end() - 1);
+    for (std::size_t k = 0; k < n; ++k) w.cellMembers[w.cellCursor[w.cellOf[k]]++] = static_cast<std::uint32_t>(k);
 
-    f.hidden.assign(n, 0);
-    f.parallel(cells, kCellGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+    w.hidden.assign(n, 0);
+    loop.parallel(cells, kCellGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         for (std::size_t c = begin; c < end; ++c) {
-            const std::uint32_t first = f.cellStart[c], last = f.cellStart[c + 1];
+            const std::uint32_t first = w.cellStart[c], last = w.cellStart[c + 1];
             if (first == last) continue;
             if (last - first > 1) {
                 // The cell's sphere: around the box of its actors' spheres.
                 Vec3 lo(1e300), hi(-1e300);
                 for (std::uint32_t m = first; m < last; ++m) {
-                    const BoundingSphere& b = s.refSphereWorld[f.candidates[f.survivors[f.cellMembers[m]]].id];
+                    const BoundingSphere& b = sphereOf(w.cellMembers[m]);
                     lo = glm::min(lo, b.center() - Vec3(b.radius()));
                     hi = glm::max(hi, b.center() + Vec3(b.radius()));
                 }
@@ -68,14 +75,14 @@ void occludeReferencePoints(CascadeFrame& f) {
                 ++out.counts.occlusionTests;
                 if (buffer.occluded(BoundingSphere(0.5 * (lo + hi), 0.5 * glm::length(hi - lo)))) {
                     ++out.counts.occlusionCellsHidden;
-                    for (std::uint32_t m = first; m < last; ++m) f.hidden[f.cellMembers[m]] = 1;
+                    for (std::uint32_t m = first; m < last; ++m) w.hidden[w.cellMembers[m]] = 1;
                     continue;
                 }
             }
             for (std::uint32_t m = first; m < last; ++m) {
-                const std::uint32_t k = f.cellMembers[m];
+                const std::uint32_t k = w.cellMembers[m];
                 ++out.counts.occlusionTests;
-                f.hidden[k] = buffer.occluded(s.refSphereWorld[f.candidates[f.survivors[k]].id]) ? 1 : 0;
+                w.hidden[k] = buffer.occluded(sphereOf(k)) ? 1 : 0;
             }
         }
     });
@@ -83,15 +90,15 @@ void occludeReferencePoints(CascadeFrame& f) {
     // The hidden leave the survivors, whose order is kept.
     std::size_t kept = 0;
     for (std::size_t k = 0; k < n; ++k) {
-        const std::uint32_t candidate = f.survivors[k];
-        if (f.hidden[k]) {
-            s.actorClass[f.candidates[candidate].id] = ActorClass::Occluded;
-            ++f.stats->occludedRefpoint;
+        const std::uint32_t candidate = alive[k];
+        if (w.hidden[k]) {
+            actorClass[candidates[candidate].id] = ActorClass::Occluded;
+            ++loop.statistics().occludedRefpoint;
         } else {
-            f.survivors[kept++] = candidate;
+            alive[kept++] = candidate;
         }
     }
-    f.survivors.resize(kept);
+    alive.resize(kept);
 }
 
 }  // namespace throng::cascade

@@ -12,7 +12,8 @@
 //   6. CULL 3: internal spheres, only for actors whose Sklsroot Bsphere crosses a plane;
 //   7. the draw list, each part at its vaLod level.
 // Generic nodes of the scene are processed as TraditionalProcessor does in both methods. Each phase
-// is one function of actors/src/cascade over one reusable workspace (cascade::CascadeFrame).
+// is a job (throng/actors/cascade/) that declares what it reads and writes and validates itself;
+// the processor runs them in order over one workspace it keeps between frames.
 
 #include <array>
 #include <memory>

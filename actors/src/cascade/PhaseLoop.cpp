@@ -1,4 +1,11 @@
-#include "CascadeFrame.h"
+// The chunk outputs of the cascade's loops, how they join into the frame's, and the jobs' one error.
+
+#include "throng/actors/cascade/PhaseLoop.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "throng/actors/cascade/CascadeTypes.h"
 
 namespace throng::cascade {
 
@@ -36,24 +43,28 @@ void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
     into.primitives += from.primitives;
 }
 
-void CascadeFrame::prepareChunks(std::size_t count) {
-    if (chunks.size() < count) chunks.resize(count);
+void PhaseLoop::prepareChunks(std::size_t count) {
+    if (chunks_.size() < count) chunks_.resize(count);
     for (std::size_t c = 0; c < count; ++c) {
-        ChunkOutput& out = chunks[c];
+        ChunkOutput& out = chunks_[c];
         out.counts = ActorFrameStatistics{};
         // Tallies are only written while the frame counts (counterOf gives null otherwise).
-        if (context.counter) out.ops.reset();
-        out.ops.setEnabled(context.counter != nullptr);
+        if (counter_) out.ops.reset();
+        out.ops.setEnabled(counter_ != nullptr);
         out.items = nullptr;
         out.bound = BoundingSphere();
     }
 }
 
-void CascadeFrame::joinChunks(std::size_t count) {
+void PhaseLoop::joinChunks(std::size_t count) {
     for (std::size_t c = 0; c < count; ++c) {
-        addCounts(*stats, chunks[c].counts);
-        if (context.counter) context.counter->add(chunks[c].ops);
+        addCounts(*stats_, chunks_[c].counts);
+        if (counter_) counter_->add(chunks_[c].ops);
     }
+}
+
+void throwIfInvalid(const char* job, const char* problem) {
+    if (problem) throw std::invalid_argument(std::string(job) + ": " + problem);
 }
 
 }  // namespace throng::cascade

@@ -1,0 +1,28 @@
+#pragma once
+// Phase 1 of actor processing: the Reference Point of every actor, in the scene or not, whatever
+// the camera (it is simulation state). Each behaviour is asked for runs of its actors at once.
+
+#include "throng/actors/Crowd.h"
+#include "throng/actors/cascade/PhaseLoop.h"
+#include "throng/scenegraph/FrameContext.h"
+
+namespace throng::cascade {
+
+/// Computes every actor's local Reference Point and resets its frame classification.
+struct ReferencePointsJob {
+    /// In and out: reads every actor's behaviour and slot; writes refLocal, eyeDistance (infinite
+    /// until CULL 2 computes it) and actorClass (CulledWithGroup, or NotInScene); marks the nodes'
+    /// bounds dirty. Counts actorsInScene.
+    Crowd* crowd = nullptr;
+    /// In: the frame's time and number (its counter is the loop's).
+    FrameContext context;
+
+    /// Null when the job can run, else what is wrong.
+    const char* problem() const;
+    /// True when the job can run.
+    bool validate() const { return problem() == nullptr; }
+    /// Runs the job; throws std::invalid_argument naming the problem when it cannot run.
+    void run(PhaseLoop& loop) const;
+};
+
+}  // namespace throng::cascade

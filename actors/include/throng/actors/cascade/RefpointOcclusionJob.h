@@ -1,0 +1,53 @@
+#pragma once
+// Phase 2 of actor processing, occlusion: the Refpoint Bspheres that passed CULL 1 against the
+// frame's occlusion buffer, before any Skeleton Root, behaviour or pose is computed for them.
+// Nearby actors are binned into cells on the ground plane and each cell is tested as one sphere
+// first: a street hidden behind a block costs one test, not one per actor.
+
+#include <span>
+#include <vector>
+
+#include "throng/actors/Crowd.h"
+#include "throng/actors/cascade/CascadeTypes.h"
+#include "throng/actors/cascade/PhaseLoop.h"
+
+namespace throng {
+class OcclusionBuffer;
+}
+
+namespace throng::cascade {
+
+/// Removes the survivors of CULL 1 that the occlusion buffer hides.
+struct RefpointOcclusionJob {
+    /// The cells of nearby survivors, kept between frames.
+    struct Scratch {
+        std::vector<std::uint32_t> cellOf;       ///< per survivor: its cell
+        std::vector<std::uint32_t> cellStart;    ///< per cell: first entry in cellMembers (one more at the end)
+        std::vector<std::uint32_t> cellMembers;  ///< survivor positions, cell by cell
+        std::vector<std::uint32_t> cellCursor;   ///< per cell: where its next member goes
+        std::vector<std::uint8_t> hidden;        ///< per survivor: rejected by occlusion
+    };
+
+    /// In: refSphereWorld.
+    const Crowd::State* crowd = nullptr;
+    /// In: this frame's occluders, or null: the job does nothing.
+    const OcclusionBuffer* occlusion = nullptr;
+    /// In: the candidates.
+    std::span<const Candidate> candidates;
+    /// In and out: the survivors of CULL 1; the hidden leave, the order of the others is kept.
+    std::vector<std::uint32_t>* survivors = nullptr;
+    /// Out, per actor of the crowd: ActorClass::Occluded for the hidden. Counts occludedRefpoint,
+    /// occlusionCellsTested, occlusionCellsHidden and occlusionTests.
+    std::span<ActorClass> actorClass;
+    /// The job's workspace.
+    Scratch* scratch = nullptr;
+
+    /// Null when the job can run, else what is wrong.
+    const char* problem() const;
+    /// True when the job can run.
+    bool validate() const { return problem() == nullptr; }
+    /// Runs the job; throws std::invalid_argument naming the problem when it cannot run.
+    void run(PhaseLoop& loop) const;
+};
+
+}  // namespace throng::cascade
