@@ -8,13 +8,16 @@
 // The ground is divided into fixed regions (a RegionGrid), each stepped by its own DetourCrowd and
 // navigation query, in parallel. An agent near a border is seen by the neighbouring region as a
 // ghost (a copy of it at the start of the step, which that region never moves); an agent that
-// crosses a border is handed over at the end of the step, in order of actor slot. Ghost export and
-// import and the handover are separate steps over flat records (GhostRecord, HandoverRecord), so
-// that regions owned by other processes exchange them as messages: distribute() splits the regions
-// over the ranks of an MPI run, and rank 0 gathers the walkers' drawn state (WalkerRecord) after
-// each step: every walker, or, given the view the frame culls against (setGatherView), only those
-// near it; the others are not present() there. The same layout gives the same trajectories with
-// any number of threads or ranks.
+// crosses a border is handed over at the end of the step, in order of actor slot. Ghosts and
+// handovers are flat records, so that regions owned by other processes exchange them as messages:
+// distribute() splits the regions over the ranks of an MPI run, and rank 0 gathers the walkers'
+// drawn state after each step: every walker, or, given the view the frame culls against
+// (setGatherView), only those near it; the others are not present() there. The same layout gives
+// the same trajectories with any number of threads or ranks.
+//
+// Three parts, each with its own file: this class is the walker behaviour (gait, Reference Point,
+// pose); the region stepper (sim/src/locomotion/RegionStepper) moves the walkers region by region;
+// the rank exchange (sim/src/locomotion/RankExchange) carries the regions' records between ranks.
 
 #include <limits>
 #include <memory>
@@ -29,12 +32,15 @@
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/RegionGrid.h"
 
-class dtCrowd;
-class dtNavMeshQuery;
-
 namespace throng::sim {
 
 class Ranks;
+
+namespace locomotion {
+struct WalkerState;
+class RegionStepper;
+class RankExchange;
+}  // namespace locomotion
 
 /// Navigation-mesh locomotion for many actors.
 class Locomotion : public Behaviour {
@@ -64,38 +70,6 @@ public:
         double farDistance = 0.0;
         /// How often far regions step (see farDistance); 1: every step.
         int farEvery = 1;
-    };
-    /// An agent as a neighbouring region sees it for avoidance during one step.
-    struct GhostRecord {
-        std::uint32_t slot = 0;        ///< the actor
-        std::uint32_t region = 0;      ///< the region that sees it
-        float position[3] = {};        ///< at the start of the step
-        float velocity[3] = {};        ///< at the start of the step
-    };
-    /// An agent leaving its region at the end of a step, with everything it walks on with (the
-    /// region entered may belong to another rank, which knows nothing else of it).
-    struct HandoverRecord {
-        std::uint32_t slot = 0;        ///< the actor
-        std::uint32_t from = 0;        ///< region left
-        std::uint32_t to = 0;          ///< region entered
-        float position[3] = {};        ///< where it is
-        float velocity[3] = {};        ///< how it moves
-        float target[3] = {};          ///< where it is walking to
-        float heading = 0.0f;          ///< radians about +Y
-        float speed = 0.0f;            ///< m/s, after the previous step
-        float runWeight = 0.0f;        ///< how far the run clip is blended in
-        double phase = 0.0;            ///< walk cycle, in cycles
-        std::uint64_t trips = 0;       ///< destinations drawn so far
-    };
-    /// What rank 0 draws a walker from, sent by the rank stepping it after each step.
-    struct WalkerRecord {
-        std::uint32_t slot = 0;        ///< the actor
-        std::uint32_t region = 0;      ///< the region owning it
-        float position[3] = {};        ///< where it stands
-        float heading = 0.0f;          ///< radians about +Y
-        float speed = 0.0f;            ///< m/s
-        float runWeight = 0.0f;        ///< how far the run clip is blended in
-        double phase = 0.0;            ///< walk cycle, in cycles
     };
     /// One rank's share of a step: what it stepped, sent and waited for.
     struct RankStepRecord {
@@ -141,14 +115,14 @@ public:
     /// The shared settings.
     const Settings& settings() const { return settings_; }
     /// Where an actor stands (after the last step).
-    glm::vec3 position(std::uint32_t slot) const { return state_[slot].position; }
+    glm::vec3 position(std::uint32_t slot) const;
     /// Current speed of an actor, m/s.
-    double speed(std::uint32_t slot) const { return state_[slot].speed; }
+    double speed(std::uint32_t slot) const;
     /// Where an actor is walking to.
-    glm::vec3 destination(std::uint32_t slot) const { return state_[slot].target; }
+    glm::vec3 destination(std::uint32_t slot) const;
     /// The region that owns an actor (after the first frame; distributed, on ranks other than 0,
     /// known for the walkers this rank steps or handed on).
-    std::uint32_t region(std::uint32_t slot) const { return state_[slot].region; }
+    std::uint32_t region(std::uint32_t slot) const;
     /// Number of regions.
     std::uint32_t regionCount() const { return settings_.regions.regionCount(); }
     /// Ghosts seen by neighbouring regions in the last step (distributed: on rank 0 all ranks'
@@ -180,13 +154,13 @@ public:
     /// negative or not finite.
     void setGatherView(std::optional<Frustum> view, double margin = 0.0);
     /// Walkers rank 0 holds this step's state of: every one, unless a gather view left some out.
-    std::size_t presentCount() const { return present_.empty() ? actors_.size() : presentCount_; }
+    std::size_t presentCount() const;
     /// Regions this rank steps, [first, second) (all of them unless distributed; valid after the
     /// first step).
     std::pair<std::uint32_t, std::uint32_t> ownRegions() const { return {firstRegion_, endRegion_}; }
     /// Each rank's share of the last step, indexed by rank: on rank 0 every rank's, elsewhere only
     /// this rank's entry is filled; empty unless distributed.
-    std::span<const RankStepRecord> rankSteps() const { return rankSteps_; }
+    std::span<const RankStepRecord> rankSteps() const;
 
     std::span<const double> levelEnds() const override { return levelEnds_; }
     void advance(const FrameContext& context) override;
@@ -197,40 +171,15 @@ public:
     RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override;
     void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
-    BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return state_[slot].extent; }
+    BoundingSphere skeletonRootExtent(std::uint32_t slot) const override;
     bool posesFromTemplateClips() const override { return true; }
-    bool present(std::uint32_t slot) const override { return present_.empty() || present_[slot] != 0; }
-    double poseMargin(std::uint32_t slot) const override { return state_[slot].blendMargin; }
+    bool present(std::uint32_t slot) const override;
+    double poseMargin(std::uint32_t slot) const override;
     double clipTime(std::uint32_t slot, double time) const override;
     int mainClip(std::uint32_t slot) const override { return actors_[slot].walkClip; }
-    std::size_t bytesPerSlot() const override { return sizeof(Actor) + sizeof(State); }
+    std::size_t bytesPerSlot() const override;
 
 private:
-    struct State {
-        glm::vec3 position{0.0f};
-        float heading = 0.0f;      // radians about +Y; local +Z faces along it
-        float speed = 0.0f;
-        double phase = 0.0;        // walk cycle, in cycles (the run clip follows in step)
-        float runWeight = 0.0f;
-        std::uint64_t trips = 0;   // destinations drawn so far
-        glm::vec3 target{0.0f};
-        glm::vec3 velocity{0.0f};  // DetourCrowd's, after the last step
-        int agent = -1;            // index in its region's crowd
-        std::uint32_t region = 0;
-        BoundingSphere extent;
-        double blendMargin = 0.0;
-    };
-    // One region: its crowd and query, the actors it owns (increasing slots) and the records it
-    // exchanges with the others during a step.
-    struct Region {
-        dtCrowd* crowd = nullptr;
-        dtNavMeshQuery* query = nullptr;
-        int capacity = 0;
-        std::vector<std::uint32_t> owned, scratch;
-        std::vector<GhostRecord> ghostsOut, ghostsIn;
-        std::vector<int> ghostAgents;
-        std::vector<HandoverRecord> leaving, arriving;
-    };
     // The extent and blend margin of one template's clips.
     struct ClipBounds {
         const ActorTemplate* tmpl;
@@ -239,51 +188,27 @@ private:
         double blendMargin;
     };
     void start();
-    void startRegion(std::uint32_t r);
-    int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity, bool ghost);
-    void requestTarget(Region& region, std::uint32_t slot);
-    void newDestination(Region& region, std::uint32_t slot);
-    void exportGhosts(std::uint32_t r);
-    void importGhosts(std::uint32_t r);
-    void stepRegion(std::uint32_t r, float dt);
-    void exportHandovers(std::uint32_t r);
-    void importHandovers(std::uint32_t r);
-    void assignRanks();
-    template <class Record, class Deliver>
-    std::uint64_t route(std::vector<Record> Region::*list, std::uint32_t Record::*to, int tag, const char* what, Deliver&& deliver);
     void walk(std::uint32_t slot, double dt);
-    void gatherWalkers(RankStepRecord mine);
 
     std::shared_ptr<const NavMesh> nav_;
     Settings settings_;
     std::vector<double> levelEnds_;
     EffectCounters* counters_;
     std::vector<Actor> actors_;
-    std::vector<State> state_;
-    std::vector<Region> regions_;
+    std::vector<locomotion::WalkerState> state_;
     std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
     std::size_t lastGhosts_ = 0, lastHandovers_ = 0, lastDeferred_ = 0;
-    // Far regions: the viewpoint, each region's bounds, the time since it last stepped, whether it
-    // steps in this step, and the steps so far (which far regions take their turn).
-    glm::vec3 viewpoint_{0.0f};
-    std::vector<glm::dvec4> regionBounds_;
-    std::vector<double> pending_;
-    std::vector<std::uint8_t> stepping_;
-    std::uint64_t steps_ = 0;
-    // Distributed: the ranks, the region range this rank steps, each region's rank, the walkers of
-    // this rank's regions and each rank's share of the last step.
+    glm::vec3 viewpoint_{0.0f};  // far regions lie far from it
+    std::unique_ptr<locomotion::RegionStepper> regions_;  // from the first step
+    // Distributed: the ranks, their exchanges (from the first step), the region range this rank
+    // steps and the walkers of its regions.
     Ranks* ranks_ = nullptr;
-    std::uint32_t firstRegion_ = 0, endRegion_ = 0;
-    std::vector<int> regionRank_;
-    std::vector<std::uint32_t> ownSlots_;
-    std::vector<RankStepRecord> rankSteps_;
-    // Distributed: the view walkers are gathered near (rank 0; sent to the others each step), and
-    // on rank 0 which walkers' state is this step's (empty: all of them).
+    std::unique_ptr<locomotion::RankExchange> exchange_;
     std::optional<Frustum> gatherView_;
     double gatherMargin_ = 0.0;
-    std::vector<std::uint8_t> present_;
-    std::size_t presentCount_ = 0;
+    std::uint32_t firstRegion_ = 0, endRegion_ = 0;
+    std::vector<std::uint32_t> ownSlots_;
 };
 
 }  // namespace throng::sim

@@ -1,0 +1,79 @@
+#pragma once
+// Internal to sim: Locomotion across the ranks of an MPI run. The regions are split over the ranks
+// (ranges of consecutive regions holding about as many starting walkers each); each step the ranks
+// exchange ghosts and handovers for each other's regions, and rank 0 gathers the walkers' drawn
+// state (WalkerRecord): every walker, or, given the view the frame culls against, only those near
+// it. The same layout gives the same trajectories with any number of ranks.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "RegionStepper.h"
+#include "WalkerState.h"
+#include "throng/scenegraph/Frustum.h"
+#include "throng/sim/Locomotion.h"
+
+namespace throng::sim {
+class Ranks;
+}
+
+namespace throng::sim::locomotion {
+
+/// The exchanges of one rank of a distributed Locomotion.
+class RankExchange {
+public:
+    /// What rank 0 learnt of the whole step from every rank (zeros elsewhere).
+    struct Totals {
+        std::size_t ghosts = 0;      ///< ghost records every rank exported
+        std::size_t handovers = 0;   ///< agents every rank handed over
+        std::size_t deferred = 0;    ///< walkers of far regions that did not step
+    };
+
+    /// The exchanges of this rank of `ranks`, for `walkers` (both stay the caller's).
+    RankExchange(Ranks& ranks, std::span<WalkerState> walkers);
+
+    /// Splits the regions of `regions` over the ranks (consecutive regions per rank, the most
+    /// walkers any rank starts with as few as it can be). Returns this rank's [first, end).
+    std::pair<std::uint32_t, std::uint32_t> assign(const RegionStepper& regions);
+    /// This rank.
+    int rank() const;
+    /// The rank stepping region `r`.
+    int rankOf(std::uint32_t r) const { return regionRank_[r]; }
+
+    /// Empties every region's ghostsIn, then sends each rank the ghosts for its regions and takes
+    /// in those for this rank's, in order of sending region. Returns the bytes sent.
+    std::uint64_t routeGhosts(RegionStepper& regions);
+    /// Empties every region's arriving, then does for handovers what routeGhosts does for ghosts.
+    std::uint64_t routeHandovers(RegionStepper& regions);
+
+    /// Sends rank 0 this rank's share of the step `mine` and the state of the walkers `own` it
+    /// stepped; rank 0 sends the others `view` first (see Locomotion::setGatherView: only walkers
+    /// within `margin` of it are sent). On rank 0, takes in every rank's; returns rank 0's totals.
+    Totals gather(Locomotion::RankStepRecord mine, std::span<const std::uint32_t> own, const std::optional<Frustum>& view,
+                  double margin);
+    /// Whether rank 0 holds this step's state of walker `slot`.
+    bool present(std::uint32_t slot) const { return present_.empty() || present_[slot] != 0; }
+    /// Walkers rank 0 holds this step's state of, or `all` when no view left any out.
+    std::size_t presentCount(std::size_t all) const { return present_.empty() ? all : presentCount_; }
+    /// Each rank's share of the last step (see Locomotion::rankSteps).
+    std::span<const Locomotion::RankStepRecord> rankSteps() const { return rankSteps_; }
+
+private:
+    template <class Record>
+    std::uint64_t route(RegionStepper& regions, std::vector<Record> RegionStepper::Region::*list, std::uint32_t Record::*to,
+                        std::vector<Record> RegionStepper::Region::*into, int tag, const char* what);
+
+    Ranks& ranks_;
+    std::span<WalkerState> state_;
+    std::uint32_t firstRegion_ = 0, endRegion_ = 0;
+    std::vector<int> regionRank_;
+    std::vector<Locomotion::RankStepRecord> rankSteps_;
+    // On rank 0, which walkers' state is this step's (empty: all of them).
+    std::vector<std::uint8_t> present_;
+    std::size_t presentCount_ = 0;
+};
+
+}  // namespace throng::sim::locomotion
