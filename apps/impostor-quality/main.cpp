@@ -361,8 +361,9 @@ void sectionMorph(const Asset& asset, Bake& bake, const MorphParameters& p, cons
     methods.push_back(oursLines("morph, all bones as capsules + depth order (ours, lines)", all, p));
     methods.push_back(proxyMethod("surface-proxy warp (ours)"));
     for (const Method& m : methods) rows.push_back(measureDropped("morph", asset, bake, m));
-    // One cell of each, for looking at.
-    const std::uint32_t v = 4;
+    // One cell of each, for looking at: view 4 (a three-quarter view with the default 16x4), or
+    // the last of fewer views.
+    const std::uint32_t v = std::min<std::uint32_t>(4, bake.full->views().viewCount() - 1);
     Scores unused;
     writePng(bake.full->cell(v, 1), out / (asset.name + "-truth.png"));
     writePng(bake.half->cell(v, 0), out / (asset.name + "-previous.png"));
