@@ -16,9 +16,11 @@ file and line, and exits 1 if there is any.
 import json
 import os
 import re
-import shlex
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from doc_pages import fenced_blocks, pages, shell_commands, simple_commands  # noqa: E402
 
 SOURCE = os.path.abspath(sys.argv[1])
 BINARY_DIRS = [os.path.abspath(d) for d in sys.argv[2:]]
@@ -27,30 +29,6 @@ problems = []
 
 def problem(path, line, text):
     problems.append(f"{os.path.relpath(path, SOURCE)}:{line}: {text}")
-
-
-def pages():
-    yield os.path.join(SOURCE, "README.md")
-    for root, _, files in os.walk(os.path.join(SOURCE, "docs")):
-        for f in sorted(files):
-            if f.endswith(".md"):
-                yield os.path.join(root, f)
-
-
-def fenced_blocks(lines):
-    """(language, first line number, lines, the line before the fence) of each fenced block."""
-    k = 0
-    while k < len(lines):
-        m = re.match(r"^\s*```(\w*)", lines[k])
-        if m:
-            start, body = k, []
-            k += 1
-            while k < len(lines) and not re.match(r"^\s*```", lines[k]):
-                body.append(lines[k])
-                k += 1
-            before = lines[start - 1] if start > 0 else ""
-            yield m.group(1), start + 2, body, before
-        k += 1
 
 
 programs_help = {}
@@ -116,7 +94,7 @@ def check_command(path, line, words):
             problem(path, line, f"{program} has no option {opt} (not in its --help)")
 
 
-for path in pages():
+for path in pages(SOURCE):
     with open(path, encoding="utf-8") as f:
         text = f.read()
     lines = text.split("\n")
@@ -143,23 +121,9 @@ for path in pages():
                 if not any(src[k:k + len(body)] == body for k in range(len(src) - len(body) + 1)):
                     problem(path, first, f"the code block is no longer a verbatim excerpt of {m.group(1)}")
         if lang in ("sh", "bash", "shell"):
-            joined, start = "", first
-            for k, l in enumerate(body):
-                if not joined:
-                    start = first + k
-                joined += l.rstrip("\\") + " "
-                if l.endswith("\\"):
-                    continue
-                command = joined.split(" #", 1)[0]
-                joined = ""
-                for part in re.split(r"\s*(?:&&|\|\||;|\|)\s*", command):
-                    try:
-                        words = shlex.split(part)
-                    except ValueError:
-                        continue
-                    while words and re.fullmatch(r"\w+=\S*", words[0]):  # VAR=value before a command
-                        words = words[1:]
-                    if words and words[0] in ("mpirun", "xvfb-run", "time", "env", "sudo"):
+            for start, command in shell_commands(first, body):
+                for words in simple_commands(command):
+                    if words[0] in ("mpirun", "xvfb-run", "time", "env", "sudo"):
                         # the program the wrapper runs: its first word that is a Throng program or a path
                         runs = [i for i, w in enumerate(words) if i > 0 and
                                 (os.path.basename(w).startswith("throng-") or w.startswith("./"))]
