@@ -90,19 +90,27 @@ struct VtkPath {
     }
 };
 
-void run(std::int64_t count, const Options& o) {
+// Throng's own window: GLX on the same display as VTK (OSMesa and GLX in one process crash Mesa),
+// made once for every crowd size: the display then always has a client, so a virtual X server
+// (xvfb-run) never resets between sizes, which made the next window's connection fail at random.
+std::shared_ptr<GlContext> throngWindow(const Options& o) {
+    ContextOptions contextOptions;
+    contextOptions.width = o.width;
+    contextOptions.height = o.height;
+    contextOptions.window = true;
+    std::string fallback;
+    auto context = createContext(contextOptions, &fallback);
+    if (!fallback.empty()) throw std::runtime_error("no GLFW window on the X display: " + fallback);
+    return context;
+}
+
+void run(std::int64_t count, const Options& o, const std::shared_ptr<GlContext>& context) {
     Crowd crowd;
     const auto actors = std::size_t(count);
     const testkit::TownSpread town = testkit::buildTownSpread(crowd, actors, 40.0 * std::sqrt(double(actors)));
     VtkPath mapper(crowd, *town.root, false, o), inVtk(crowd, *town.root, true, o);
 
-    ContextOptions contextOptions;
-    contextOptions.width = o.width;
-    contextOptions.height = o.height;
-    contextOptions.window = true;  // GLX on the same display as VTK (OSMesa and GLX in one process crash Mesa)
-    std::string fallback;
-    auto context = createContext(contextOptions, &fallback);
-    if (!fallback.empty()) throw std::runtime_error("no GLFW window on the X display: " + fallback);
+    context->makeCurrent();  // VTK's windows made theirs current since the last size
     CrowdRendererOptions drawOptions;
     drawOptions.finishPasses = true;
     CrowdRenderer throngDraw(context, drawOptions);
@@ -168,7 +176,8 @@ int main(int argc, char** argv) {
     try {
         std::printf("| actors | path | APP+CULL ms | skinning and poly data ms | render ms | frame ms | vs Throng alone | items drawn | triangles |\n"
                     "|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
-        for (std::int64_t a : o.actors) run(a, o);
+        const std::shared_ptr<GlContext> window = throngWindow(o);
+        for (std::int64_t a : o.actors) run(a, o, window);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_vtk_crowd_prop: %s\n", e.what());
         return 1;

@@ -74,7 +74,10 @@ GlfwWindowContext::~GlfwWindowContext() {
 }
 
 void GlfwWindowContext::makeCurrent() {
-    if (glfwGetCurrentContext() != window_) glfwMakeContextCurrent(window_);
+    // Always, not only when GLFW thinks another context is current: another GL user in the process
+    // (VTK's render windows) makes its own context current behind GLFW's back, and GLFW's record
+    // would then send our GL calls to that context. GLX returns at once when nothing changes.
+    glfwMakeContextCurrent(window_);
 }
 
 int GlfwWindowContext::width() const {
