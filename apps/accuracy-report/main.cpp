@@ -28,6 +28,7 @@
 
 #include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
+#include "throng/support/Validators.h"
 #include "throng/vtk/Chart.h"
 #include "throng/vtk/CrowdMaps.h"
 
@@ -427,7 +428,7 @@ int main(int argc, char** argv) {
     CLI::App& app = cl.app();
     app.add_option("--csv", o.csv, "folder of common accuracy CSV files (every *.csv in it is read)")->type_name("DIR")->required()
         ->check(CLI::ExistingDirectory);
-    app.add_option("--out", o.out, "where index.html and plots/ go")->type_name("DIR")->capture_default_str();
+    app.add_option("--out", o.out, "where index.html and plots/ go")->type_name("DIR")->capture_default_str()->check(throng::support::folderToWrite());
     app.add_option("--maps", o.maps, "folder holding density.png, speed.png and speed_density.csv (throng-town --vtk DIR)")->type_name("DIR")
         ->check(CLI::ExistingDirectory);
     app.add_option("--link", o.links, "another report linked from the page, its path relative to the page (repeatable)")

@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     app.add_option("SOURCE", input, "a .glb/.gltf character, or seed-humanoid (the procedural figure, no asset needed)")
         ->required()
         ->check(support::existingFileOr(support::kSeedHumanoid));
-    app.add_option("--out", out, "folder for the atlases and impostor.json")->type_name("DIR")->required();
+    app.add_option("--out", out, "folder for the atlases and impostor.json")->type_name("DIR")->required()->check(support::folderToWrite());
     app.add_option("--clip", clipName, "the clip to bake")->type_name("NAME")->default_str("the first");
     app.add_option("--views", views, "azimuths x elevations on the hemisphere")->type_name("AxE")->check(support::viewGrid());
     app.add_option("--keyframes", options.keyframes, "key-frames over the clip (odd ones are dropped)")

@@ -937,7 +937,7 @@ int main(int argc, char** argv) {
                             "impostor-quality.md, impostor-quality.csv, impostor-accuracy.csv and impostor-quality.png\n"
                             "(the plot through VTK: without a display, run under xvfb-run -a).");
     CLI::App& app = cl.app();
-    app.add_option("--out", outText, "folder for the report")->type_name("DIR");
+    app.add_option("--out", outText, "folder for the report")->type_name("DIR")->check(support::folderToWrite());
     app.add_option("--size", options.cellSize, "cell side")->type_name("PIXELS")->check(support::wholeNumber(8, 4096));
     app.add_option("--keyframes", options.keyframes, "key-frames over the clip (odd ones are dropped and regenerated)")
         ->type_name("N")

@@ -17,7 +17,7 @@ void declare(support::CommandLine& cl, TownOptions& o) {
     app.add_option("--frames", o.frames, "frames to run headless; in a window, quit after N")
         ->type_name("N")
         ->check(wholeNumber(1, 100'000'000));
-    app.add_option("--out", o.out, "frames, stats.csv and summary.json go here")->type_name("DIR");
+    app.add_option("--out", o.out, "frames, stats.csv and summary.json go here")->type_name("DIR")->check(folderToWrite());
     app.add_option("--width", o.width, "image width in pixels")->type_name("W")->check(wholeNumber(16, 8192));
     app.add_option("--height", o.height, "image height in pixels")->type_name("H")->check(wholeNumber(16, 8192));
     app.add_flag("--headless", o.headless, "never open a window (the default when there is no display)");
@@ -95,7 +95,8 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->check(oneOf({"view", "all"}))
         ->capture_default_str();
     app.add_option("--vtk", o.vtk, "write crowd data for ParaView here: actors every K steps, town, trajectories, crowd.pvd")
-        ->type_name("DIR");
+        ->type_name("DIR")
+        ->check(folderToWrite());
     app.add_option("--vtk-every", o.vtkEvery, "--vtk: an actors file every K simulation steps")
         ->type_name("K")
         ->check(wholeNumber(1, 100'000'000))

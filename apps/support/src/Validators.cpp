@@ -1,8 +1,13 @@
 #include "throng/support/Validators.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -103,6 +108,21 @@ CLI::Validator existingFile() {
         "");
 }
 
+namespace {
+
+// Why this process cannot write a new file into `folder` (a file made and removed at once), or "".
+// Asked of the file system itself: permission bits do not tell a read-only mount, nor root's rights.
+std::string cannotWriteInto(const std::filesystem::path& folder) {
+    const std::filesystem::path probe = folder / (".throng-write-check-" + std::to_string(::getpid()));
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+    if (fd < 0) return "cannot write into the folder " + inQuotes(folder.string()) + ": " + std::strerror(errno);
+    ::close(fd);
+    ::unlink(probe.c_str());
+    return {};
+}
+
+}  // namespace
+
 CLI::Validator fileToWrite() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
@@ -112,7 +132,34 @@ CLI::Validator fileToWrite() {
             if (std::filesystem::is_directory(path, ec)) return inQuotes(text) + " is a folder";
             const std::filesystem::path folder = path.parent_path();
             if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) return "no such folder: " + inQuotes(folder.string());
-            return {};
+            return cannotWriteInto(folder.empty() ? std::filesystem::path(".") : folder);
+        },
+        "");
+}
+
+CLI::Validator folderToWrite() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            namespace fs = std::filesystem;
+            std::error_code ec;
+            if (text.empty()) return "no folder named";
+            const fs::path path(text);
+            if (fs::exists(path, ec)) {
+                if (!fs::is_directory(path, ec)) return inQuotes(text) + " is a file, not a folder";
+                return cannotWriteInto(path);
+            }
+            // The first missing folder on the way: made with the rest, and removed again after the check.
+            fs::path missing = path.lexically_normal();
+            if (missing.filename().empty()) missing = missing.parent_path();
+            while (missing.has_parent_path() && !missing.parent_path().empty() && !fs::exists(missing.parent_path(), ec))
+                missing = missing.parent_path();
+            const fs::path above = missing.has_parent_path() && !missing.parent_path().empty() ? missing.parent_path() : fs::path(".");
+            if (!fs::is_directory(above, ec)) return "cannot create the folder " + inQuotes(text) + ": " + inQuotes(above.string()) + " is a file";
+            if (!fs::create_directories(path, ec) || ec)
+                return "cannot create the folder " + inQuotes(text) + ": " + (ec ? ec.message() : std::string("it was not made"));
+            std::string problem = cannotWriteInto(path);
+            fs::remove_all(missing, ec);
+            return problem;
         },
         "");
 }

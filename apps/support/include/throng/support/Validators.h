@@ -24,9 +24,13 @@ CLI::Validator nonNegativeNumber();
 CLI::Validator oneOf(std::vector<std::string> choices);
 /// The path of an existing regular file.
 CLI::Validator existingFile();
-/// A file to write: its folder exists (the current one when the path names none) and the path is not
-/// a folder.
+/// A file to write: its folder exists (the current one when the path names none) and this process
+/// can write into it, and the path is not a folder.
 CLI::Validator fileToWrite();
+/// A folder to write into: an existing folder this process can write into, or one it can create
+/// (tried before any work starts, then removed again, so a run refused later leaves nothing behind).
+/// Refuses a path that is a file or lies below one, and a folder that cannot be created or written.
+CLI::Validator folderToWrite();
 /// The path of an existing regular file, or `keyword` (e.g. "seed-humanoid").
 CLI::Validator existingFileOr(std::string keyword);
 /// Impostor views "AxE": 3 to 256 azimuths by 1 to 64 elevation rings (see ViewGrid).
