@@ -1,5 +1,8 @@
 #include "TownOptions.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "throng/support/CommandLine.h"
 #include "throng/support/SceneOptions.h"
 #include "throng/support/Validators.h"
@@ -122,7 +125,14 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
         "navigation mesh, standing groups, a flock) and runs it: in a window when there is a\n"
         "display, headless otherwise (PNG frames, stats.csv, summary.json).",
         argc, argv, [&](support::CommandLine& cl) { declare(cl, o); },
-        [&](support::CommandLine& cl) { o.framesGiven = cl.app().count("--frames") > 0; });
+        [&](support::CommandLine& cl) {
+            o.framesGiven = cl.app().count("--frames") > 0;
+            // CLI11 checks the values given; the default folder is checked too, before any work.
+            std::string out = o.out;
+            if (cl.app().count("--out") == 0)
+                if (const std::string problem = support::folderToWrite()(out); !problem.empty())
+                    throw std::invalid_argument("--out: " + problem + " (the default folder: choose another with --out DIR)");
+        });
     return o;
 }
 
