@@ -148,18 +148,16 @@ CLI::Validator folderToWrite() {
                 if (!fs::is_directory(path, ec)) return inQuotes(text) + " is a file, not a folder";
                 return cannotWriteInto(path);
             }
-            // The first missing folder on the way: made with the rest, and removed again after the check.
-            fs::path missing = path.lexically_normal();
-            if (missing.filename().empty()) missing = missing.parent_path();
-            while (missing.has_parent_path() && !missing.parent_path().empty() && !fs::exists(missing.parent_path(), ec))
-                missing = missing.parent_path();
-            const fs::path above = missing.has_parent_path() && !missing.parent_path().empty() ? missing.parent_path() : fs::path(".");
+            // Nothing is made here (another run may be checking the same folder at once): the
+            // nearest folder that exists must be one this process can write into.
+            fs::path above = path.lexically_normal();
+            if (above.filename().empty()) above = above.parent_path();
+            do above = above.parent_path();
+            while (!above.empty() && !fs::exists(above, ec));
+            if (above.empty()) above = ".";
             if (!fs::is_directory(above, ec)) return "cannot create the folder " + inQuotes(text) + ": " + inQuotes(above.string()) + " is a file";
-            if (!fs::create_directories(path, ec) || ec)
-                return "cannot create the folder " + inQuotes(text) + ": " + (ec ? ec.message() : std::string("it was not made"));
-            std::string problem = cannotWriteInto(path);
-            fs::remove_all(missing, ec);
-            return problem;
+            if (std::string problem = cannotWriteInto(above); !problem.empty()) return "cannot create the folder " + inQuotes(text) + ": " + problem;
+            return {};
         },
         "");
 }

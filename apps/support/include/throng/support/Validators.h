@@ -27,9 +27,10 @@ CLI::Validator existingFile();
 /// A file to write: its folder exists (the current one when the path names none) and this process
 /// can write into it, and the path is not a folder.
 CLI::Validator fileToWrite();
-/// A folder to write into: an existing folder this process can write into, or one it can create
-/// (tried before any work starts, then removed again, so a run refused later leaves nothing behind).
-/// Refuses a path that is a file or lies below one, and a folder that cannot be created or written.
+/// A folder to write into: an existing folder this process can write into, or a new one whose
+/// nearest existing folder it can write into (nothing is made by the check, so a run refused later
+/// leaves nothing behind). Refuses a path that is a file or lies below one, and a folder that
+/// cannot be written or created.
 CLI::Validator folderToWrite();
 /// The path of an existing regular file, or `keyword` (e.g. "seed-humanoid").
 CLI::Validator existingFileOr(std::string keyword);
