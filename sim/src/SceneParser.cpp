@@ -1,10 +1,14 @@
 #include "throng/sim/SceneParser.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <fstream>
 #include <initializer_list>
+#include <map>
+#include <algorithm>
+#include <string_view>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -13,6 +17,7 @@
 
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
+#include "throng/sim/SceneRanges.h"
 #include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
@@ -93,36 +98,100 @@ public:
         if (!(r.x > 0.0) || r.y < r.x) fail("must be [min, max] with 0 < min <= max");
         return r;
     }
+    // A number within the scene guide's range for `key` of table `section` (SceneRanges.h).
+    double within(const char* section, const char* key) const {
+        const SceneRange& r = sceneRange(section, key);
+        const double d = r.whole ? double(integer()) : number();
+        if (!inRange(r, d)) fail("must be " + describeRange(r) + unitOf(r) + ", got " + fmt(d));
+        return d;
+    }
+    // An integer within its range.
+    std::int64_t wholeWithin(const char* section, const char* key) const { return std::int64_t(within(section, key)); }
+    // N numbers, each within the range of `key`.
+    template <int N>
+    glm::vec<N, double> vecWithin(const char* section, const char* key) const {
+        if (array() != N) fail("must be an array of " + std::to_string(N) + " numbers");
+        glm::vec<N, double> out;
+        for (int i = 0; i < N; ++i) out[i] = at(std::size_t(i)).within(section, key);
+        return out;
+    }
+    // [min, max], both within the range of `key`, min <= max.
+    glm::dvec2 rangeWithin(const char* section, const char* key) const {
+        const glm::dvec2 r = vecWithin<2>(section, key);
+        if (r.y < r.x) fail("must be [min, max] with min <= max");
+        return r;
+    }
+    // A name shown in files and messages: not empty, at most 200 bytes, no control characters.
+    std::string name() const {
+        const std::string s = string();
+        checkName(*this, s);
+        return s;
+    }
+    // The same rules for a name that is an object's key (`at` is the value it names).
+    static void checkName(const Reader& at, const std::string& s) {
+        if (s.empty()) at.fail("a name must not be empty");
+        if (s.size() > 200) at.fail("a name must be at most 200 bytes, got " + std::to_string(s.size()));
+        for (const char c : s)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+                at.fail("a name must not hold control characters (found byte " + std::to_string(int(static_cast<unsigned char>(c))) + ")");
+    }
 
 private:
+    static std::string unitOf(const SceneRange& r) { return *r.unit ? std::string(" ") + r.unit : std::string(); }
     std::string typeName() const { return v_.is_null() ? "null" : v_.type_name(); }
+    // As people write numbers: 1000000 and 0.5, but 1e+300.
     static std::string fmt(double d) {
-        std::ostringstream s;
-        s << d;
-        return s.str();
+        char text[64];
+        if (d == std::floor(d) && std::fabs(d) < 1e15) std::snprintf(text, sizeof text, "%.0f", d);
+        else std::snprintf(text, sizeof text, "%.10g", d);
+        return text;
     }
     const json& v_;
     std::string path_;
     const std::string& file_;
 };
 
-std::vector<double> levelEnds(const Reader& r) {
+// Band ends, metres: at least one, each within `key`'s range, increasing.
+std::vector<double> levelEnds(const Reader& r, const char* section, const char* key) {
+    if (r.array() == 0) r.fail("must list at least one distance (leave it out for the defaults)");
     std::vector<double> out;
     for (std::size_t i = 0; i < r.array(); ++i) {
-        out.push_back(r.at(i).positive());
+        out.push_back(r.at(i).within(section, key));
         if (i > 0 && out[i] <= out[i - 1]) r.at(i).fail("level ends must increase");
     }
     return out;
 }
 
-std::string existingFile(const Reader& r, const std::string& base, bool directory) {
+// A path in the file, relative to the scene's folder, naming what it should be and is not.
+enum class PathKind { Folder, GltfFile };
+
+std::string existingPath(const Reader& r, const std::string& base, PathKind kind) {
     const std::string p = r.string();
     if (p.empty()) r.fail("must not be empty");
-    const fs::path full = fs::path(base) / p;
+    const fs::path full = (fs::path(base) / p).lexically_normal();
+    const std::string shown = "'" + full.string() + "'";
     std::error_code ec;
-    if (directory ? !fs::is_directory(full, ec) : !fs::is_regular_file(full, ec))
-        r.fail(std::string(directory ? "folder" : "file") + " '" + full.lexically_normal().string() + "' does not exist");
-    return full.lexically_normal().string();
+    const fs::file_status status = fs::status(full, ec);
+    if (!fs::exists(status)) r.fail(std::string(kind == PathKind::Folder ? "folder " : "file ") + shown + " does not exist");
+    if (kind == PathKind::Folder) {
+        if (!fs::is_directory(status)) r.fail(shown + " is a file, not a folder");
+        return full.string();
+    }
+    if (fs::is_directory(status)) r.fail(shown + " is a folder, not a glTF file");
+    if (!fs::is_regular_file(status)) r.fail(shown + " is not a regular file");
+    // A glTF file is binary ("glTF" first) or JSON ('{' first, after spaces and a byte-order mark).
+    std::ifstream in(full, std::ios::binary);
+    char head[64] = {};
+    in.read(head, sizeof head);
+    const std::size_t n = static_cast<std::size_t>(in.gcount());
+    if (n == 0) r.fail("file " + shown + " is empty");
+    std::string_view start(head, n);
+    if (start.rfind("glTF", 0) == 0) return full.string();
+    if (start.rfind("\xEF\xBB\xBF", 0) == 0) start.remove_prefix(3);
+    const std::size_t first = start.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos || start[first] != '{')
+        r.fail(shown + " is not a glTF file (a .glb starts with 'glTF', a .gltf is a JSON object)");
+    return full.string();
 }
 
 const char* kProcedural[] = {"seed-humanoid", "table3", "bird"};
@@ -137,11 +206,10 @@ std::vector<glm::dvec2> geometricLevels(const Reader& lod) {
         const Reader level = lod.at(i);
         level.object({"until", "triangles"});
         double until = std::numeric_limits<double>::infinity();
-        if (level.has("until")) until = level.at("until").positive();
+        if (level.has("until")) until = level.at("until").within("lod levels", "until");
         else if (i + 1 < n) level.fail("needs 'until': only the last level may reach to any distance");
         if (!(until > previous)) level.at("until").fail("must exceed the previous level's distance");
-        const double share = level.has("triangles") ? level.at("triangles").positive() : 1.0;
-        if (share > 1.0) level.at("triangles").fail("is a share of the triangles: at most 1");
+        const double share = level.has("triangles") ? level.at("triangles").within("lod levels", "triangles") : 1.0;
         out.push_back({until, share});
         previous = until;
     }
@@ -153,16 +221,16 @@ void readTown(const Reader& root, SceneDescription& s, const std::string& baseDi
     const Reader t = root.at("town");
     t.object({"blocksX", "blocksZ", "blockTiles", "tileSize", "seed", "tiles", "occluders", "lod", "lodScale", "regions"});
     TownDescription town;
-    if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").atLeast(1));
-    if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").atLeast(1));
-    if (t.has("blockTiles")) town.blockTiles = int(t.at("blockTiles").atLeast(1));
-    if (t.has("tileSize")) town.tileSize = t.at("tileSize").positive();
+    if (t.has("blocksX")) town.blocksX = int(t.at("blocksX").wholeWithin("town", "blocksX"));
+    if (t.has("blocksZ")) town.blocksZ = int(t.at("blocksZ").wholeWithin("town", "blocksZ"));
+    if (t.has("blockTiles")) town.blockTiles = int(t.at("blockTiles").wholeWithin("town", "blockTiles"));
+    if (t.has("tileSize")) town.tileSize = t.at("tileSize").within("town", "tileSize");
     if (t.has("seed")) town.seed = static_cast<std::uint64_t>(t.at("seed").atLeast(0));
     if (t.has("occluders")) town.occluders = t.at("occluders").boolean();
     if (t.has("lod")) town.lod = geometricLevels(t.at("lod"));
     if (t.has("lodScale")) {
         if (!t.has("lod")) t.at("lodScale").fail("needs the town's 'lod' levels");
-        town.lodScale = t.at("lodScale").positive();
+        town.lodScale = t.at("lodScale").within("town", "lodScale");
     }
     if (t.has("regions")) {
         // {"size": [bx, bz]}: rectangles of so many blocks; or a list of {"from": [x, z], "to": [x, z]} (blocks, 'to' excluded).
@@ -186,7 +254,7 @@ void readTown(const Reader& root, SceneDescription& s, const std::string& baseDi
             }
         }
     }
-    town.tiles = existingFile(t.at("tiles"), baseDirectory, true);
+    town.tiles = existingPath(t.at("tiles"), baseDirectory, PathKind::Folder);
     for (const char* needed : {"road-straight.glb", "road-corner.glb", "road-split.glb", "road-intersection.glb", "pavement.glb"})
         if (!fs::is_regular_file(fs::path(town.tiles) / needed))
             t.at("tiles").fail("has no '" + std::string(needed) + "'");
@@ -207,24 +275,15 @@ void readEffects(const Reader& root, SceneDescription& s) {
         } else {
             av.object({"quality", "range"});
             s.effects.avoidance = true;
-            if (av.has("quality")) {
-                const double q = av.at("quality").number();
-                if (q != std::floor(q) || q < 0 || q > 3) av.at("quality").fail("must be 0, 1, 2 or 3");
-                s.effects.avoidanceQuality = static_cast<int>(q);
-            }
-            if (av.has("range")) {
-                s.effects.avoidanceRange = av.at("range").positive();
-                if (s.effects.avoidanceRange < 1.0) av.at("range").fail("must be at least 1 (agent radii)");
-            }
+            if (av.has("quality")) s.effects.avoidanceQuality = int(av.at("quality").wholeWithin("effects", "avoidance.quality"));
+            if (av.has("range")) s.effects.avoidanceRange = av.at("range").within("effects", "avoidance.range");
         }
     }
     if (e.has("farUpdate")) {  // an approximation: regions far from the camera step less often
         const Reader f = e.at("farUpdate");
         f.object({"distance", "every"});
-        s.effects.farUpdateDistance = f.at("distance").positive();
-        const double every = f.at("every").number();
-        if (every != std::floor(every) || every < 2 || every > 1000) f.at("every").fail("must be a whole number of steps from 2 to 1000");
-        s.effects.farUpdateEvery = static_cast<int>(every);
+        s.effects.farUpdateDistance = f.at("distance").within("effects", "farUpdate.distance");
+        s.effects.farUpdateEvery = int(f.at("every").wholeWithin("effects", "farUpdate.every"));
     }
     if (e.has("gaze")) {
         const Reader g = e.at("gaze");
@@ -233,8 +292,8 @@ void readEffects(const Reader& root, SceneDescription& s) {
         } else {
             g.object({"levels", "range"});
             s.effects.gaze = true;
-            if (g.has("levels")) s.effects.gazeLevels = levelEnds(g.at("levels"));
-            if (g.has("range")) s.effects.gazeRange = g.at("range").positive();
+            if (g.has("levels")) s.effects.gazeLevels = levelEnds(g.at("levels"), "effects", "gaze.levels");
+            if (g.has("range")) s.effects.gazeRange = g.at("range").within("effects", "gaze.range");
         }
     }
 }
@@ -243,74 +302,47 @@ void readEffects(const Reader& root, SceneDescription& s) {
 void readRepresentation(const Reader& root, SceneDescription& s, const std::string& file) {
     const Reader r = root.at("representation");
     r.object({"impostorDistance", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
-    if (r.has("impostorDistance")) {
-        s.representation.impostorDistance = r.at("impostorDistance").number();
-        if (s.representation.impostorDistance < 0) r.at("impostorDistance").fail("must not be negative");
-    }
-    if (r.has("hysteresis")) {
-        s.representation.hysteresis = r.at("hysteresis").number();
-        if (s.representation.hysteresis < 0 || s.representation.hysteresis > 0.5) r.at("hysteresis").fail("must be in [0, 0.5]");
-    }
-    if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").positive();
+    if (r.has("impostorDistance")) s.representation.impostorDistance = r.at("impostorDistance").within("representation", "impostorDistance");
+    if (r.has("hysteresis")) s.representation.hysteresis = r.at("hysteresis").within("representation", "hysteresis");
+    if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").within("representation", "lodScale");
     if (r.has("occlusion")) {
+        const char* section = "representation.occlusion";
         const Reader o = r.at("occlusion");
         o.object({"width", "height", "maxOccluders", "rest"});
         OcclusionSettings settings;
-        const auto size = [&](const char* key, int& into) {
-            if (!o.has(key)) return;
-            const std::int64_t v = o.at(key).atLeast(8);
-            if (v > 4096) o.at(key).fail("must be at most 4096, got " + std::to_string(v));
-            into = static_cast<int>(v);
-        };
-        size("width", settings.width);
-        size("height", settings.height);
-        if (o.has("maxOccluders")) {
-            const std::int64_t v = o.at("maxOccluders").atLeast(1);
-            if (v > 1000000) o.at("maxOccluders").fail("must be at most 1000000, got " + std::to_string(v));
-            settings.maxOccluders = static_cast<int>(v);
-        }
+        if (o.has("width")) settings.width = int(o.at("width").wholeWithin(section, "width"));
+        if (o.has("height")) settings.height = int(o.at("height").wholeWithin(section, "height"));
+        if (o.has("maxOccluders")) settings.maxOccluders = int(o.at("maxOccluders").wholeWithin(section, "maxOccluders"));
         // "rest": {"frames": N, "below": share, "wakeDistance": m, "wakeAngle": degrees}
         if (o.has("rest")) {
             const Reader rest = o.at("rest");
             rest.object({"frames", "below", "wakeDistance", "wakeAngle"});
-            const std::int64_t frames = rest.at("frames").atLeast(1);
-            if (frames > 1000) rest.at("frames").fail("must be at most 1000, got " + std::to_string(frames));
-            settings.restFrames = static_cast<int>(frames);
-            const auto bounded = [&](const char* key, double hi, double& into) {
-                if (!rest.has(key)) return;
-                const double v = rest.at(key).number();
-                if (v < 0.0 || v > hi) rest.at(key).fail("must be in [0, " + std::to_string(static_cast<int>(hi)) + "]");
-                into = v;
-            };
-            bounded("below", 1.0, settings.restBelow);
-            bounded("wakeDistance", 1000000.0, settings.wakeDistance);
-            bounded("wakeAngle", 180.0, settings.wakeAngleDegrees);
+            settings.restFrames = int(rest.at("frames").wholeWithin(section, "rest.frames"));
+            if (rest.has("below")) settings.restBelow = rest.at("below").within(section, "rest.below");
+            if (rest.has("wakeDistance")) settings.wakeDistance = rest.at("wakeDistance").within(section, "rest.wakeDistance");
+            if (rest.has("wakeAngle")) settings.wakeAngleDegrees = rest.at("wakeAngle").within(section, "rest.wakeAngle");
         }
         s.representation.occlusion = settings;
     }
     if (r.has("keyPoseCache")) {
+        const char* section = "representation.keyPoseCache";
         const Reader k = r.at("keyPoseCache");
         k.object({"distance", "mode", "keyPosesPerSecond", "rows"});
         KeyPoseCacheDescription cache;
-        if (k.has("distance")) cache.distance = k.at("distance").positive();
+        if (k.has("distance")) cache.distance = k.at("distance").within(section, "distance");
         if (k.has("mode")) {
             const std::string mode = k.at("mode").string();
             if (mode == "intermittent") cache.mode = KeyPoseMode::Intermittent;
             else if (mode == "interpolative") cache.mode = KeyPoseMode::Interpolative;
             else k.at("mode").fail("must be \"intermittent\" or \"interpolative\", got \"" + mode + "\"");
         }
-        if (k.has("keyPosesPerSecond")) {
-            cache.keyPosesPerSecond = k.at("keyPosesPerSecond").positive();
-            if (cache.keyPosesPerSecond > 1000) k.at("keyPosesPerSecond").fail("must be at most 1000");
-        }
+        if (k.has("keyPosesPerSecond")) cache.keyPosesPerSecond = k.at("keyPosesPerSecond").within(section, "keyPosesPerSecond");
         const Reader rows = k.at("rows");
         rows.anyObject();  // its keys are template names
         for (auto it = rows.value().begin(); it != rows.value().end(); ++it) {
             const Reader row(it.value(), rows.path() + "/" + it.key(), file);
             if (!s.templates.count(it.key())) row.fail("names no declared template");
-            const std::int64_t n = row.atLeast(1);
-            if (n > 65535) row.fail("must be at most 65535, got " + std::to_string(n));
-            cache.rows[it.key()] = static_cast<std::uint32_t>(n);
+            cache.rows[it.key()] = static_cast<std::uint32_t>(row.wholeWithin(section, "rows"));
         }
         if (cache.rows.empty()) rows.fail("must give rows for at least one template");
         if (s.representation.impostorDistance > 0 && cache.distance >= s.representation.impostorDistance)
@@ -324,22 +356,20 @@ void readRepresentation(const Reader& root, SceneDescription& s, const std::stri
 void readCamera(const Reader& root, SceneDescription& s) {
     const Reader c = root.at("camera");
     c.object({"fov", "near", "far", "path"});
-    if (c.has("fov")) {
-        s.camera.fovDegrees = c.at("fov").positive();
-        if (s.camera.fovDegrees >= 180.0) c.at("fov").fail("must be below 180 degrees");
-    }
-    if (c.has("near")) s.camera.nearDistance = c.at("near").positive();
-    if (c.has("far")) s.camera.farDistance = c.at("far").positive();
+    if (c.has("fov")) s.camera.fovDegrees = c.at("fov").within("camera", "fov");
+    if (c.has("near")) s.camera.nearDistance = c.at("near").within("camera", "near");
+    if (c.has("far")) s.camera.farDistance = c.at("far").within("camera", "far");
     if (s.camera.farDistance <= s.camera.nearDistance) c.fail("far must exceed near");
     if (c.has("path")) {
         const Reader path = c.at("path");
+        if (path.array() == 0) path.fail("must hold at least one key (leave it out for the circling camera)");
         for (std::size_t i = 0; i < path.array(); ++i) {
             const Reader k = path.at(i);
             k.object({"time", "eye", "target"});
             CameraKey key;
-            key.time = k.at("time").number();
-            key.eye = k.at("eye").vec<3>();
-            key.target = k.at("target").vec<3>();
+            key.time = k.at("time").within("camera", "path[].time");
+            key.eye = k.at("eye").vecWithin<3>("camera", "path[].eye");
+            key.target = k.at("target").vecWithin<3>("camera", "path[].target");
             if (glm::length(key.target - key.eye) < 1e-6) k.at("target").fail("must differ from eye");
             if (i > 0 && key.time <= s.camera.path.back().time) k.at("time").fail("times must increase");
             s.camera.path.push_back(key);
@@ -349,79 +379,89 @@ void readCamera(const Reader& root, SceneDescription& s) {
 
 // "templates": each a glTF file or a procedural character, with its clips, scale and LOD.
 void readTemplates(const Reader& root, SceneDescription& s, const std::string& baseDirectory, const std::string& file) {
-const Reader templates = root.at("templates");
-templates.anyObject();  // its keys are template names
-for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
-    const Reader t(it.value(), "/templates/" + it.key(), file);
-    t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod", "jointMinAngle"});
-    TemplateDescription d;
-    if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
-    if (t.has("gltf")) d.gltf = existingFile(t.at("gltf"), baseDirectory, false);
-    if (t.has("procedural")) {
-        d.procedural = t.at("procedural").string();
-        if (std::find(std::begin(kProcedural), std::end(kProcedural), d.procedural) == std::end(kProcedural))
-            t.at("procedural").fail("'" + d.procedural + "' is not a procedural template (seed-humanoid, table3, bird)");
+    const Reader templates = root.at("templates");
+    templates.anyObject();  // its keys are template names
+    for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
+        const Reader t(it.value(), "/templates/" + it.key(), file);
+        Reader::checkName(t, it.key());
+        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod", "jointMinAngle"});
+        TemplateDescription d;
+        if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
+        if (t.has("gltf")) d.gltf = existingPath(t.at("gltf"), baseDirectory, PathKind::GltfFile);
+        if (t.has("procedural")) {
+            d.procedural = t.at("procedural").string();
+            if (std::find(std::begin(kProcedural), std::end(kProcedural), d.procedural) == std::end(kProcedural))
+                t.at("procedural").fail("'" + d.procedural + "' is not a procedural template (seed-humanoid, table3, bird)");
+        }
+        if (t.has("walkClip")) d.walkClip = t.at("walkClip").string();
+        if (t.has("runClip")) d.runClip = t.at("runClip").string();
+        if (t.has("idleClip")) d.idleClip = t.at("idleClip").string();
+        if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").within("templates", "walkClipSpeed");
+        if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").within("templates", "runClipSpeed");
+        if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
+        if ((t.has("scale") || t.has("lod") || t.has("jointMinAngle")) && !t.has("gltf"))
+            t.fail("'scale', 'lod' and 'jointMinAngle' apply to glTF templates only");
+        if (t.has("jointMinAngle")) d.jointMinAngle = t.at("jointMinAngle").within("templates", "jointMinAngle");
+        if (t.has("scale")) d.scale = t.at("scale").within("templates", "scale");
+        if (t.has("lod")) d.lod = geometricLevels(t.at("lod"));
+        s.templates[it.key()] = d;
     }
-    if (t.has("walkClip")) d.walkClip = t.at("walkClip").string();
-    if (t.has("runClip")) d.runClip = t.at("runClip").string();
-    if (t.has("idleClip")) d.idleClip = t.at("idleClip").string();
-    if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").positive();
-    if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").positive();
-    if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
-    if ((t.has("scale") || t.has("lod") || t.has("jointMinAngle")) && !t.has("gltf"))
-        t.fail("'scale', 'lod' and 'jointMinAngle' apply to glTF templates only");
-    if (t.has("jointMinAngle")) {
-        d.jointMinAngle = t.at("jointMinAngle").number();
-        if (!(d.jointMinAngle >= 0.0 && d.jointMinAngle < 0.1)) t.at("jointMinAngle").fail("must be in [0, 0.1) radians");
-    }
-    if (t.has("scale")) d.scale = t.at("scale").positive();
-    if (t.has("lod")) d.lod = geometricLevels(t.at("lod"));
-    s.templates[it.key()] = d;
-}
-if (s.templates.empty()) templates.fail("must declare at least one template");
+    if (s.templates.empty()) templates.fail("must declare at least one template");
 }
 
 // "actors": the groups, each of a declared template with its behaviour, area and levels.
 void readActors(const Reader& root, SceneDescription& s) {
-const Reader actors = root.at("actors");
-for (std::size_t i = 0; i < actors.array(); ++i) {
-    const Reader a = actors.at(i);
-    a.object({"name", "template", "count", "behaviour", "area", "speed", "altitude", "groupSize", "levels", "priority"});
-    ActorGroupDescription g;
-    g.name = a.has("name") ? a.at("name").string() : "group " + std::to_string(i);
-    g.templateName = a.at("template").string();
-    if (!s.templates.count(g.templateName)) a.at("template").fail("names no declared template ('" + g.templateName + "')");
-    g.count = a.at("count").atLeast(0);
-    if (g.count > 2'000'000) a.at("count").fail("is more than 2,000,000");
-    g.behaviour = a.at("behaviour").string();
-    if (g.behaviour != "walk" && g.behaviour != "idle" && g.behaviour != "flight")
-        a.at("behaviour").fail("'" + g.behaviour + "' is not a behaviour (walk, idle, flight)");
-    if (a.has("area")) {
-        const Reader area = a.at("area");
-        area.object({"center", "size"});
-        if (area.has("center")) g.area.center = area.at("center").vec<2>();
-        if (area.has("size")) {
-            g.area.size = area.at("size").vec<2>();
-            if (!(g.area.size.x > 0 && g.area.size.y > 0)) area.at("size").fail("must be positive");
+    const Reader actors = root.at("actors");
+    std::map<std::string, std::size_t> names;  // group name -> its index, to refuse a repeated one
+    for (std::size_t i = 0; i < actors.array(); ++i) {
+        const Reader a = actors.at(i);
+        a.object({"name", "template", "count", "behaviour", "area", "speed", "altitude", "groupSize", "levels", "priority"});
+        ActorGroupDescription g;
+        g.name = a.has("name") ? a.at("name").name() : "group " + std::to_string(i);
+        if (const auto [at, added] = names.emplace(g.name, i); !added)
+            (a.has("name") ? a.at("name") : a).fail("repeats the name of /actors/" + std::to_string(at->second) + " ('" + g.name + "')");
+        g.templateName = a.at("template").string();
+        if (!s.templates.count(g.templateName)) a.at("template").fail("names no declared template ('" + g.templateName + "')");
+        g.count = a.at("count").wholeWithin("actors", "count");
+        g.behaviour = a.at("behaviour").string();
+        if (g.behaviour != "walk" && g.behaviour != "idle" && g.behaviour != "flight")
+            a.at("behaviour").fail("'" + g.behaviour + "' is not a behaviour (walk, idle, flight)");
+        if (a.has("area")) {
+            const Reader area = a.at("area");
+            area.object({"center", "size"});
+            if (area.has("center")) g.area.center = area.at("center").vecWithin<2>("actors", "area.center");
+            if (area.has("size")) g.area.size = area.at("size").vecWithin<2>("actors", "area.size");
         }
+        // Each of these means something for one behaviour only: given for another, it is a mistake.
+        const auto onlyFor = [&](const char* key, bool applies, const char* which) {
+            if (a.has(key) && !applies) a.at(key).fail(std::string("applies to ") + which + " only, not to '" + g.behaviour + "'");
+            return a.has(key);
+        };
+        if (onlyFor("speed", g.behaviour != "idle", "walk and flight"))
+            g.speed = a.at("speed").rangeWithin("actors", g.behaviour == "walk" ? "speed (walk)" : "speed (flight)");
+        if (onlyFor("altitude", g.behaviour == "flight", "flight")) g.altitude = a.at("altitude").rangeWithin("actors", "altitude");
+        if (onlyFor("groupSize", g.behaviour == "idle", "idle")) {
+            g.groupSize = glm::ivec2(a.at("groupSize").rangeWithin("actors", "groupSize"));
+            if (g.count > 0 && g.groupSize.y > g.count)
+                a.at("groupSize").fail("the largest group (" + std::to_string(g.groupSize.y) + ") is larger than 'count' (" +
+                                       std::to_string(g.count) + ")");
+        }
+        if (a.has("levels")) g.levels = levelEnds(a.at("levels"), "actors", "levels");
+        if (a.has("priority")) g.priority = a.at("priority").within("actors", "priority");
+        if (g.behaviour == "walk" && !s.town) a.at("behaviour").fail("'walk' needs a town to walk in");
+        s.actors.push_back(g);
     }
-    if (a.has("speed")) g.speed = a.at("speed").range();
-    if (a.has("altitude")) g.altitude = a.at("altitude").range();
-    if (a.has("groupSize")) {
-        const glm::dvec2 gs = a.at("groupSize").range();
-        if (gs.x != std::floor(gs.x) || gs.y != std::floor(gs.y)) a.at("groupSize").fail("must be whole numbers");
-        g.groupSize = glm::ivec2(gs);
-    }
-    if (a.has("levels")) g.levels = levelEnds(a.at("levels"));
-    if (a.has("priority")) g.priority = a.at("priority").positive();
-    if (g.behaviour == "walk" && !s.town) a.at("behaviour").fail("'walk' needs a town to walk in");
-    s.actors.push_back(g);
 }
-}
+
+// Larger than any scene needs (a scene describes its crowd, it does not list it); parsing more
+// would take its size several times over in memory.
+constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
 
 }  // namespace
 
 SceneDescription parseScene(const std::string& text, const std::string& baseDirectory, const std::string& file) {
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw SceneError(file, "", "is empty");
+    if (text.size() > kMaxSceneBytes) throw SceneError(file, "", "is larger than 16 MiB (" + std::to_string(text.size()) + " bytes)");
     json doc;
     try {
         doc = json::parse(text);
@@ -433,18 +473,22 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
             else ++column;
         }
         throw SceneError(file, "", "is not valid JSON (line " + std::to_string(line) + ", column " + std::to_string(column) + ")");
+    } catch (const json::out_of_range& e) {
+        // A number beyond a double's range ("number overflow parsing '1e400'"): valid JSON, no usable value.
+        const std::string what = e.what();
+        const auto at = what.find("parsing ");
+        std::string number = at == std::string::npos ? std::string() : what.substr(at + 8);
+        std::erase(number, '\'');
+        throw SceneError(file, "", "holds a number beyond a double's range" + (number.empty() ? std::string() : ": " + number));
     }
     const Reader root(doc, "", file);
     root.object({"name", "seed", "step", "town", "templates", "actors", "effects", "representation", "camera"});
     SceneDescription s;
     s.baseDirectory = baseDirectory;
     s.file = file;
-    if (root.has("name")) s.name = root.at("name").string();
+    if (root.has("name")) s.name = root.at("name").name();
     if (root.has("seed")) s.seed = static_cast<std::uint64_t>(root.at("seed").atLeast(0));
-    if (root.has("step")) {
-        s.step = root.at("step").positive();
-        if (s.step > 0.5) root.at("step").fail("must be at most 0.5 s");
-    }
+    if (root.has("step")) s.step = root.at("step").within("document", "step");
 
     if (root.has("town")) readTown(root, s, baseDirectory, file);
 
@@ -461,6 +505,10 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
 }
 
 SceneDescription parseSceneFile(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw SceneError(path, "", "is a folder, not a scene file");
+    if (const std::uintmax_t bytes = fs::file_size(path, ec); !ec && bytes > kMaxSceneBytes)
+        throw SceneError(path, "", "is larger than 16 MiB (" + std::to_string(bytes) + " bytes)");
     std::ifstream in(path);
     if (!in) throw SceneError(path, "", "cannot be read");
     std::stringstream text;

@@ -479,6 +479,18 @@ TEST(Gltf, MalformedDocumentsAndContainersAreErrorsAtTheRoot) {
     auto bytes = [](const std::string& s) { return std::vector<std::uint8_t>(s.begin(), s.end()); };
     EXPECT_EQ(errorWhere(bytes("")), "/");
     EXPECT_EQ(errorWhere(bytes("not json")), "/");
+    // What a file that is no glTF at all is called: empty, or not a glTF, rather than "malformed JSON".
+    const auto reason = [](const std::string& s) {
+        try {
+            loadCharacterFromMemory(std::vector<std::uint8_t>(s.begin(), s.end()), "bad.glb");
+        } catch (const GltfError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(loaded)");
+    };
+    EXPECT_NE(reason("").find("the file is empty (0 bytes)"), std::string::npos) << reason("");
+    EXPECT_NE(reason("PK\x03\x04 a zip file").find("is not a glTF file"), std::string::npos) << reason("PK");
+    EXPECT_NE(reason("{\"asset\": ").find("the JSON is malformed"), std::string::npos) << reason("{");
     EXPECT_EQ(errorWhere(bytes("[1, 2]")), "/");
     EXPECT_EQ(errorWhere(bytes(std::string(100000, '[') + std::string(100000, ']'))), "/");  // too deep: no stack overflow
     EXPECT_EQ(errorWhere(bytes(R"({"asset": {"version": "2.0"}})")), "/");  // nothing to load

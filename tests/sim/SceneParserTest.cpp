@@ -5,12 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
 #include "throng/testkit/Assets.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
+#include "throng/sim/SceneRanges.h"
 
 using namespace throng::sim;
 
@@ -86,16 +90,45 @@ TEST(SceneParser, TownLodLevelsAreRead) {
 struct BadScene {
     const char* what;
     std::string text;
-    const char* path;
+    std::string path;
     const char* reason;
+    bool scratch = false;  // paths resolve in scratchFolder() rather than the shared assets
 };
+
+// Test names and failures show what the case is, not its bytes.
+void PrintTo(const BadScene& b, std::ostream* os) { *os << b.what; }
+
+// A folder of files that are not glTF characters: empty.glb (0 bytes), text.glb (a note),
+// folder.glb (a folder). Made once, removed when the tests end.
+const std::string& scratchFolder() {
+    struct Folder {
+        std::filesystem::path path = std::filesystem::temp_directory_path() / ("throng-scene-test-" + std::to_string(::getpid()));
+        Folder() {
+            std::filesystem::create_directories(path / "folder.glb");
+            std::ofstream(path / "empty.glb").flush();
+            std::ofstream(path / "text.glb") << "These are notes about a character, not the character.\n";
+        }
+        ~Folder() {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    };
+    static const Folder folder;
+    static const std::string text = folder.path.string();
+    return text;
+}
+
+// One template `x` with `field` (a JSON fragment) beside a procedural source, and `actors`.
+std::string birds(const std::string& field, const std::string& actors = "[]") {
+    return R"({"templates": {"x": {"procedural": "bird")" + field + R"(}}, "actors": )" + actors + "}";
+}
 
 class SceneParserErrors : public ::testing::TestWithParam<BadScene> {};
 
 TEST_P(SceneParserErrors, NamesThePathAndTheReason) {
     const BadScene& b = GetParam();
     try {
-        parseScene(b.text, kAssets, "scene.json");
+        parseScene(b.text, b.scratch ? scratchFolder() : kAssets, "scene.json");
         FAIL() << b.what << ": accepted";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.path(), b.path) << b.what << ": " << e.what();
@@ -111,7 +144,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"count of the wrong type", scene(R"([{"template": "cesium", "count": "many", "behaviour": "walk"}])"),
                  "/actors/0/count", "must be an integer"},
         BadScene{"negative count", scene(R"([{"template": "cesium", "count": -5, "behaviour": "walk"}])"), "/actors/0/count",
-                 "at least 0"},
+                 "must be from 0 to 2000000, got -5"},
         BadScene{"missing behaviour", scene(R"([{"template": "cesium", "count": 5}])"), "/actors/0/behaviour", "missing"},
         BadScene{"unknown behaviour", scene(R"([{"template": "cesium", "count": 5, "behaviour": "dance"}])"),
                  "/actors/0/behaviour", "'dance' is not a behaviour"},
@@ -121,7 +154,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "/actors/0/colour", "not a known field"},
         BadScene{"actors not an array", scene(R"({"template": "cesium"})"), "/actors", "must be an array"},
         BadScene{"bad speed range", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "speed": [2, 1]}])"),
-                 "/actors/0/speed", "0 < min <= max"},
+                 "/actors/0/speed", "min <= max"},
         BadScene{"levels not increasing", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "levels": [30, 20]}])"),
                  "/actors/0/levels/1", "must increase"},
         BadScene{"missing asset",
@@ -159,9 +192,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "/actors/0/behaviour", "needs a town"},
         BadScene{"bad gaze type", scene(kActors, R"(, "effects": {"gaze": 3})"), "/effects/gaze", "must be an object"},
         BadScene{"avoidance quality out of range", scene(kActors, R"(, "effects": {"avoidance": {"quality": 4}})"),
-                 "/effects/avoidance/quality", "0, 1, 2 or 3"},
+                 "/effects/avoidance/quality", "must be from 0 to 3, got 4"},
         BadScene{"avoidance range under a radius", scene(kActors, R"(, "effects": {"avoidance": {"range": 0.5}})"),
-                 "/effects/avoidance/range", "at least 1"},
+                 "/effects/avoidance/range", "must be from 1 to 100 agent radii, got 0.5"},
         BadScene{"unknown avoidance field", scene(kActors, R"(, "effects": {"avoidance": {"speed": 1}})"),
                  "/effects/avoidance/speed", "not a known field"},
         BadScene{"far update every step", scene(kActors, R"(, "effects": {"farUpdate": {"distance": 80, "every": 1}})"),
@@ -172,19 +205,19 @@ INSTANTIATE_TEST_SUITE_P(
                  scene(kActors, R"(, "camera": {"path": [{"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}, {"time": 1, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
                  "/camera/path/1/time", "must increase"},
         BadScene{"hysteresis out of range", scene(kActors, R"(, "representation": {"hysteresis": 0.9})"),
-                 "/representation/hysteresis", "[0, 0.5]"},
+                 "/representation/hysteresis", "must be from 0 to 0.5, got 0.9"},
         BadScene{"negative scale", R"({"templates": {"x": {"gltf": "characters/Fox.glb", "scale": -0.01}}, "actors": []})",
-                 "/templates/x/scale", "must be positive"},
+                 "/templates/x/scale", "must be from 0.0001 to 1000, got -0.01"},
         BadScene{"scale on a procedural template", R"({"templates": {"x": {"procedural": "bird", "scale": 2}}, "actors": []})",
                  "/templates/x", "glTF templates only"},
         BadScene{"joint angle too wide", R"({"templates": {"x": {"gltf": "characters/Fox.glb", "jointMinAngle": 0.5}}, "actors": []})",
-                 "/templates/x/jointMinAngle", "[0, 0.1)"},
+                 "/templates/x/jointMinAngle", "must be from 0, below 0.1 radians"},
         BadScene{"lod distances not increasing",
                  R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"until": 30}, {"until": 20}]}}, "actors": []})",
                  "/templates/x/lod/1/until", "must exceed"},
         BadScene{"lod share above 1",
                  R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"until": 30, "triangles": 1.5}]}}, "actors": []})",
-                 "/templates/x/lod/0/triangles", "at most 1"},
+                 "/templates/x/lod/0/triangles", "must be above 0, up to 1, got 1.5"},
         BadScene{"open-ended lod level before the last",
                  R"({"templates": {"x": {"gltf": "characters/Fox.glb", "lod": [{"triangles": 1}, {"until": 20}]}}, "actors": []})",
                  "/templates/x/lod/0", "needs 'until'"},
@@ -195,7 +228,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"town lod share not positive",
                  R"({"town": {"tiles": "town/kenney_city_builder", "lod": [{"until": 60}, {"triangles": 0}]},
                      "templates": {"x": {"procedural": "bird"}}, "actors": []})",
-                 "/town/lod/1/triangles", "positive"},
+                 "/town/lod/1/triangles", "must be above 0, up to 1, got 0"},
         BadScene{"town lod not an array",
                  R"({"town": {"tiles": "town/kenney_city_builder", "lod": 50}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
                  "/town/lod", "must be an array"},
@@ -208,28 +241,28 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"town lod scale not positive",
                  R"({"town": {"tiles": "town/kenney_city_builder", "lod": [{"until": 60}, {"triangles": 0.5}], "lodScale": 0},
                      "templates": {"x": {"procedural": "bird"}}, "actors": []})",
-                 "/town/lodScale", "positive"},
+                 "/town/lodScale", "must be from 0.0001 to 10000, got 0"},
         BadScene{"occluders not a boolean",
                  R"({"town": {"tiles": "town/kenney_city_builder", "occluders": 1}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
                  "/town/occluders", "true or false"},
         BadScene{"occlusion buffer too small",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"width": 4}}})",
-                 "/representation/occlusion/width", "at least 8"},
+                 "/representation/occlusion/width", "must be from 8 to 4096 pixels, got 4"},
         BadScene{"occlusion buffer too large",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"height": 5000}}})",
-                 "/representation/occlusion/height", "at most 4096"},
+                 "/representation/occlusion/height", "must be from 8 to 4096 pixels, got 5000"},
         BadScene{"no occluder allowed",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"maxOccluders": 0}}})",
-                 "/representation/occlusion/maxOccluders", "at least 1"},
+                 "/representation/occlusion/maxOccluders", "must be from 1 to 1000000, got 0"},
         BadScene{"occlusion rest without frames",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"below": 0.1}}}})",
                  "/representation/occlusion/rest/frames", "is missing"},
         BadScene{"occlusion rest share above one",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"frames": 4, "below": 1.5}}}})",
-                 "/representation/occlusion/rest/below", "in [0, 1]"},
+                 "/representation/occlusion/rest/below", "must be from 0 to 1, got 1.5"},
         BadScene{"occlusion rest wake angle too wide",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"rest": {"frames": 4, "wakeAngle": 200}}}})",
-                 "/representation/occlusion/rest/wakeAngle", "in [0, 180]"},
+                 "/representation/occlusion/rest/wakeAngle", "must be from 0 to 180 degrees, got 200"},
         BadScene{"unknown occlusion field",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"occlusion": {"depth": 3}}})",
                  "/representation/occlusion/depth", "not a known field"},
@@ -241,7 +274,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "/representation/keyPoseCache/rows", "at least one template"},
         BadScene{"key-pose cache of no row",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"rows": {"x": 0}}}})",
-                 "/representation/keyPoseCache/rows/x", "at least 1"},
+                 "/representation/keyPoseCache/rows/x", "must be from 1 to 65535 rows, got 0"},
         BadScene{"key-pose cache mode unknown",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"mode": "lazy", "rows": {"x": 8}}}})",
                  "/representation/keyPoseCache/mode", "intermittent"},
@@ -250,7 +283,108 @@ INSTANTIATE_TEST_SUITE_P(
                  "/representation/keyPoseCache/distance", "below impostorDistance"},
         BadScene{"key-pose rate negative",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"keyPosesPerSecond": -1, "rows": {"x": 8}}}})",
-                 "/representation/keyPoseCache/keyPosesPerSecond", "positive"}),
+                 "/representation/keyPoseCache/keyPosesPerSecond", "must be above 0, up to 1000, got -1"},
+        // The document itself.
+        BadScene{"empty document", "", "", "is empty"},
+        BadScene{"document of spaces", " \n\t ", "", "is empty"},
+        BadScene{"number beyond a double", R"({"step": 1e400, "templates": {"x": {"procedural": "bird"}}, "actors": []})", "",
+                 "holds a number beyond a double's range: 1e400"},
+        BadScene{"integer beyond 64 bits", R"({"seed": 100000000000000000000000000000, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/seed", "must be an integer"},
+        BadScene{"step too long", R"({"step": 2, "templates": {"x": {"procedural": "bird"}}, "actors": []})", "/step",
+                 "must be above 0, up to 0.5 s, got 2"},
+        // Files that are not what the key asks for.
+        BadScene{"tiles naming a file",
+                 R"({"town": {"tiles": "town/kenney_city_builder/pavement.glb"}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/tiles", "is a file, not a folder"},
+        BadScene{"gltf naming a folder", R"({"templates": {"x": {"gltf": "characters"}}, "actors": []})", "/templates/x/gltf",
+                 "is a folder, not a glTF file"},
+        BadScene{"gltf naming a folder called .glb", R"({"templates": {"x": {"gltf": "folder.glb"}}, "actors": []})", "/templates/x/gltf",
+                 "is a folder, not a glTF file", true},
+        BadScene{"gltf of 0 bytes", R"({"templates": {"x": {"gltf": "empty.glb"}}, "actors": []})", "/templates/x/gltf", "is empty", true},
+        BadScene{"gltf that is text", R"({"templates": {"x": {"gltf": "text.glb"}}, "actors": []})", "/templates/x/gltf",
+                 "is not a glTF file", true},
+        // Physical bounds, at the key that holds the value.
+        BadScene{"tile of 1e300 m",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "tileSize": 1e300}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/tileSize", "must be from 1 to 100 m, got 1e+300"},
+        BadScene{"a million blocks across",
+                 R"({"town": {"tiles": "town/kenney_city_builder", "blocksX": 1000000}, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/town/blocksX", "must be from 1 to 1000 blocks, got 1000000"},
+        BadScene{"template scale of 1e300", R"({"templates": {"x": {"gltf": "characters/Fox.glb", "scale": 1e300}}, "actors": []})",
+                 "/templates/x/scale", "must be from 0.0001 to 1000, got 1e+300"},
+        BadScene{"walk clip authored at 1e6 m/s", birds(R"(, "walkClipSpeed": 1e6)"), "/templates/x/walkClipSpeed",
+                 "must be from 0.05 to 20 m/s"},
+        BadScene{"walkers at 1e6 m/s", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "speed": [1, 1e6]}])"),
+                 "/actors/0/speed/1", "must be from 0.1 to 10 m/s, got 1000000"},
+        BadScene{"a flock at 1000 m/s", birds("", R"([{"template": "x", "count": 5, "behaviour": "flight", "speed": [1000, 1000]}])"),
+                 "/actors/0/speed/0", "must be from 0.5 to 50 m/s"},
+        BadScene{"a flock at 1e6 m", birds("", R"([{"template": "x", "count": 5, "behaviour": "flight", "altitude": [10, 1e6]}])"),
+                 "/actors/0/altitude/1", "must be from 0.5 to 2000 m"},
+        BadScene{"an area 1e9 m away", birds("", R"([{"template": "x", "count": 5, "behaviour": "idle", "area": {"center": [1e9, 0]}}])"),
+                 "/actors/0/area/center/0", "must be from -100000 to 100000 m"},
+        BadScene{"an area of no size", birds("", R"([{"template": "x", "count": 5, "behaviour": "idle", "area": {"size": [10, 0]}}])"),
+                 "/actors/0/area/size/1", "must be above 0, up to 100000 m"},
+        BadScene{"a priority of 1e9", birds("", R"([{"template": "x", "count": 5, "behaviour": "idle", "priority": 1e9}])"),
+                 "/actors/0/priority", "must be above 0, up to 1000"},
+        BadScene{"groups of 1e9 people",
+                 birds("", R"([{"template": "x", "count": 10, "behaviour": "idle", "groupSize": [1000000000, 1000000000]}])"),
+                 "/actors/0/groupSize/0", "must be from 1 to 1000 people"},
+        BadScene{"groups larger than the count", birds("", R"([{"template": "x", "count": 4, "behaviour": "idle", "groupSize": [3, 5]}])"),
+                 "/actors/0/groupSize", "the largest group (5) is larger than 'count' (4)"},
+        BadScene{"group sizes not whole", birds("", R"([{"template": "x", "count": 40, "behaviour": "idle", "groupSize": [3, 4.5]}])"),
+                 "/actors/0/groupSize/1", "must be an integer"},
+        BadScene{"speed of a standing group", birds("", R"([{"template": "x", "count": 5, "behaviour": "idle", "speed": [1, 2]}])"),
+                 "/actors/0/speed", "applies to walk and flight only, not to 'idle'"},
+        BadScene{"altitude of walkers", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "altitude": [1, 2]}])"),
+                 "/actors/0/altitude", "applies to flight only, not to 'walk'"},
+        BadScene{"group size of a flock", birds("", R"([{"template": "x", "count": 5, "behaviour": "flight", "groupSize": [1, 2]}])"),
+                 "/actors/0/groupSize", "applies to idle only, not to 'flight'"},
+        BadScene{"no behavioural levels", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "levels": []}])"),
+                 "/actors/0/levels", "at least one distance"},
+        BadScene{"behavioural level 1e9 m", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "levels": [10, 1e9]}])"),
+                 "/actors/0/levels/1", "must be above 0, up to 100000 m"},
+        BadScene{"no gaze levels", scene(kActors, R"(, "effects": {"gaze": {"levels": []}})"), "/effects/gaze/levels",
+                 "at least one distance"},
+        BadScene{"gaze across a town", scene(kActors, R"(, "effects": {"gaze": {"range": 5000}})"), "/effects/gaze/range",
+                 "must be above 0, up to 1000 m"},
+        BadScene{"far update at 1e9 m", scene(kActors, R"(, "effects": {"farUpdate": {"distance": 1e9, "every": 4}})"),
+                 "/effects/farUpdate/distance", "must be above 0, up to 100000 m"},
+        BadScene{"impostors from 1e9 m", scene(kActors, R"(, "representation": {"impostorDistance": 1e9})"),
+                 "/representation/impostorDistance", "must be from 0 to 100000 m"},
+        BadScene{"LOD scale of 1e9", scene(kActors, R"(, "representation": {"lodScale": 1e9})"), "/representation/lodScale",
+                 "must be from 0.0001 to 10000"},
+        BadScene{"occlusion waking after 1e9 m",
+                 birds("", R"([], "representation": {"occlusion": {"rest": {"frames": 4, "wakeDistance": 1e9}}})"),
+                 "/representation/occlusion/rest/wakeDistance", "must be from 0 to 1000000 m"},
+        BadScene{"key-pose band from 1e9 m", birds("", R"([], "representation": {"keyPoseCache": {"distance": 1e9, "rows": {"x": 8}}})"),
+                 "/representation/keyPoseCache/distance", "must be above 0, up to 100000 m"},
+        BadScene{"field of view of 180 degrees", scene(kActors, R"(, "camera": {"fov": 180})"), "/camera/fov",
+                 "must be above 0, below 180 degrees"},
+        BadScene{"near plane at 0", scene(kActors, R"(, "camera": {"near": 0})"), "/camera/near", "must be above 0, up to 1000 m"},
+        BadScene{"far plane at 1e12 m", scene(kActors, R"(, "camera": {"far": 1e12})"), "/camera/far", "must be above 0, up to 10000000 m"},
+        BadScene{"camera path time -5",
+                 scene(kActors, R"(, "camera": {"path": [{"time": -5, "eye": [0, 1, 0], "target": [1, 0, 0]}]})"),
+                 "/camera/path/0/time", "must be from 0 to 1000000 s, got -5"},
+        BadScene{"camera eye 1e300 m away",
+                 scene(kActors, R"(, "camera": {"path": [{"time": 0, "eye": [0, 1e300, 0], "target": [1, 0, 0]}]})"),
+                 "/camera/path/0/eye/1", "must be from -1000000 to 1000000 m"},
+        BadScene{"empty camera path", scene(kActors, R"(, "camera": {"path": []})"), "/camera/path", "at least one key"},
+        // Names.
+        BadScene{"two groups of one name",
+                 scene(R"([{"name": "a", "template": "cesium", "count": 5, "behaviour": "walk"}, {"name": "a", "template": "person", "count": 5, "behaviour": "idle"}])"),
+                 "/actors/1/name", "repeats the name of /actors/0 ('a')"},
+        BadScene{"a name taken from a default name",
+                 scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk"}, {"name": "group 0", "template": "person", "count": 5, "behaviour": "idle"}])"),
+                 "/actors/1/name", "repeats the name of /actors/0"},
+        BadScene{"a group name holding NUL", scene(R"([{"name": "a\u0000b", "template": "cesium", "count": 5, "behaviour": "walk"}])"),
+                 "/actors/0/name", "control characters (found byte 0)"},
+        BadScene{"an empty group name", scene(R"([{"name": "", "template": "cesium", "count": 5, "behaviour": "walk"}])"),
+                 "/actors/0/name", "must not be empty"},
+        BadScene{"a scene name holding a newline", R"({"name": "two\nlines", "templates": {"x": {"procedural": "bird"}}, "actors": []})",
+                 "/name", "control characters (found byte 10)"},
+        BadScene{"a template name holding NUL", R"({"templates": {"x\u0000": {"procedural": "bird"}}, "actors": []})",
+                 std::string("/templates/x\0", 13), "control characters"}),
     [](const auto& param) {
         std::string name = param.param.what;
         for (char& c : name)
@@ -311,3 +445,51 @@ TEST(SceneParser, KeyPoseCachesAreReadOnlyWhenDeclared) {
 }
 
 TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }
+
+namespace {
+
+// The repository's root, from where the default scene lies (apps/town/scenes/default.json).
+std::filesystem::path repositoryRoot() { return std::filesystem::path(throng::testkit::townDefaultScene()).parent_path() / "../../.."; }
+
+}  // namespace
+
+TEST(SceneParser, EveryShippedSceneParses) {
+    const std::filesystem::path root = repositoryRoot();
+    for (const char* file : {"apps/town/scenes/default.json", "tests/town/scenes/plain.json", "tests/town/scenes/effects.json",
+                             "tests/oracles/scenes/occlusion.json"}) {
+        SCOPED_TRACE(file);
+        EXPECT_NO_THROW(parseSceneFile((root / file).string()));
+    }
+}
+
+// Every range the parser checks is the one the scene guide states, in the row of its key in the
+// table of its section ("## `town`", "### LOD levels", ...).
+TEST(SceneParser, TheSceneGuideStatesEveryRange) {
+    std::ifstream in(repositoryRoot() / "docs/guides/scene-files.md");
+    ASSERT_TRUE(in) << "docs/guides/scene-files.md";
+    std::vector<std::pair<std::string, std::string>> rows;  // {section, row}
+    std::string line, section;
+    while (std::getline(in, line)) {
+        if (line.rfind("#", 0) == 0) {
+            section = line.substr(line.find_first_not_of('#'));
+            std::erase(section, '`');
+            section = section.substr(section.find_first_not_of(' '));
+            if (section.rfind("The ", 0) == 0) section = section.substr(4);
+            for (char& c : section) c = char(std::tolower(static_cast<unsigned char>(c)));
+        } else if (line.rfind("| `", 0) == 0) {
+            rows.emplace_back(section, line);
+        }
+    }
+    for (const SceneRange& r : sceneRanges()) {
+        std::string key = r.key;
+        if (const auto paren = key.find(" ("); paren != std::string::npos) key.resize(paren);
+        std::string heading = r.section;
+        for (char& c : heading) c = char(std::tolower(static_cast<unsigned char>(c)));
+        const std::string start = "| `" + key + "` |", range = describeRange(r);
+        bool found = false, stated = false;
+        for (const auto& [s, row] : rows)
+            if (s == heading && row.rfind(start, 0) == 0) found = true, stated = stated || row.find(range) != std::string::npos;
+        EXPECT_TRUE(found) << "no row " << start << " under the heading '" << r.section << "'";
+        EXPECT_TRUE(!found || stated) << "the row of " << r.section << " / " << r.key << " does not say '" << range << "'";
+    }
+}

@@ -1,6 +1,7 @@
 #include "GltfDocument.h"
 
 #include <cstring>
+#include <string_view>
 #include <filesystem>
 #include <fstream>
 
@@ -179,6 +180,7 @@ GltfDocument parseDocument(const std::vector<std::uint8_t>& bytes, const std::st
     if (bytes.size() > options.limits.maxFileBytes)
         throw GltfError(file, "/", "the file holds " + std::to_string(bytes.size()) + " bytes, more than the limit of " +
                                        std::to_string(options.limits.maxFileBytes));
+    if (bytes.empty()) throw GltfError(file, "/", "the file is empty (0 bytes)");
     // Find the JSON text (GLB: check the container before tinygltf reads it).
     const char* json = reinterpret_cast<const char*>(bytes.data());
     std::size_t jsonSize = bytes.size();
@@ -204,7 +206,14 @@ GltfDocument parseDocument(const std::vector<std::uint8_t>& bytes, const std::st
         throw GltfError(file, "/", "JSON nesting depth " + std::to_string(depth) + " exceeds the limit of " +
                                        std::to_string(options.limits.maxJsonDepth));
     const auto parsed = nlohmann::json::parse(json, json + jsonSize, nullptr, false);
-    if (parsed.is_discarded()) throw GltfError(file, "/", "the JSON is malformed");
+    if (parsed.is_discarded()) {
+        // Say "not a glTF file" of what is neither a GLB nor a JSON object (text, an image, a .glb renamed).
+        const std::string_view text(json, jsonSize);
+        const std::size_t first = text.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+        if (!doc.binary && (first == std::string_view::npos || text[first] != '{'))
+            throw GltfError(file, "/", "is not a glTF file: neither a GLB (it would start with 'glTF') nor a JSON object");
+        throw GltfError(file, "/", "the JSON is malformed");
+    }
     precheck(parsed, file, doc.binary);
 
     FileContext files{&options, baseDirectory};

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 namespace throng::support {
@@ -49,6 +50,12 @@ std::string problem(const CLI::ParseError& e) {
         if (colon != std::string::npos && what.find(" required ", colon) != std::string::npos &&
             what.size() >= 8 && what.compare(what.size() - 8, 8, " missing") == 0)
             return what.substr(0, colon) + ": needs a value";
+        // "--frames: At Most 1 required but received 2": the option was repeated.
+        constexpr std::string_view kRepeated = "At Most 1 required but received ";
+        const auto received = what.find(kRepeated);
+        if (colon != std::string::npos && received != std::string::npos)
+            return what.substr(0, colon) + ": given " + std::to_string(std::atoi(what.c_str() + received + kRepeated.size())) +
+                   " times (give it once)";
     }
     if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
         // "The following argument was not expected: --bogus".
@@ -67,8 +74,9 @@ CommandLine::CommandLine(std::string name, std::string description) : name_(std:
     app_.formatter(std::make_shared<HelpFormatter>());
     app_.set_help_flag("-h,--help", "print this help and exit");
     // Every option shows its default in --help (an option whose default means "whatever the scene
-    // says" replaces it with default_str), and a repeated option keeps its last value.
-    app_.option_defaults()->always_capture_default()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    // says" replaces it with default_str), and an option given twice is refused: which of two
+    // values was meant cannot be known (a script that appends its own --frames to a user's).
+    app_.option_defaults()->always_capture_default()->multi_option_policy(CLI::MultiOptionPolicy::Throw);
 }
 
 bool CommandLine::parseOrThrow(int argc, char** argv) {
