@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "throng/scenegraph/WholeFile.h"
 #include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
@@ -408,11 +409,7 @@ int run(const Options& o) {
     }
     page << "<h2 id=\"schema\">Schema</h2>\n" << kSchema << "<pre>" << throng::sim::AccuracyCsv::header() << "</pre>\n</body></html>\n";
     const fs::path index = out / "index.html";
-    std::ofstream file(index);
-    if (!file) throw std::runtime_error("cannot write " + index.string());
-    file << page.str();
-    file.close();
-    if (!file) throw std::runtime_error("cannot write " + index.string());
+    throng::writeWholeFile(index, page.str());
     std::fprintf(stderr, "throng-accuracy-report: %zu knobs, %zu lines: %s\n", knobs.size(), rows.size(), index.string().c_str());
     return 0;
 }

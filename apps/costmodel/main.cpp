@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "ModelTables.h"
 #include "TextTable.h"
 #include "throng/research/CostModel.h"
+#include "throng/scenegraph/WholeFile.h"
 #include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/Validators.h"
@@ -114,11 +116,11 @@ json countsJson(const OperationCounts& n) {
 }
 
 void writeFig6Csv(const CostModel& model, const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
+    std::ostringstream out;
     out << "fTrack,fCoh,AverageCost,factor,factorRecomputed\n";
     for (const Fig6Point& p : fig6(model)) out << p.fTrack << ',' << p.fCoh << ',' << p.averageCost << ',' << p.factor << ',' << p.recomputedFactor << '\n';
     out << "# large-cost limit," << model.largeCostLimit() << '\n';
+    writeWholeFile(path, out.str());
 }
 
 void plotFig6(const CostModel& model, const std::string& path) {
@@ -380,11 +382,7 @@ void writeAccuracyCsv(const std::vector<AccuracyRow>& rows, const std::string& p
     }
 }
 
-void write(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
-    out << text;
-}
+void write(const std::filesystem::path& path, const std::string& text) { writeWholeFile(path, text); }
 
 const std::vector<std::size_t> kSizes = {100, 1'000, 10'000, 100'000, 1'000'000};
 const std::vector<double> kScales = {0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0};

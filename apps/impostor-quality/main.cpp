@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "throng/scenegraph/WholeFile.h"
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/render/ContextFactory.h"
@@ -1010,13 +1011,14 @@ int main(int argc, char** argv) {
         }
         const double minutes = ms(std::chrono::steady_clock::now() - started) / 60000.0;
 
-        std::ofstream csv(out / "impostor-quality.csv");
+        std::ostringstream csv;
         csv << "section,asset,clip,method,features,ncc_mean,ncc_std,ncc_whole_cell,ncc_whole_cell_std,psnr_db,ssim,cells,ms_per_cell,path,memory_bytes,"
                "ncc_in_betweens\n";
         for (const Row& r : rows)
             csv << r.section << ',' << r.asset << ',' << r.clip << ",\"" << r.method << "\"," << r.features << ',' << r.ncc << ',' << r.nccStd << ','
                 << r.nccWhole << ',' << r.nccWholeStd << ',' << r.psnr << ',' << r.ssim << ',' << r.cells << ',' << r.msPerCell << ",\"" << r.path
                 << "\"," << r.bytes << ',' << r.extra << '\n';
+        writeWholeFile(out / "impostor-quality.csv", csv.str());
         writeAccuracyCsv((out / "impostor-accuracy.csv").string(), accuracy, rows, options);
 
         std::ostringstream md;
@@ -1105,7 +1107,7 @@ int main(int argc, char** argv) {
                 md << line;
             }
         }
-        std::ofstream(out / "impostor-quality.md") << md.str();
+        writeWholeFile(out / "impostor-quality.md", md.str());
         std::printf("%s", md.str().c_str());
 
         // The plot: NCC against feature count per asset (bone lines), with the baselines and the

@@ -23,6 +23,8 @@
 #include "throng/sim/Locomotion.h"
 #include "throng/support/ProgressBar.h"
 #include "throng/support/SceneImpostors.h"
+#include "throng/support/StopSignals.h"
+#include "throng/scenegraph/WholeFile.h"
 
 namespace throng::town {
 
@@ -77,8 +79,8 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     }
     aspect_ = double(o.width) / double(o.height);
     fs::create_directories(o.out);
-    csv_.open(fs::path(o.out) / "stats.csv");
-    csv_ << csvHeader(distributed_ ? ranks.size() : 0, budget_ != nullptr);
+    csv_ = std::make_unique<LineFile>(fs::path(o.out) / "stats.csv");
+    csv_->append(csvHeader(distributed_ ? ranks.size() : 0, budget_ != nullptr));
     nextRung_ = budget_ ? budget_->rung() : -1;
     rungFrames_.assign(budget_ ? budget_->ladder().size() : 0, 0);
     caches_ = !processor.keyPoseCaches().empty();
@@ -146,7 +148,7 @@ void TownRun::draw(const PreparedFrame& f, const std::function<void()>& beforePr
     const double drawMs = watch.elapsedMs();
     const double now = seconds();
     sums_.add(f, drawMs);
-    csv_ << csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd_), renderer_->statistics(), budget_.get());
+    csv_->append(csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd_), renderer_->statistics(), budget_.get()));
     if (budget_) {
         drawnRung_ = f.rung;
         drawnCost_ = f.stats.appCullMs() + drawMs;
@@ -188,6 +190,11 @@ void TownRun::runHeadless() {
         std::snprintf(detail, sizeof detail, "frame %lld/%lld, %.1f fps", (long long)f + 1, (long long)o_.frames,
                       f > 0 ? double(f) / std::max(1e-9, seconds() - firstFrame_) : 0.0);
         bar.update(std::size_t(f + 1), detail);
+        if (const int signal = support::StopSignals::received(); signal && f + 1 < o_.frames) {
+            stoppedBy_ = signal;  // frame f is drawn and recorded; the one prepared after it is dropped
+            bar.stop(std::size_t(f + 1), "stopped at frame " + std::to_string(f + 1));
+            return;
+        }
     }
     bar.finish();
 }
@@ -271,10 +278,11 @@ void TownRun::runWindowed() {
         const double dt = std::chrono::duration<double>(now - last).count();
         last = now;
         fps = fps == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fps + 0.1 / std::max(dt, 1e-6);
+        if ((stoppedBy_ = support::StopSignals::received())) break;
     }
 }
 
-void TownRun::finish() {
+void TownRun::finish(const std::string& error) {
     const double wall = seconds();
     if (recorder_) try {
         recorder_->finish();
@@ -298,9 +306,19 @@ void TownRun::finish() {
         std::fprintf(stderr, "throng-town: APP+CULL+DRAW within %.1f ms on %.1f %% of frames\n", o_.frameBudget,
                      100.0 * double(framesWithin_) / double(std::max<std::int64_t>(sums_.frames, 1)));
     }
-    std::ofstream(fs::path(o_.out) / "summary.json") << summary.dump(2) << '\n';
-    std::fprintf(stderr, "throng-town: %lld frames in %.1f s; stats.csv, summary.json%s in %s\n", (long long)sums_.frames, wall,
-                 !window_ && o_.every > 0 ? " and frames/" : "", o_.out.c_str());
+    // Whether the run did all it was asked, and if not, what stopped it (the frames done are "frames").
+    summary["completed"] = error.empty() && stoppedBy_ == 0;
+    if (stoppedBy_) summary["stoppedBy"] = support::StopSignals::name(stoppedBy_);
+    if (!error.empty()) summary["error"] = error;
+    writeWholeFile(fs::path(o_.out) / "summary.json", summary.dump(2) + '\n');
+    const std::string files = std::string("stats.csv, summary.json") + (!window_ && o_.every > 0 ? " and frames/" : "") + " in " + o_.out;
+    if (stoppedBy_)
+        std::fprintf(stderr, "throng-town: stopped by %s after %lld of %lld frames; %s\n", support::StopSignals::name(stoppedBy_).c_str(),
+                     (long long)sums_.frames, (long long)o_.frames, files.c_str());
+    else if (!error.empty())
+        std::fprintf(stderr, "throng-town: %lld frames done before the error; %s\n", (long long)sums_.frames, files.c_str());
+    else
+        std::fprintf(stderr, "throng-town: %lld frames in %.1f s; %s\n", (long long)sums_.frames, wall, files.c_str());
 }
 
 }  // namespace throng::town

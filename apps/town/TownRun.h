@@ -6,7 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
-#include <fstream>
+#include <string>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -17,6 +17,7 @@
 #include "throng/render/CrowdRenderer.h"
 #include "throng/render/GlContext.h"
 #include "throng/render/ImpostorSet.h"
+#include "throng/scenegraph/LineFile.h"
 #include "throng/scenegraph/FramePipeline.h"
 #include "throng/sim/FrameBudgetAllocator.h"
 #include "throng/sim/Ranks.h"
@@ -37,12 +38,16 @@ public:
             std::unique_ptr<vtk::CrowdRecorder> recorder);
     /// Whether the frames go to a window (else headless).
     bool windowed() const { return window_; }
-    /// Runs o.frames frames headless: a PNG every o.every frames, a progress bar.
+    /// Runs o.frames frames headless: a PNG every o.every frames, a progress bar. Stops after the
+    /// frame in progress when SIGINT or SIGTERM arrives (support::StopSignals).
     void runHeadless();
-    /// Runs in the window until it closes, Esc, or o.frames when --frames was given.
+    /// Runs in the window until it closes, Esc, o.frames when --frames was given, or a stop signal.
     void runWindowed();
-    /// Finishes the VTK files, writes summary.json and says where the files are.
-    void finish();
+    /// Finishes the VTK files, writes summary.json (whole: "completed", and what stopped the run
+    /// early: a signal or `error`) and says where the files are.
+    void finish(const std::string& error = {});
+    /// The signal that stopped the run before its frames were done, or 0.
+    int stoppedBy() const { return stoppedBy_; }
 
 private:
     void applyRung(int rung);
@@ -65,7 +70,8 @@ private:
     std::unique_ptr<ActorProcessor> processor_;
     std::unique_ptr<ImpostorSet> impostors_;
     std::unique_ptr<CrowdRenderer> renderer_;
-    std::ofstream csv_;
+    std::unique_ptr<LineFile> csv_;  // stats.csv: whole lines, up to the last frame drawn
+    int stoppedBy_ = 0;
     Sums sums_;
     std::chrono::steady_clock::time_point start_;
     double firstFrame_ = 0.0, lastFrameEnd_ = 0.0;

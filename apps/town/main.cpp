@@ -37,6 +37,7 @@
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/support/StopSignals.h"
 #include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
@@ -66,6 +67,7 @@ int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions
 }  // namespace
 
 int main(int argc, char** argv) {
+    support::StopSignals::install();  // SIGINT, SIGTERM: the frame in progress ends, the files are closed whole
     town::TownOptions o;
     sim::SceneDescription scene;
     std::unique_ptr<throng::vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
@@ -113,9 +115,16 @@ int main(int argc, char** argv) {
     std::unique_ptr<sim::Simulation> world;
     try {
         support::ProgressBar bar("building", 100, ranks.rank() == 0);
-        world = sim::Simulation::build(scene, [&](const std::string& stage, double f) { bar.update(std::size_t(f * 100), stage); });
+        world = sim::Simulation::build(scene, [&](const std::string& stage, double f) {
+            support::StopSignals::throwIfStopped();
+            bar.update(std::size_t(f * 100), stage);
+        });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
         if (recorder) recorder->writeScene(world->root());
+    } catch (const support::StopRequested& e) {
+        std::fprintf(stderr, "\nthrong-town%s: %s while building; nothing written\n", rankLabel(ranks).c_str(), e.what());
+        if (ranks.size() > 1) ranks.abort(support::StopSignals::exitCode(e.signal()));
+        return support::StopSignals::exitCode(e.signal());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "\nthrong-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
         if (ranks.size() > 1) ranks.abort(2);
@@ -124,15 +133,30 @@ int main(int argc, char** argv) {
     if (distributed) world->distribute(ranks);
     if (ranks.rank() != 0) return stepShare(*world, ranks, o);
 
+    std::unique_ptr<town::TownRun> run;
     try {
-        town::TownRun run(o, *world, ranks, std::move(budget), std::move(recorder));
-        if (run.windowed()) run.runWindowed();
-        else run.runHeadless();
-        run.finish();
+        run = std::make_unique<town::TownRun>(o, *world, ranks, std::move(budget), std::move(recorder));
+        if (run->windowed()) run->runWindowed();
+        else run->runHeadless();
+        run->finish();
+    } catch (const support::StopRequested& e) {  // while baking impostors, before any frame
+        std::fprintf(stderr, "\nthrong-town: %s while baking impostors; nothing written\n", e.what());
+        if (ranks.size() > 1) ranks.abort(support::StopSignals::exitCode(e.signal()));
+        return support::StopSignals::exitCode(e.signal());
     } catch (const std::exception& e) {  // a rank failed, stepping did (a region full), or the GL or a file could not be made
         std::fprintf(stderr, "\nthrong-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
+        // The frames drawn are kept: stats.csv ends at the last whole one, summary.json says why it stopped.
+        if (run) try {
+            run->finish(e.what());
+        } catch (const std::exception& again) {
+            std::fprintf(stderr, "throng-town: %s\n", again.what());
+        }
         if (ranks.size() > 1) ranks.abort(3);
         return 3;
+    }
+    if (const int signal = run->stoppedBy()) {
+        if (ranks.size() > 1) ranks.abort(support::StopSignals::exitCode(signal));  // the other ranks wait for frames that will not come
+        return support::StopSignals::exitCode(signal);
     }
     return 0;
 }

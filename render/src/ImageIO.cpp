@@ -1,12 +1,12 @@
 #include "throng/render/ImageIO.h"
 
-#include <cerrno>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
+
+#include "throng/scenegraph/WholeFile.h"
 
 namespace throng {
 
@@ -31,10 +31,16 @@ void writePng(const Image& image, const std::filesystem::path& path) {
         throw std::invalid_argument("writePng: image '" + image.name + "' is not valid (" + std::to_string(image.width) +
                                     " x " + std::to_string(image.height) + ", " + std::to_string(image.rgba.size()) +
                                     " bytes) for '" + path.string() + "'");
-    errno = 0;
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4))
-        throw std::runtime_error("writePng: cannot write '" + path.string() + "'" +
-                                 (errno ? std::string(": ") + std::strerror(errno) : std::string()));
+    // Encoded in memory, then written whole: a PNG is either all there or absent.
+    std::string encoded;
+    const auto append = [](void* into, void* data, int size) { static_cast<std::string*>(into)->append(static_cast<const char*>(data), std::size_t(size)); };
+    if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 4, image.rgba.data(), image.width * 4))
+        throw std::runtime_error("writePng: cannot encode '" + path.string() + "'");
+    try {
+        writeWholeFile(path, encoded);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string("writePng: ") + e.what());
+    }
 }
 
 }  // namespace throng

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "throng/render/ImageIO.h"
+#include "throng/scenegraph/WholeFile.h"
 
 namespace throng {
 namespace {
@@ -164,9 +166,12 @@ void ImpostorAtlas::save(const std::filesystem::path& directory) const {
     j["fullTextureBytes"] = fullTextureBytes();
     for (int k = 0; k < keyframes_; ++k)
         if (stored(k)) writePng(pages_[static_cast<std::size_t>(k)], directory / pageFile(k));
-    std::ofstream out(directory / "impostor.json");
-    out << j.dump(1) << '\n';
-    if (!out) throw std::runtime_error("ImpostorAtlas::save: cannot write " + (directory / "impostor.json").string());
+    // Last and whole: a folder with an impostor.json holds every page it lists.
+    try {
+        writeWholeFile(directory / "impostor.json", j.dump(1) + '\n');
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string("ImpostorAtlas::save: ") + e.what());
+    }
 }
 
 ImpostorAtlas ImpostorAtlas::load(const std::filesystem::path& directory) {

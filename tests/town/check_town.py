@@ -11,6 +11,14 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                aside) and the same frames as the plain program, with walkers crossing between ranks
   mpiHang      under $THRONG_MPIEXEC with 2 ranks, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
+  signals      SIGINT and SIGTERM end a long run after the frame in progress: exit 130 / 143, one line
+               saying so, stats.csv whole and summary.json "completed": false with the frames done; a
+               second signal exits at once with whole lines only; a signal while building writes nothing
+  fileLimit    a file-size limit (as a full disk would) mid-run: exit 3 naming stats.csv, the file ends
+               at its last whole line and summary.json says why; a PNG over the limit is absent, whole
+               or not at all, and no temporary file is left
+  mpiKill      under $THRONG_MPIEXEC with 2 ranks, rank 1 killed (SIGKILL) mid-run: every process gone
+               within the rank timeout plus 10 s, the message names rank 1, rank 0's stats.csv parses
   budget       --frame-budget: stats.csv has the allocator's columns, every frame's settings are its
                rung's, over_budget agrees with app_cull_draw_ms, summary.json counts them; a budget
                nothing meets keeps the cheapest rung, one everything meets the most accurate, and the
@@ -203,6 +211,176 @@ def mpiHang(exe, scenes, work):
     print(f"rank 1 stopped: the run ended after {took:.1f} s (timeout {timeout} s) naming it")
 
 
+def whole_stats(out):
+    """stats.csv as rows, checking that every line is whole (as many fields as the header)."""
+    text = open(os.path.join(out, "stats.csv")).read()
+    if text and not text.endswith("\n"):
+        sys.exit(f"{out}/stats.csv ends inside a line: {text[-80:]!r}")
+    rows = list(csv.reader(text.splitlines()))
+    widths = {len(r) for r in rows}
+    if len(widths) != 1:
+        sys.exit(f"{out}/stats.csv has lines of {sorted(widths)} fields")
+    return rows[1:]
+
+
+def leftovers(out):
+    """Temporary files a whole-file write would leave if it were interrupted or failed."""
+    found = []
+    for folder, _, names in os.walk(out):
+        found += [os.path.join(folder, n) for n in names if ".partial-" in n]
+    return found
+
+
+def start_long_run(exe, scenes, out, *extra, preexec=None):
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    cmd = [exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"), "--headless", "--frames", "100000",
+           "--width", "64", "--height", "36", *extra]
+    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=preexec)
+
+
+def wait_for_rows(p, out, rows, seconds=180):
+    stats = os.path.join(out, "stats.csv")
+    deadline = time.time() + seconds
+    while time.time() < deadline and (not os.path.exists(stats) or sum(1 for _ in open(stats)) < rows + 1):
+        if p.poll() is not None:
+            sys.exit(f"the run ended early ({p.returncode}):\n{p.stderr.read()}")
+        time.sleep(0.1)
+    if time.time() >= deadline:
+        p.kill()
+        sys.exit(f"no {rows} rows in {stats} within {seconds} s")
+
+
+def signals(exe, scenes, work):
+    for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+        name = signal.Signals(sig).name
+        out = os.path.join(work, name)
+        p = start_long_run(exe, scenes, out, "--every", "0")
+        wait_for_rows(p, out, 10)
+        os.kill(p.pid, sig)
+        sent = time.time()
+        _, err = p.communicate(timeout=120)
+        if p.returncode != code:
+            sys.exit(f"{name}: exit {p.returncode}, not {code}:\n{err}")
+        said = re.search(rf"stopped by {name} after (\d+) of 100000 frames; stats.csv, summary.json in ", err)
+        if not said:
+            sys.exit(f"{name}: no line saying the run stopped:\n{err}")
+        rows = whole_stats(out)
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        if summary.get("completed") is not False or summary.get("stoppedBy") != name:
+            sys.exit(f"{name}: summary.json says completed={summary.get('completed')}, stoppedBy={summary.get('stoppedBy')}")
+        if not (summary["frames"] == len(rows) == int(said.group(1))):
+            sys.exit(f"{name}: summary.json counts {summary['frames']} frames, stats.csv {len(rows)}, the message {said.group(1)}")
+        if leftovers(out):
+            sys.exit(f"{name}: temporary files left: {leftovers(out)}")
+        print(f"{name}: exit {code} {time.time() - sent:.2f} s after the signal, {len(rows)} frames in both files")
+    # A second signal: at once, whatever the run was doing; whatever stats.csv holds is whole lines.
+    out = os.path.join(work, "twice")
+    p = start_long_run(exe, scenes, out, "--every", "0")
+    wait_for_rows(p, out, 10)
+    os.kill(p.pid, signal.SIGINT)
+    os.kill(p.pid, signal.SIGINT)
+    _, err = p.communicate(timeout=30)
+    if p.returncode != 130:
+        sys.exit(f"two SIGINTs: exit {p.returncode}, not 130:\n{err}")
+    print(f"two SIGINTs: exit 130, {len(whole_stats(out))} whole lines in stats.csv")
+    # While building: nothing to keep, nothing written.
+    out = os.path.join(work, "building")
+    p = start_long_run(exe, scenes, out, "--every", "0")
+    line = p.stderr.readline()
+    if not line.startswith("building"):
+        p.kill()
+        sys.exit(f"expected the building progress first, got {line!r}")
+    os.kill(p.pid, signal.SIGTERM)
+    _, err = p.communicate(timeout=120)
+    if p.returncode != 143 or "stopped by SIGTERM while building; nothing written" not in err:
+        sys.exit(f"SIGTERM while building: exit {p.returncode}:\n{err}")
+    if os.path.exists(os.path.join(out, "stats.csv")) or os.path.exists(os.path.join(out, "summary.json")):
+        sys.exit("SIGTERM while building left files")
+    print("SIGTERM while building: exit 143, nothing written")
+
+
+def fileLimit(exe, scenes, work):
+    import resource
+    limit = 40_000  # bytes: stats.csv passes it after some 150 frames
+
+    def limited():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    out = os.path.join(work, "stats")
+    p = start_long_run(exe, scenes, out, "--every", "0", preexec=limited)
+    _, err = p.communicate(timeout=600)
+    if p.returncode != 3 or not re.search(r"stats.csv: cannot be written: File too large", err):
+        sys.exit(f"stats.csv over the limit: exit {p.returncode}:\n{err}")
+    rows = whole_stats(out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    if summary.get("completed") is not False or "stats.csv" not in summary.get("error", "") or summary["frames"] < len(rows):
+        sys.exit(f"summary.json after the error: completed={summary.get('completed')} error={summary.get('error')} frames={summary.get('frames')}")
+    if leftovers(out):
+        sys.exit(f"temporary files left: {leftovers(out)}")
+    print(f"stats.csv over {limit} bytes: exit 3 naming it, {len(rows)} whole lines ({os.path.getsize(os.path.join(out, 'stats.csv'))} bytes) kept")
+    # A frame PNG larger than the limit: the run stops at its first frame and no PNG, whole or part, is left.
+    out = os.path.join(work, "png")
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    cmd = [exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"), "--headless", "--frames", "3", "--every", "1",
+           "--width", "640", "--height", "360"]
+    p = subprocess.run(cmd, capture_output=True, text=True, preexec_fn=limited)
+    if p.returncode != 3 or "frame_000000.png: cannot be written: File too large" not in p.stderr:
+        sys.exit(f"a PNG over the limit: exit {p.returncode}:\n{p.stderr}")
+    if os.listdir(os.path.join(out, "frames")) or leftovers(out):
+        sys.exit(f"a PNG over the limit left {os.listdir(os.path.join(out, 'frames'))} {leftovers(out)}")
+    print("a PNG over the limit: exit 3 naming it, no file left")
+
+
+def process_alive(pid):
+    try:
+        return open(f"/proc/{pid}/stat").read().split(")")[-1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def mpiKill(exe, scenes, work):
+    mpiexec = os.environ.get("THRONG_MPIEXEC")
+    if not mpiexec:
+        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    out = os.path.join(work, "kill")
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    timeout = 5
+    cmd = [mpiexec, "-np", "2", "--oversubscribe", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
+           "--headless", "--frames", "100000", "--every", "0", "--width", "64", "--height", "36", "--rank-timeout", str(timeout)]
+    env = dict(os.environ)
+    env["THRONG_HANG_TEST"] = str(os.getpid())
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    wait_for_rows(p, out, 20)
+    rank0, rank1 = process_of_rank(os.getpid(), 0), process_of_rank(os.getpid(), 1)
+    if rank0 is None or rank1 is None:
+        p.kill()
+        sys.exit("the ranks' processes were not found")
+    os.kill(rank1, signal.SIGKILL)
+    killed = time.time()
+    try:
+        _, err = p.communicate(timeout=timeout + 10)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        sys.exit(f"the run still ran {timeout + 10} s after rank 1 was killed")
+    # mpirun may end a moment before its ranks are reaped: rank 0 must be gone (or a zombie) within the limit too.
+    while time.time() - killed < timeout + 10 and process_alive(rank0):
+        time.sleep(0.1)
+    gone = time.time() - killed
+    if process_alive(rank0):
+        sys.exit(f"rank 0 (pid {rank0}) still runs {gone:.1f} s after rank 1 was killed")
+    if p.returncode == 0:
+        sys.exit("the run succeeded although rank 1 was killed")
+    named = [line for line in err.splitlines() if re.search(r"rank 1\b", line)]
+    if not named:
+        sys.exit(f"no message names rank 1:\n{err}")
+    rows = whole_stats(out)
+    print(f"rank 1 killed: every process gone after {gone:.1f} s (timeout {timeout} s), {len(rows)} whole lines in stats.csv; "
+          f"named in: {named[0].strip()}")
+
+
 def effects(exe, scenes, work):
     summaries = {}
     for scene in ("plain", "effects"):
@@ -327,4 +505,4 @@ if __name__ == "__main__":
     exe, mode, scenes, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
     {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang,
-     "budget": budget}[mode](exe, scenes, work)
+     "mpiKill": mpiKill, "budget": budget, "signals": signals, "fileLimit": fileLimit}[mode](exe, scenes, work)

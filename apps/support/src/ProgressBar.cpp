@@ -24,6 +24,16 @@ void ProgressBar::update(std::size_t done, const std::string& detail) {
     }
 }
 
+void ProgressBar::stop(std::size_t done, const std::string& detail) {
+    if (!shown_) return;
+    if (terminal_) {
+        update(done, detail);
+        std::fprintf(stderr, "\n");
+    } else {
+        std::fprintf(stderr, "%s: %3d%% %s\n", label_.c_str(), int(100.0 * std::min(1.0, double(done) / double(total_))), detail.c_str());
+    }
+}
+
 void ProgressBar::finish(const std::string& detail) {
     update(total_, detail);
     if (terminal_ && shown_) std::fprintf(stderr, "\n");

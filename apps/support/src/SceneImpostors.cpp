@@ -8,6 +8,7 @@
 #include "throng/render/ImpostorSet.h"
 #include "throng/sim/Simulation.h"
 #include "throng/support/ProgressBar.h"
+#include "throng/support/StopSignals.h"
 
 namespace throng::support {
 
@@ -20,6 +21,7 @@ std::unique_ptr<ImpostorSet> bakeSceneImpostors(const std::shared_ptr<GlContext>
     if (progress) {
         bar.emplace("baking impostors", 1000);
         bake.progress = [&](int done, int total) {
+            StopSignals::throwIfStopped();  // nothing baked is kept: a stop here stops at once
             bar->update(std::size_t(1000.0 * done / std::max(total, 1)), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
         };
     }

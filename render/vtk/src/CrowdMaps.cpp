@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "throng/scenegraph/WholeFile.h"
+
 namespace throng::vtk {
 namespace {
 
@@ -84,7 +86,7 @@ int writeSpeedDensity(const std::filesystem::path& file, std::span<const double>
         for (std::size_t i = first; i < end; ++i) inCell[cellOf[i]] = 0;
         first = end;
     }
-    std::ofstream out(file);
+    std::ostringstream out;
     out << kSpeedDensityHeader << '\n';
     char line[160];
     for (std::size_t k = 1; k < actorFrames.size(); ++k) {
@@ -93,8 +95,11 @@ int writeSpeedDensity(const std::filesystem::path& file, std::span<const double>
                       double(actorFrames[k]) / double(onGround), speedSums[k] / double(actorFrames[k]));
         out << line;
     }
-    out.flush();
-    if (!out) throw std::runtime_error("writeCrowdMaps: cannot write " + file.string());
+    try {
+        writeWholeFile(file, out.str());
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string("writeCrowdMaps: ") + e.what());
+    }
     return actorFrames.empty() ? 0 : int(actorFrames.size() - 1);
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -25,6 +26,7 @@
 #include "throng/actors/Crowd.h"
 #include "throng/scenegraph/DrawList.h"
 #include "throng/scenegraph/Node.h"
+#include "throng/scenegraph/WholeFile.h"
 #include "throng/vtk/CrowdMaps.h"
 #include "throng/vtk/ScenePolyData.h"
 
@@ -316,7 +318,7 @@ void CrowdRecorder::writeTrajectories() {
 // VTK has no writer for ParaView's .pvd collection (a short XML list of files and times): written here.
 void CrowdRecorder::writeCollection() const {
     const fs::path path = directory_ / "crowd.pvd";
-    std::ofstream out(path);
+    std::ostringstream out;
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
     char line[256];
     for (const WrittenFrame& f : frames_) {
@@ -324,8 +326,7 @@ void CrowdRecorder::writeCollection() const {
         out << line;
     }
     out << "  </Collection>\n</VTKFile>\n";
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+    writeWholeFile(path, out.str());
 }
 
 void CrowdRecorder::finish() {

@@ -17,6 +17,8 @@ public:
     void update(std::size_t done, const std::string& detail = {});
     /// Ends the bar (a final newline on a terminal).
     void finish(const std::string& detail = {});
+    /// Ends the bar where it stands, `done` of the total (a run stopped early), with `detail`.
+    void stop(std::size_t done, const std::string& detail);
 
 private:
     std::string label_;
