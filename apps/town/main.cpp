@@ -25,8 +25,10 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <new>
 #include <string>
 
+#include "MemoryNeed.h"
 #include "TownOptions.h"
 #include "TownRun.h"
 #include "throng/sim/BudgetLadder.h"
@@ -75,6 +77,8 @@ int main(int argc, char** argv) {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE, THRONG_TOWN_DEFAULT_LADDER);
         scene = sim::parseSceneFile(o.scene);
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
+        // A crowd the machine cannot hold stops here, before allocating, not in the kernel's hands.
+        if (const auto problem = town::memoryProblem(scene, town::availableMemory())) throw std::invalid_argument(*problem);
     } catch (const sim::SceneError& e) {
         std::fprintf(stderr, "throng-town: %s\n", e.what());
         return 2;
@@ -117,10 +121,16 @@ int main(int argc, char** argv) {
         support::ProgressBar bar("building", 100, ranks.rank() == 0);
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) {
             support::StopSignals::throwIfStopped();
-            bar.update(std::size_t(f * 100), stage);
+            bar.phase(std::size_t(f * 100), stage);
         });
         bar.finish(std::to_string(world->crowd().size()) + " actors");
         if (recorder) recorder->writeScene(world->root());
+    } catch (const std::bad_alloc&) {  // the estimate was wrong for this scene or another process took the memory
+        std::fprintf(stderr, "\nthrong-town%s: out of memory while building the world (%s); nothing written\n", rankLabel(ranks).c_str(),
+                     (std::to_string(town::estimatedPeakBytes(scene) >> 20) + " MiB estimated, " +
+                      std::to_string(town::availableMemory().bytes >> 20) + " MiB available now").c_str());
+        if (ranks.size() > 1) ranks.abort(2);
+        return 2;
     } catch (const support::StopRequested& e) {
         std::fprintf(stderr, "\nthrong-town%s: %s while building; nothing written\n", rankLabel(ranks).c_str(), e.what());
         if (ranks.size() > 1) ranks.abort(support::StopSignals::exitCode(e.signal()));

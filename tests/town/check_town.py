@@ -19,6 +19,10 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                or not at all, and no temporary file is left
   mpiKill      under $THRONG_MPIEXEC with 2 ranks, rank 1 killed (SIGKILL) mid-run: every process gone
                within the rank timeout plus 10 s, the message names rank 1, rank 0's stats.csv parses
+  scale        50k and 100k actors: a progress line per phase of building (town, navigation mesh,
+               actors, impostors), both frames done; prints the time to frame 1 and the peak memory
+  memoryLimit  under an address-space limit (ulimit -v) a crowd larger than it is refused before
+               anything is built, naming the limit and the crowd that fits; exit 2, nothing written
   budget       --frame-budget: stats.csv has the allocator's columns, every frame's settings are its
                rung's, over_budget agrees with app_cull_draw_ms, summary.json counts them; a budget
                nothing meets keeps the cheapest rung, one everything meets the most accurate, and the
@@ -381,6 +385,50 @@ def mpiKill(exe, scenes, work):
           f"named in: {named[0].strip()}")
 
 
+def scale(exe, scenes, work):
+    import resource
+    for actors in (50_000, 100_000):
+        out = os.path.join(work, str(actors))
+        if os.path.exists(out):
+            shutil.rmtree(out)
+        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        started = time.time()
+        cmd = [exe, "--out", out, "--actors", str(actors), "--frames", "2", "--headless", "--every", "0", "--width", "320", "--height", "180"]
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        took = time.time() - started
+        if p.returncode != 0:
+            sys.exit(f"{actors} actors: exit {p.returncode}:\n{p.stderr}")
+        for phase in ("laying out the town", "building the navigation mesh", "placing actors", "baking impostors"):
+            if phase not in p.stderr:
+                sys.exit(f"{actors} actors: no progress line for '{phase}':\n{p.stderr}")
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        if summary["frames"] != 2 or summary.get("completed") is not True:
+            sys.exit(f"{actors} actors: summary.json says {summary['frames']} frames, completed={summary.get('completed')}")
+        peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        print(f"{actors} actors: 2 frames, {took:.1f} s from start to exit (frames: {summary['wallSeconds']:.1f} s), "
+              f"peak memory {max(peak, before) / 1024:.0f} MiB{' (at least)' if peak <= before else ''}")
+
+
+def memoryLimit(exe, scenes, work):
+    import resource
+    limit = 4 << 30
+
+    def limited():
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+    out = os.path.join(work, "limited")
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    p = subprocess.run([exe, "--out", out, "--actors", "1000000", "--frames", "1", "--headless"], capture_output=True, text=True,
+                       preexec_fn=limited)
+    said = re.search(r"1000000 actors need about [\d.]+ GiB of memory .*, but (.*) leaves [\d.]+ GiB: about (\d+) actors fit", p.stderr)
+    if p.returncode != 2 or not said:
+        sys.exit(f"1,000,000 actors under a 4 GiB address space: exit {p.returncode}:\n{p.stderr}")
+    if os.path.exists(out):
+        sys.exit("the refused run left its output folder")
+    print(f"1,000,000 actors under a 4 GiB address space: refused before building ({said.group(1)}; {said.group(2)} actors fit)")
+
+
 def effects(exe, scenes, work):
     summaries = {}
     for scene in ("plain", "effects"):
@@ -505,4 +553,5 @@ if __name__ == "__main__":
     exe, mode, scenes, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
     {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang,
-     "mpiKill": mpiKill, "budget": budget, "signals": signals, "fileLimit": fileLimit}[mode](exe, scenes, work)
+     "mpiKill": mpiKill, "budget": budget, "signals": signals, "fileLimit": fileLimit, "scale": scale,
+     "memoryLimit": memoryLimit}[mode](exe, scenes, work)

@@ -24,6 +24,19 @@ void ProgressBar::update(std::size_t done, const std::string& detail) {
     }
 }
 
+void ProgressBar::phase(std::size_t done, const std::string& name) {
+    if (shown_ && !terminal_ && name != phase_) {
+        phase_ = name;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        std::fprintf(stderr, "%s: %3d%% %s (at %.1f s)\n", label_.c_str(), int(100.0 * std::min(1.0, double(done) / double(total_))),
+                     name.c_str(), seconds);
+        lastTenth_ = int(10.0 * std::min(1.0, double(done) / double(total_)));
+        return;
+    }
+    phase_ = name;
+    update(done, name);
+}
+
 void ProgressBar::stop(std::size_t done, const std::string& detail) {
     if (!shown_) return;
     if (terminal_) {

@@ -2,6 +2,7 @@
 // A progress bar on the terminal for long runs: redrawn in place on a terminal, a line every ten
 // per cent otherwise (logs, CI).
 
+#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -15,6 +16,10 @@ public:
     ProgressBar(std::string label, std::size_t total, bool shown = true);
     /// Shows that `done` steps are done, with `detail` after the bar.
     void update(std::size_t done, const std::string& detail = {});
+    /// Shows that `done` steps are done in phase `name`. Off a terminal (logs, CI) each new phase
+    /// gets its own line with the seconds since the bar began, so that long set-up work shows
+    /// where its time goes.
+    void phase(std::size_t done, const std::string& name);
     /// Ends the bar (a final newline on a terminal).
     void finish(const std::string& detail = {});
     /// Ends the bar where it stands, `done` of the total (a run stopped early), with `detail`.
@@ -26,6 +31,8 @@ private:
     bool terminal_;
     bool shown_;
     int lastTenth_ = -1;
+    std::string phase_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace throng::support
