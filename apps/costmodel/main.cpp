@@ -57,7 +57,8 @@ void declare(support::CommandLine& cl, Options& o) {
     app.add_flag("--accuracy", o.accuracy, "sweep the LOD scale: frame time against joint error and draw-list identity");
     app.add_flag("--json", o.json, "print everything asked for as one JSON object");
     app.add_option("--report", o.reportDir, "all of the above into DIR: report.md, CSV files, PNG charts, costmodel.json")
-        ->type_name("DIR");
+        ->type_name("DIR")
+        ->check(support::folderToWrite());
     // Table 4: counts are numbers of things, the f... factors shares of the actors or nodes.
     const char* group = "Table 4 factors for --model (defaults: the example scene)";
     auto count = [&](const char* name, double& v, const char* what) {

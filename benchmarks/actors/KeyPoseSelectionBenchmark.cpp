@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
                                  "keypose-selection.csv and .png (the plots through VTK: without a display, run under xvfb-run -a).",
                                  0, {});
     CLI::App& app = experiment.app();
-    app.add_option("--out", outText, "folder for the report")->type_name("DIR");
+    app.add_option("--out", outText, "folder for the report")->type_name("DIR")->check(bench::folderToWrite());
     app.add_option("--demands", demandsFile, "demands to measure instead of random instances (CSV: frame,a,b,actors)")
         ->type_name("FILE")
         ->check(CLI::ExistingFile);

@@ -1,7 +1,5 @@
 #include "throng/support/Validators.h"
 
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
@@ -14,6 +12,7 @@
 #include <sstream>
 #include <utility>
 
+#include "throng/scenegraph/OutputPaths.h"
 #include "throng/support/ViewGrid.h"
 
 namespace throng::support {
@@ -108,58 +107,12 @@ CLI::Validator existingFile() {
         "");
 }
 
-namespace {
-
-// Why this process cannot write a new file into `folder` (a file made and removed at once), or "".
-// Asked of the file system itself: permission bits do not tell a read-only mount, nor root's rights.
-std::string cannotWriteInto(const std::filesystem::path& folder) {
-    const std::filesystem::path probe = folder / (".throng-write-check-" + std::to_string(::getpid()));
-    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-    if (fd < 0) return "cannot write into the folder " + inQuotes(folder.string()) + ": " + std::strerror(errno);
-    ::close(fd);
-    ::unlink(probe.c_str());
-    return {};
-}
-
-}  // namespace
-
 CLI::Validator fileToWrite() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            std::error_code ec;
-            if (text.empty()) return "no file named";
-            const std::filesystem::path path(text);
-            if (std::filesystem::is_directory(path, ec)) return inQuotes(text) + " is a folder";
-            const std::filesystem::path folder = path.parent_path();
-            if (!folder.empty() && !std::filesystem::is_directory(folder, ec)) return "no such folder: " + inQuotes(folder.string());
-            return cannotWriteInto(folder.empty() ? std::filesystem::path(".") : folder);
-        },
-        "");
+    return CLI::Validator([](std::string& text) -> std::string { return problemWritingFile(text); }, "");
 }
 
 CLI::Validator folderToWrite() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            namespace fs = std::filesystem;
-            std::error_code ec;
-            if (text.empty()) return "no folder named";
-            const fs::path path(text);
-            if (fs::exists(path, ec)) {
-                if (!fs::is_directory(path, ec)) return inQuotes(text) + " is a file, not a folder";
-                return cannotWriteInto(path);
-            }
-            // Nothing is made here (another run may be checking the same folder at once): the
-            // nearest folder that exists must be one this process can write into.
-            fs::path above = path.lexically_normal();
-            if (above.filename().empty()) above = above.parent_path();
-            do above = above.parent_path();
-            while (!above.empty() && !fs::exists(above, ec));
-            if (above.empty()) above = ".";
-            if (!fs::is_directory(above, ec)) return "cannot create the folder " + inQuotes(text) + ": " + inQuotes(above.string()) + " is a file";
-            if (std::string problem = cannotWriteInto(above); !problem.empty()) return "cannot create the folder " + inQuotes(text) + ": " + problem;
-            return {};
-        },
-        "");
+    return CLI::Validator([](std::string& text) -> std::string { return problemWritingFolder(text); }, "");
 }
 
 CLI::Validator existingFileOr(std::string keyword) {

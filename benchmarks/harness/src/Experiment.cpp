@@ -1,5 +1,7 @@
 #include "throng/bench/Experiment.h"
 
+#include "throng/scenegraph/OutputPaths.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -73,7 +75,7 @@ Experiment::Experiment(std::string program, std::string description, unsigned op
     if (options & kCsv) app_.add_option("--csv", spec_.csv, names_.csvHelp)->type_name("FILE")->check(fileToWrite());
     if (options & kAccuracyCsv) app_.add_option("--accuracy-csv", spec_.accuracyCsv, names_.accuracyCsvHelp)->type_name("FILE")->check(fileToWrite());
     if (options & kMarkdown) app_.add_option("--markdown", spec_.markdown, "also write the report as Markdown")->type_name("FILE")->check(fileToWrite());
-    if (options & kPlots) app_.add_option("--plots", spec_.plots, "write the figures as PNG into DIR (needs a display: xvfb-run -a)")->type_name("DIR");
+    if (options & kPlots) app_.add_option("--plots", spec_.plots, "write the figures as PNG into DIR (needs a display: xvfb-run -a)")->type_name("DIR")->check(folderToWrite());
     outputs_ = {"--csv", "--accuracy-csv", "--markdown", "--plots"};
 }
 
@@ -139,18 +141,11 @@ CLI::Validator finiteNumber(double lo, double hi) {
 }
 
 CLI::Validator fileToWrite() {
-    return CLI::Validator(
-        [](std::string& text) -> std::string {
-            namespace fs = std::filesystem;
-            const fs::path p(text);
-            std::error_code ec;
-            if (text.empty()) return "expects a file name";
-            if (fs::is_directory(p, ec)) return "'" + text + "' is a folder, not a file";
-            const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
-            if (!fs::is_directory(folder, ec)) return "the folder of '" + text + "' does not exist";
-            return {};
-        },
-        "FILE");
+    return CLI::Validator([](std::string& text) -> std::string { return problemWritingFile(text); }, "FILE");
+}
+
+CLI::Validator folderToWrite() {
+    return CLI::Validator([](std::string& text) -> std::string { return problemWritingFolder(text); }, "DIR");
 }
 
 }  // namespace throng::bench

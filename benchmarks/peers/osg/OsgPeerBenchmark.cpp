@@ -27,6 +27,7 @@
 #include "PeerScene.h"
 #include "VisibleParts.h"
 #include "throng/actors/ActorProcessor.h"
+#include "throng/scenegraph/OutputPaths.h"
 #include "throng/scenegraph/Stopwatch.h"
 
 using namespace throng;
@@ -202,7 +203,8 @@ int main(int argc, char** argv) {
                    "scenes: table2 (Table 2's proportions), town (town-like spread), town-dense (100 times as dense, near and far planes at 5 and 60 m: for the check)")
         ->delimiter(',')->check(CLI::IsMember({"table2", "town", "town-dense"}))->capture_default_str();
     app.add_option("--frames", frames, "timed frames per scene and size (the median is reported)")->check(CLI::Range(std::size_t{1}, std::size_t{100000}))->capture_default_str();
-    app.add_option("--csv", csvPath, "also write the table to this CSV file");
+    app.add_option("--csv", csvPath, "also write the table to this CSV file")->type_name("FILE")
+        ->check(CLI::Validator([](std::string& path) { return problemWritingFile(path); }, "FILE"));
     OsgCrowdOptions osgOptions;
     bool osgDefaults = false;
     app.add_flag("--osg-defaults", osgDefaults,

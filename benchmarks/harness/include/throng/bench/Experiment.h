@@ -116,8 +116,10 @@ void writeWhole(const std::string& path, const std::string& text);
 /// CLI11 checks the experiments share that CLI11 lacks: a finite number from `lo` to `hi` (NaN and
 /// infinities refused), and a file to write (its folder exists; the path is not a folder).
 CLI::Validator finiteNumber(double lo, double hi);
-/// A file the experiment may write: its folder exists (the current one when it names none) and the
-/// path is not a folder.
+/// A file the experiment may write (problemWritingFile: its folder exists and can be written into,
+/// and the path is not a folder).
 CLI::Validator fileToWrite();
+/// A folder to write into (problemWritingFolder: existing and writable, or creatable; nothing made).
+CLI::Validator folderToWrite();
 
 }  // namespace throng::bench
