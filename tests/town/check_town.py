@@ -170,26 +170,26 @@ def process_of_rank(launcher_pid, rank):
     return None
 
 
-def mpiHang(exe, scenes, work):
+def start_two_ranks(exe, scenes, out, timeout):
+    """A long run of plain.json on 2 ranks under $THRONG_MPIEXEC, each rank marked with this process's id."""
     mpiexec = os.environ.get("THRONG_MPIEXEC")
     if not mpiexec:
         sys.exit("THRONG_MPIEXEC names no MPI launcher")
-    out = os.path.join(work, "hang")
     if os.path.exists(out):
         shutil.rmtree(out)
-    timeout = 5
     cmd = [mpiexec, "-np", "2", "--oversubscribe", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
            "--headless", "--frames", "100000", "--every", "0", "--width", "64", "--height", "36", "--rank-timeout", str(timeout)]
     env = dict(os.environ)
     env["THRONG_HANG_TEST"] = str(os.getpid())
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+
+
+def mpiHang(exe, scenes, work):
+    out = os.path.join(work, "hang")
+    timeout = 5
+    p = start_two_ranks(exe, scenes, out, timeout)
     # Wait until rank 1 steps (rank 0 has written rows), then stop it as a hung process would be.
-    stats = os.path.join(out, "stats.csv")
-    deadline = time.time() + 120
-    while time.time() < deadline and (not os.path.exists(stats) or sum(1 for _ in open(stats)) < 20):
-        if p.poll() is not None:
-            sys.exit(f"the run ended before rank 1 was stopped ({p.returncode}):\n{p.stderr.read()}")
-        time.sleep(0.2)
+    wait_for_rows(p, out, 20, 120)
     rank1 = process_of_rank(os.getpid(), 1)
     if rank1 is None:
         p.kill()
@@ -345,18 +345,9 @@ def process_alive(pid):
 
 
 def mpiKill(exe, scenes, work):
-    mpiexec = os.environ.get("THRONG_MPIEXEC")
-    if not mpiexec:
-        sys.exit("THRONG_MPIEXEC names no MPI launcher")
     out = os.path.join(work, "kill")
-    if os.path.exists(out):
-        shutil.rmtree(out)
     timeout = 5
-    cmd = [mpiexec, "-np", "2", "--oversubscribe", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
-           "--headless", "--frames", "100000", "--every", "0", "--width", "64", "--height", "36", "--rank-timeout", str(timeout)]
-    env = dict(os.environ)
-    env["THRONG_HANG_TEST"] = str(os.getpid())
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    p = start_two_ranks(exe, scenes, out, timeout)
     wait_for_rows(p, out, 20)
     rank0, rank1 = process_of_rank(os.getpid(), 0), process_of_rank(os.getpid(), 1)
     if rank0 is None or rank1 is None:
