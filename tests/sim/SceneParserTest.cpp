@@ -287,6 +287,9 @@ INSTANTIATE_TEST_SUITE_P(
         // The document itself.
         BadScene{"empty document", "", "", "is empty"},
         BadScene{"document of spaces", " \n\t ", "", "is empty"},
+        BadScene{"truncated document", scene(kActors).substr(0, 120), "", "is not valid JSON (line 5"},
+        BadScene{"nested 100000 deep", std::string(100000, '[') + std::string(100000, ']'), "", "must be an object, got array"},
+        BadScene{"document of 17 MiB", R"({"name": ")" + std::string(17u << 20, 'x') + R"("})", "", "is larger than 16 MiB"},
         BadScene{"number beyond a double", R"({"step": 1e400, "templates": {"x": {"procedural": "bird"}}, "actors": []})", "",
                  "holds a number beyond a double's range: 1e400"},
         BadScene{"integer beyond 64 bits", R"({"seed": 100000000000000000000000000000, "templates": {"x": {"procedural": "bird"}}, "actors": []})",
