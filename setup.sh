@@ -19,6 +19,8 @@ packages=(
   libopenmpi-dev openmpi-bin
   # the API reference from the headers' comments
   doxygen
+  # headless OpenGL through EGL: a GPU without an X server, or Mesa's surfaceless platform
+  libegl-dev libegl-mesa0
 )
 
 missing=()

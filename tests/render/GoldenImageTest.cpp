@@ -1,5 +1,6 @@
-// Golden-image tests: small procedural scenes rendered headless (OSMesa, llvmpipe) and compared with
-// PNGs in tests/render/golden/. THRONG_UPDATE_GOLDEN=1 rewrites the goldens (see
+// Golden-image tests: small procedural scenes rendered headless and compared with PNGs in
+// tests/render/golden/, made with OSMesa (llvmpipe); every scene is drawn through OSMesa and through
+// EGL's surfaceless platform (the same rasteriser reached another way), both within the tolerance. THRONG_UPDATE_GOLDEN=1 rewrites the goldens (see
 // RenderTestSupport.h); look at them before committing.
 //
 // Tolerance (GoldenTolerance): llvmpipe output is byte-stable for a given Mesa version, and on the
@@ -14,6 +15,7 @@
 
 #include "RenderTestSupport.h"
 #include "throng/render/GlRenderer.h"
+#include "throng/render/EglContext.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/render/ProceduralMeshes.h"
 
@@ -23,9 +25,14 @@ namespace {
 using test::kHeight;
 using test::kWidth;
 
-class GoldenImageTest : public ::testing::Test {
+// The headless contexts the goldens hold for.
+enum class Headless { OsMesa, EglSurfaceless };
+
+class GoldenImageTest : public ::testing::TestWithParam<Headless> {
 protected:
-    std::shared_ptr<OsMesaContext> context = std::make_shared<OsMesaContext>(kWidth, kHeight);
+    std::shared_ptr<GlContext> context = GetParam() == Headless::OsMesa
+                                             ? std::shared_ptr<GlContext>(std::make_shared<OsMesaContext>(kWidth, kHeight))
+                                             : std::make_shared<EglContext>(kWidth, kHeight, EglContext::Platform::Surfaceless);
 };
 
 glm::u8vec4 pixel(const Image& image, int x, int y) {
@@ -49,7 +56,7 @@ std::shared_ptr<Image> quadrantTexture() {
     return image;
 }
 
-TEST_F(GoldenImageTest, LitCube) {
+TEST_P(GoldenImageTest, LitCube) {
     GlRenderer renderer(context);
     test::Scene scene;
     Mat4 world = glm::rotate(Mat4(1.0), 0.6, Vec3(0, 1, 0));
@@ -63,7 +70,7 @@ TEST_F(GoldenImageTest, LitCube) {
     EXPECT_TRUE(failure.empty()) << failure;
 }
 
-TEST_F(GoldenImageTest, TexturedQuadIsUpright) {
+TEST_P(GoldenImageTest, TexturedQuadIsUpright) {
     GlRenderer renderer(context);
     test::Scene scene;
     scene.add(test::drawable(makeQuad(1.6f, 1.2f, quadrantTexture())), Mat4(1.0));
@@ -82,7 +89,7 @@ TEST_F(GoldenImageTest, TexturedQuadIsUpright) {
     EXPECT_TRUE(failure.empty()) << failure;
 }
 
-TEST_F(GoldenImageTest, SkinnedTwoBoneCylinderBends) {
+TEST_P(GoldenImageTest, SkinnedTwoBoneCylinderBends) {
     GlRenderer renderer(context);
     SkinnedTubeOptions tube;  // two joints: the lower half follows joint 0, the upper half joint 1
     tube.color = glm::vec4(0.3f, 0.7f, 0.35f, 1.0f);
@@ -113,7 +120,7 @@ TEST_F(GoldenImageTest, SkinnedTwoBoneCylinderBends) {
     EXPECT_TRUE(failure.empty()) << failure;
 }
 
-TEST_F(GoldenImageTest, EightInfluenceTube) {
+TEST_P(GoldenImageTest, EightInfluenceTube) {
     GlRenderer renderer(context);
     SkinnedTubeOptions tube;
     tube.joints = 6;
@@ -132,7 +139,7 @@ TEST_F(GoldenImageTest, EightInfluenceTube) {
     EXPECT_TRUE(failure.empty()) << failure;
 }
 
-TEST_F(GoldenImageTest, InstancedClonesInOneDrawCall) {
+TEST_P(GoldenImageTest, InstancedClonesInOneDrawCall) {
     GlRenderer renderer(context);
     auto box = test::drawable(makeBox("box", glm::vec3(0.0f), glm::vec3(0.3f)));
     test::Scene scene;
@@ -150,6 +157,9 @@ TEST_F(GoldenImageTest, InstancedClonesInOneDrawCall) {
     const std::string failure = test::compareWithGolden(image, "instanced_clones");
     EXPECT_TRUE(failure.empty()) << failure;
 }
+
+INSTANTIATE_TEST_SUITE_P(Contexts, GoldenImageTest, ::testing::Values(Headless::OsMesa, Headless::EglSurfaceless),
+                         [](const auto& param) { return param.param == Headless::OsMesa ? "OsMesa" : "EglSurfaceless"; });
 
 }  // namespace
 }  // namespace throng
