@@ -4,6 +4,7 @@
 #include <string>
 
 #include "throng/support/CommandLine.h"
+#include "throng/support/GlOption.h"
 #include "throng/support/SceneOptions.h"
 #include "throng/support/Validators.h"
 
@@ -24,6 +25,7 @@ void declare(support::CommandLine& cl, TownOptions& o) {
     app.add_option("--width", o.width, "image width in pixels")->type_name("W")->check(wholeNumber(16, 8192));
     app.add_option("--height", o.height, "image height in pixels")->type_name("H")->check(wholeNumber(16, 8192));
     app.add_flag("--headless", o.headless, "never open a window (the default when there is no display)");
+    support::declareGlOption(app, o.gl);
     app.add_option("--processing", o.processing, "how the scene is processed")
         ->type_name("MODE")
         ->check(oneOf({"actor", "traditional"}));
@@ -127,6 +129,7 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
         argc, argv, [&](support::CommandLine& cl) { declare(cl, o); },
         [&](support::CommandLine& cl) {
             o.framesGiven = cl.app().count("--frames") > 0;
+            if (o.gl == "window" && o.headless) throw std::invalid_argument("--gl: 'window' contradicts --headless");
             // CLI11 checks the values given; the default folder is checked too, before any work.
             std::string out = o.out;
             if (cl.app().count("--out") == 0)

@@ -17,6 +17,7 @@ struct TownOptions {
     std::string out = "town-out";           ///< folder for frames, stats.csv and summary.json
     int width = 1280, height = 720;         ///< pixels
     bool headless = false;                  ///< never open a window
+    std::string gl = "auto";                ///< the GL context: auto, window, egl or osmesa (--gl)
     std::string processing = "actor";       ///< actor or traditional
     int every = 60;                         ///< headless: write a PNG every `every` frames (0: never)
     int threads = 1;                        ///< threads for the per-actor phases and the step

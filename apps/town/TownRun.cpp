@@ -35,11 +35,13 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     : o_(o), world_(world), ranks_(ranks), budget_(std::move(budget)), recorder_(std::move(recorder)),
       distributed_(sim::Ranks::launchedByMpi()), pipeline_(o.pipeline) {
     std::string why;
-    const bool wantWindow = !o.headless && displayAvailable() && ranks.size() == 1;
+    const bool wantWindow = !o.headless && (o.gl == "auto" || o.gl == "window") && displayAvailable() && ranks.size() == 1;
     if (!o.headless && ranks.size() > 1) std::fprintf(stderr, "throng-town: %d ranks run headless\n", ranks.size());
-    context_ = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town"}, &why);
+    context_ = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town", .api = glApiFromName(o.gl)},
+                             &why);
     window_ = !context_->headless();
     if (wantWindow && !window_) std::fprintf(stderr, "throng-town: no window (%s): running headless\n", why.c_str());
+    std::fprintf(stderr, "throng-town: GL: %s; %s\n", context_->description().c_str(), context_->vendor().c_str());
     lodScale_ = o.lodScale > 0.0 ? o.lodScale : world.description().representation.lodScale;
     world.setThreads(unsigned(o.threads));
     processor_ = std::make_unique<ActorProcessor>(world.crowd());
@@ -306,6 +308,8 @@ void TownRun::finish(const std::string& error) {
         std::fprintf(stderr, "throng-town: APP+CULL+DRAW within %.1f ms on %.1f %% of frames\n", o_.frameBudget,
                      100.0 * double(framesWithin_) / double(std::max<std::int64_t>(sums_.frames, 1)));
     }
+    summary["gl"] = {{"option", o_.gl}, {"context", context_->kind()}, {"vendor", context_->vendor()},
+                     {"renderer", context_->renderer()}, {"version", context_->version()}};
     // Whether the run did all it was asked, and if not, what stopped it (the frames done are "frames").
     summary["completed"] = error.empty() && stoppedBy_ == 0;
     if (stoppedBy_) summary["stoppedBy"] = support::StopSignals::name(stoppedBy_);

@@ -31,6 +31,7 @@
 #include "MemoryNeed.h"
 #include "TownOptions.h"
 #include "TownRun.h"
+#include "throng/render/ContextFactory.h"
 #include "throng/sim/BudgetLadder.h"
 #include "throng/sim/FrameBudgetAllocator.h"
 #include "throng/sim/Ranks.h"
@@ -96,6 +97,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "throng-town: --frame-budget-ladder: %s\n%s", e.what(), town::townUsage().c_str());
         return 2;
     }
+    // A headless context asked for by name is tried before minutes of building: one missing is a
+    // one-line error, exit 2, as for a bad option.
+    if (o.gl == "egl" || o.gl == "osmesa") try {
+        (void)createContext({.width = 16, .height = 16, .api = glApiFromName(o.gl)});
+    } catch (const ContextUnavailable& e) {
+        std::fprintf(stderr, "throng-town: --gl %s: %s\n", o.gl.c_str(), e.what());
+        return 2;
+    }
     // Started by mpirun, each rank steps its share of the walkers' regions (one rank alone too, so
     // that `mpirun -np 1` takes the distributed path); rank 0 draws and writes.
     sim::Ranks ranks(std::chrono::milliseconds(std::llround(o.rankTimeout * 1000.0)));
@@ -149,6 +158,10 @@ int main(int argc, char** argv) {
         if (run->windowed()) run->runWindowed();
         else run->runHeadless();
         run->finish();
+    } catch (const ContextUnavailable& e) {  // the --gl kind asked for cannot be made: as a bad option
+        std::fprintf(stderr, "throng-town: --gl %s: %s\n", o.gl.c_str(), e.what());
+        if (ranks.size() > 1) ranks.abort(2);
+        return 2;
     } catch (const support::StopRequested& e) {  // while baking impostors, before any frame
         std::fprintf(stderr, "\nthrong-town: %s while baking impostors; nothing written\n", e.what());
         if (ranks.size() > 1) ranks.abort(support::StopSignals::exitCode(e.signal()));

@@ -27,7 +27,8 @@ void GlContext::loadFunctions(ProcLoader loader, const std::string& kind) {
     };
     if (major < 3 || (major == 3 && minor < 3))
         throw std::runtime_error(kind + ": OpenGL 3.3 core is required, the context gives " + str(GL_VERSION));
-    description_ = kind + ": " + str(GL_VERSION) + ", " + str(GL_RENDERER);
+    kind_ = kind, vendor_ = str(GL_VENDOR), renderer_ = str(GL_RENDERER), version_ = str(GL_VERSION);
+    description_ = kind + ": " + version_ + ", " + renderer_;
 }
 
 }  // namespace throng

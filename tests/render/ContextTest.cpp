@@ -9,6 +9,7 @@
 
 #include "RenderTestSupport.h"
 #include "throng/render/ContextFactory.h"
+#include "throng/render/EglContext.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/render/GlfwWindowContext.h"
 #include "throng/render/OsMesaContext.h"
@@ -23,6 +24,52 @@ TEST(ContextTest, HeadlessContextIsCoreProfileOnOsMesa) {
     EXPECT_NE(context.framebuffer(), 0u);
     EXPECT_NE(context.description().find("OSMesa"), std::string::npos) << context.description();
     EXPECT_NE(context.description().find("Core Profile"), std::string::npos) << context.description();
+}
+
+TEST(ContextTest, EglSurfacelessIsCoreProfileAndResizes) {
+    EglContext context(test::kWidth, test::kHeight, EglContext::Platform::Surfaceless);
+    EXPECT_TRUE(context.headless());
+    EXPECT_NE(context.framebuffer(), 0u);
+    EXPECT_EQ(context.kind(), "EGL surfaceless (headless)");
+    EXPECT_NE(context.version().find("Core Profile"), std::string::npos) << context.version();
+    EXPECT_FALSE(context.renderer().empty());
+    context.resize(64, 32);
+    EXPECT_EQ(context.width(), 64);
+    EXPECT_EQ(context.height(), 32);
+    EXPECT_THROW(context.resize(0, 32), std::invalid_argument);
+    EXPECT_EQ(context.width(), 64) << "a refused size keeps the framebuffer";
+}
+
+TEST(ContextTest, TheKindAskedForIsTheKindMade) {
+    ContextOptions options;
+    options.width = 32;
+    options.height = 24;
+    options.api = GlApi::OsMesa;
+    EXPECT_EQ(createContext(options)->kind(), "OSMesa (headless)");
+    options.api = GlApi::Egl;
+    const auto egl = createContext(options);
+    EXPECT_EQ(egl->kind(), EglContext::hardwareDevicePresent() ? "EGL device (headless)" : "EGL surfaceless (headless)");
+    for (GlApi api : {GlApi::Auto, GlApi::Window, GlApi::Egl, GlApi::OsMesa}) EXPECT_EQ(glApiFromName(glApiName(api)), api);
+    EXPECT_THROW(glApiFromName("vulkan"), std::invalid_argument);
+    if (!displayAvailable()) {
+        options.api = GlApi::Window;
+        try {
+            createContext(options);
+            ADD_FAILURE() << "a window was made without a display";
+        } catch (const ContextUnavailable& e) {
+            EXPECT_NE(std::string(e.what()).find("try --gl egl"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(ContextTest, AnEglDeviceWithoutAGpuIsAClearError) {
+    if (EglContext::hardwareDevicePresent()) GTEST_SKIP() << "a GPU is present: this checks the error without one";
+    try {
+        EglContext context(32, 24, EglContext::Platform::Device);
+        ADD_FAILURE() << "an EGL device context without a hardware device";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("no EGL device with OpenGL 3.3 core"), std::string::npos) << e.what();
+    }
 }
 
 TEST(ContextTest, FactoryGivesHeadlessUnlessAWindowIsAskedForAndPossible) {

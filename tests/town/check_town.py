@@ -3,7 +3,8 @@
 
 usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   determinism  same seed: identical stats.csv (timing columns aside) and identical frames,
-               run twice with 1 thread, with 2 and 4, and with DRAW overlapping the next frame
+               run twice with 1 thread, with 2 and 4, with DRAW overlapping the next frame, and
+               drawn through OSMesa and through EGL (surfaceless)
   effects      a scene that declares no avoidance, gaze or flight never constructs or ticks them;
                declaring them turns them on; declared occlusion rests on some frames, testing nothing there
   window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
@@ -82,7 +83,10 @@ def determinism(exe, scenes, work):
     common = ["--scene", os.path.join(scenes, "effects.json"), "--headless", "--frames", "90", "--every", "30",
               "--width", "320", "--height", "180", "--seed", "4"]
     # The same frames whatever the threads and whether DRAW overlaps the next frame's step and CULL.
-    variants = {"one": ["--threads", "1", "--pipeline", "off"], "again": ["--threads", "1", "--pipeline", "off"],
+    # And whether the frames are drawn through OSMesa or EGL's surfaceless platform (the same llvmpipe:
+    # the PNGs are compared byte for byte).
+    variants = {"one": ["--threads", "1", "--pipeline", "off", "--gl", "osmesa"], "again": ["--threads", "1", "--pipeline", "off"],
+                "egl": ["--threads", "1", "--pipeline", "off", "--gl", "egl"],
                 "two-threads": ["--threads", "2", "--pipeline", "off"], "four-threads": ["--threads", "4", "--pipeline", "off"],
                 "pipelined": ["--threads", "1", "--pipeline", "on"], "pipelined-two-threads": ["--threads", "2", "--pipeline", "on"]}
     runs = {name: os.path.join(work, name) for name in variants}
@@ -111,7 +115,7 @@ def determinism(exe, scenes, work):
         for n in reference_frames:
             if other_frames[n] != reference_frames[n]:
                 sys.exit(f"frame {n} of run '{name}' differs from the first run")
-    print(f"3 runs agree: {len(reference)} rows of stats.csv, {len(reference_frames)} frames")
+    print(f"{len(variants)} runs agree (threads, pipeline, OSMesa and EGL): {len(reference)} rows of stats.csv, {len(reference_frames)} frames")
 
 
 def mpi(exe, scenes, work):

@@ -1,6 +1,7 @@
 #pragma once
 // An OpenGL 3.3+ core context and the framebuffer it draws into. The renderer is written once
-// against this interface; OsMesaContext (headless) and GlfwWindowContext (window) implement it.
+// against this interface; OsMesaContext and EglContext (headless) and GlfwWindowContext (window)
+// implement it.
 
 #include <memory>
 #include <optional>
@@ -64,6 +65,14 @@ public:
     const GladGLContext& gl() const { return *gl_; }
     /// "<kind>: <GL_VERSION>, <GL_RENDERER>", for logs and reports.
     const std::string& description() const { return description_; }
+    /// What made it: "OSMesa (headless)", "EGL device (headless)", "EGL surfaceless (headless)", "GLFW window".
+    const std::string& kind() const { return kind_; }
+    /// GL_VENDOR, GL_RENDERER and GL_VERSION as the driver gives them.
+    const std::string& vendor() const { return vendor_; }
+    /// See vendor().
+    const std::string& renderer() const { return renderer_; }
+    /// See vendor().
+    const std::string& version() const { return version_; }
 
 protected:
     GlContext();
@@ -73,7 +82,7 @@ protected:
 
 private:
     std::unique_ptr<GladGLContext> gl_;
-    std::string description_;
+    std::string description_, kind_, vendor_, renderer_, version_;
     std::optional<DrawTarget> redirect_;
 };
 
