@@ -14,7 +14,8 @@ const char* kCsvHeader =
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,occlusion_rested,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
-    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred";
+    "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred,"
+    "draw_cpu_ms,draw_gpu_ms,gpu_town_ms,gpu_meshes_ms,gpu_impostors_ms,gpu_finish_ms,gpu_frames_behind";
 
 // With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
 // keeps under budget_ms).
@@ -48,7 +49,11 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
       << s.occlusionTests << ',' << s.nodesOccluded << ',' << (s.occlusionRested ? 1 : 0) << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
-      << f.ghosts << ',' << f.handovers << ',' << f.deferred;
+      << f.ghosts << ',' << f.handovers << ',' << f.deferred << ',' << drawMs - r.presentMs;
+    // GPU times: of this frame when the GPU has finished it (headless, always), else of the newest
+    // frame it has (gpu_frames_behind); "nan" before any.
+    if (r.gpu.frame < 0) o << ",nan,nan,nan,nan,nan,-1";
+    else o << ',' << r.gpu.totalMs() << ',' << r.gpu.ms[0] << ',' << r.gpu.ms[1] << ',' << r.gpu.ms[2] << ',' << r.gpu.ms[3] << ',' << r.gpuFramesBehind;
     if (budget) {
         const double cost = s.appCullMs() + drawMs;
         const sim::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
@@ -62,7 +67,9 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     return o.str() + '\n';
 }
 
-void Sums::add(const PreparedFrame& f, double drawMs) {
+void Sums::add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistics& drawn) {
+    drawCpu += drawMs - drawn.presentMs;
+    if (drawn.gpu.frame >= 0) drawGpu += drawn.gpu.totalMs(), ++gpuFrames;
     ranks.resize(std::max(ranks.size(), f.ranks.size()));
     for (std::size_t r = 0; r < f.ranks.size(); ++r) {
         sim::Locomotion::RankStepRecord& into = ranks[r];
@@ -116,6 +123,8 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
     for (int i = 0; i < 9; ++i) j["meanMs"][names[i]] = sums.phases[i] / n;
     j["meanMs"]["appCull"] = sums.app / n;
     j["meanMs"]["draw"] = sums.draw / n;
+    j["meanMs"]["drawCpu"] = sums.drawCpu / n;  // DRAW less its wait for the GPU to finish the frame
+    j["meanMs"]["drawGpu"] = sums.gpuFrames > 0 ? sums.drawGpu / double(sums.gpuFrames) : 0.0;  // timer queries
     j["meanMs"]["step"] = sums.step / n;  // the simulation step, before APP+CULL
     for (const auto& r : sums.ranks)  // distributed: each rank's share of a step, on average
         j["meanPerRank"].push_back({{"agents", double(r.agents) / n}, {"ghosts", double(r.ghosts) / n}, {"handovers", double(r.handovers) / n},

@@ -46,11 +46,13 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
 /// Running sums of what summary.json reports as means.
 struct Sums {
     double app = 0, phases[9] = {}, draw = 0, step = 0;
+    double drawCpu = 0, drawGpu = 0;  // DRAW's CPU side, and its GPU time over the gpuFrames that have it
+    std::int64_t gpuFrames = 0;
     double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // distributed: each rank's share, summed
     std::int64_t frames = 0;
-    /// Adds frame `f`, drawn in `drawMs`.
-    void add(const PreparedFrame& f, double drawMs);
+    /// Adds frame `f`, drawn in `drawMs` with the renderer's statistics `r`.
+    void add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistics& r);
 };
 
 /// summary.json of a run: the options, the world, the means of `sums`, the wall time.

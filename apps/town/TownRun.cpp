@@ -149,7 +149,7 @@ void TownRun::draw(const PreparedFrame& f, const std::function<void()>& beforePr
     renderer_->endFrame();
     const double drawMs = watch.elapsedMs();
     const double now = seconds();
-    sums_.add(f, drawMs);
+    sums_.add(f, drawMs, renderer_->statistics());
     csv_->append(csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd_), renderer_->statistics(), budget_.get()));
     if (budget_) {
         drawnRung_ = f.rung;

@@ -25,6 +25,7 @@ CrowdRenderer::CrowdRenderer(std::shared_ptr<GlContext> context, const CrowdRend
     if (!context_) throw std::invalid_argument("CrowdRenderer: argument 'context' is null");
     setRenderScale(options_.renderScale);
     meshes_ = std::make_unique<GlRenderer>(context_, options_.meshes);
+    gpuTimer_ = std::make_unique<GpuPassTimer>(*context_);
 }
 
 CrowdRenderer::~CrowdRenderer() = default;
@@ -40,6 +41,7 @@ void CrowdRenderer::beginFrame(const Camera& camera) {
     }
     const GlContext::DrawTarget target = context_->drawTarget();
     stats_.renderWidth = target.width, stats_.renderHeight = target.height;
+    gpuTimer_->beginFrame();
     meshes_->beginFrame(camera);
 }
 
@@ -67,11 +69,15 @@ void CrowdRenderer::draw(const DrawList& list) {
         }
     }
     stats_.sceneItems += sceneItems_.size();
+    gpuTimer_->begin(GpuPass::Town);
     meshes_->draw(sceneItems_);
+    gpuTimer_->end();
     finish();
     stats_.sceneMs += watch.elapsedMs();
     watch.restart();
+    gpuTimer_->begin(GpuPass::Meshes);
     meshes_->draw(actorItems_);
+    gpuTimer_->end();
     finish();
     stats_.meshes = meshes_->statistics();
     stats_.meshMs += watch.elapsedMs();
@@ -87,6 +93,7 @@ void CrowdRenderer::draw(const DrawList& list) {
         makeQuads();
     }
     watch.restart();
+    gpuTimer_->begin(GpuPass::Impostors);  // cells morphed on the GPU, uploads and the quads
     batcher_->build(list, camera_);
     stats_.impostors = batcher_->statistics();
     if (cache_) stats_.morphs = cache_->statistics();
@@ -94,6 +101,7 @@ void CrowdRenderer::draw(const DrawList& list) {
     watch.restart();
     context_->makeCurrent();
     quads_->draw(camera_, batcher_->instances());
+    gpuTimer_->end();
     finish();
     stats_.quads = quads_->statistics();
     const double quadMs = watch.elapsedMs();
@@ -139,6 +147,7 @@ void CrowdRenderer::setRenderScale(float scale) {
 
 void CrowdRenderer::endFrame() {
     Stopwatch watch;
+    gpuTimer_->begin(GpuPass::Finish);
     if (scaledFrame_) {  // the overlays below are drawn at full resolution, over the scaled-up frame
         scaled_->end();
         scaledFrame_ = false;
@@ -153,7 +162,13 @@ void CrowdRenderer::endFrame() {
         if (!overlay_) overlay_ = std::make_unique<TextOverlay>(*context_);
         overlay_->draw(overlayText_, 12, 12, 1.6f);
     }
+    gpuTimer_->end();
+    Stopwatch present;
     meshes_->endFrame();
+    stats_.presentMs = present.elapsedMs();
+    gpuTimer_->collect();
+    stats_.gpu = gpuTimer_->latest();
+    stats_.gpuFramesBehind = stats_.gpu.frame < 0 ? -1 : gpuTimer_->frame() - stats_.gpu.frame;
     stats_.endFrameMs = watch.elapsedMs();
 }
 

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 
+#include "throng/render/GpuPassTimer.h"
 #include "throng/render/ImpostorBatcher.h"
 #include "throng/render/ImpostorRenderer.h"
 #include "throng/render/MorphCache.h"
@@ -78,6 +79,13 @@ struct CrowdRenderStatistics {
     double impostorBatchMs = 0;          ///< impostor selection, batching and morphing
     double impostorDrawMs = 0;           ///< quad pass
     double endFrameMs = 0;               ///< scaling up, overlay, finishing and presenting the frame
+    /// Of endFrameMs, the wait in present() for the GPU (or llvmpipe) to finish or swap the frame:
+    /// the frame's DRAW less this is the CPU's own work, preparing and submitting.
+    double presentMs = 0;
+    /// GPU time of each pass (GL timer queries) of the newest frame the GPU has finished: this one
+    /// headless, an earlier one in a window (gpuFramesBehind says how many; -1: none finished yet).
+    GpuPassTimes gpu;
+    std::int64_t gpuFramesBehind = -1;   ///< this frame's number less gpu.frame, or -1
     int renderWidth = 0;                 ///< width the frame was drawn at (below the context's when scaled)
     int renderHeight = 0;                ///< see renderWidth
     // Without finishPasses the GL may rasterise a pass's triangles later, in endFrame.
@@ -126,6 +134,7 @@ private:
     CrowdRendererOptions options_;
     std::unique_ptr<GlRenderer> meshes_;
     std::unique_ptr<GpuMorpher> gpu_;
+    std::unique_ptr<GpuPassTimer> gpuTimer_;
     std::unique_ptr<MorphCache> cache_;
     std::unique_ptr<ImpostorBatcher> batcher_;
     std::unique_ptr<ImpostorRenderer> quads_;
