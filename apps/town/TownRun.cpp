@@ -148,6 +148,7 @@ void TownRun::draw(const PreparedFrame& f, const std::function<void()>& beforePr
     if (beforePresent) beforePresent();
     renderer_->endFrame();
     const double drawMs = watch.elapsedMs();
+    lastDrawMs_ = drawMs;
     const double now = seconds();
     sums_.add(f, drawMs, renderer_->statistics());
     csv_->append(csvRow(f, drawMs, 1000.0 * (now - lastFrameEnd_), renderer_->statistics(), budget_.get()));
@@ -273,7 +274,8 @@ void TownRun::runWindowed() {
         PreparedFrame& next = prepared_[(f + 1) % 2];
         const bool advance = !paused;
         const Camera camera = nextCamera(world_.now().time + (advance ? step : 0.0));
-        renderer_->setOverlayText(statusText(world_, current.stats, fps, scale, paused, shrunk, freeCamera, o_.pipeline));
+        renderer_->setOverlayText(
+            statusText(world_, current.stats, renderer_->statistics(), lastDrawMs_, fps, scale, paused, shrunk, freeCamera, o_.pipeline));
         pipeline_.run([&] { prepare(next, f + 1, camera, advance); }, [&] { draw(current, {}); });
         allocate();
         const auto now = std::chrono::steady_clock::now();

@@ -75,6 +75,7 @@ private:
     Sums sums_;
     std::chrono::steady_clock::time_point start_;
     double firstFrame_ = 0.0, lastFrameEnd_ = 0.0;
+    double lastDrawMs_ = 0.0;  // the last frame's DRAW, for the window's text
     PreparedFrame prepared_[2];
     bool showOcclusion_ = false;  // the window's O key
     // --frame-budget: the rung of the next frame prepared (set between frames, on the main thread),
