@@ -47,11 +47,9 @@ void GpuPassTimer::collect() {
 void GpuPassTimer::beginFrame() {
     if (active_ >= 0) end();  // a frame that threw inside a pass
     ++frame_;
-    Set& s = sets_[std::size_t(frame_ % kSets)];
     collect();
-    if (s.frame >= 0) {  // three frames on and still not finished: drop them rather than wait
-        s.frame = -1;
-    }
+    // The set of three frames back: results still unfinished now are dropped rather than waited for.
+    Set& s = sets_[std::size_t(frame_ % kSets)];
     s.used.fill(false);
     s.frame = frame_;
 }
