@@ -5,7 +5,7 @@
 // memory of the template.
 //
 //   throng-bake FILE.glb --out DIR [--clip NAME] [--views 16x4] [--keyframes 16] [--size 128]
-//               [--features FILE.json] [--keep-all]
+//               [--features FILE.json] [--keep-all] [--gl auto|egl|osmesa]
 //   throng-bake seed-humanoid --out DIR          (the procedural figure, no asset needed)
 // Exit codes: 0 done, 1 the bake failed (the message says why), 2 a bad command line.
 
@@ -17,6 +17,7 @@
 #include "throng/render/ImpostorBaker.h"
 #include "throng/support/CharacterSource.h"
 #include "throng/support/CommandLine.h"
+#include "throng/support/GlOption.h"
 #include "throng/support/ProgressBar.h"
 #include "throng/support/Validators.h"
 #include "throng/support/ViewGrid.h"
@@ -55,7 +56,10 @@ int main(int argc, char** argv) {
         ->type_name("FILE")
         ->check(support::existingFile());
     app.add_flag("--keep-all", keepAll, "keep every key-frame (no morphing needed)");
+    std::string gl = "auto";
+    support::declareGlOption(app, gl, false);
     if (const auto code = cl.parse(argc, argv)) return *code;
+    if (const auto code = support::refuseUnavailableGl("throng-bake", gl)) return *code;
     options.azimuths = views.azimuths;
     options.elevations = views.elevations;
     try {
@@ -66,7 +70,7 @@ int main(int argc, char** argv) {
         options.progress = [&](int done, int total) {
             bar.update(static_cast<std::size_t>(done), std::to_string(done) + "/" + std::to_string(total) + " key-frames");
         };
-        auto context = createContext(ContextOptions{options.cellSize, options.cellSize, false});
+        auto context = createContext({.width = options.cellSize, .height = options.cellSize, .api = glApiFromName(gl)});
         ImpostorBaker baker(context, tmpl, clip, options);
         ImpostorAtlas atlas = baker.bake();
         bar.finish();

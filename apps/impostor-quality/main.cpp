@@ -59,6 +59,7 @@
 #include "throng/sim/AccuracyCsv.h"
 #include "throng/support/CharacterSource.h"
 #include "throng/support/CommandLine.h"
+#include "throng/support/GlOption.h"
 #include "throng/support/Validators.h"
 #include "throng/support/ViewGrid.h"
 #include "throng/vtk/Chart.h"
@@ -189,10 +190,13 @@ struct Bake {
     }
 };
 
+// --gl: the kind of context every bake of the run is made in.
+GlApi bakeGl = GlApi::Auto;
+
 std::unique_ptr<Bake> makeBake(std::shared_ptr<const ActorTemplate> tmpl, int clip, const ImpostorBakeOptions& options) {
     auto b = std::make_unique<Bake>();
     b->options = options;
-    b->context = createContext(ContextOptions{options.cellSize, options.cellSize, false});
+    b->context = createContext({.width = options.cellSize, .height = options.cellSize, .api = bakeGl});
     b->baker = std::make_unique<ImpostorBaker>(b->context, std::move(tmpl), clip, options);
     b->full = std::make_unique<ImpostorAtlas>(b->baker->bake());
     b->half = std::make_unique<ImpostorAtlas>(*b->full);
@@ -764,7 +768,7 @@ void sectionSweep(const Asset& asset, std::shared_ptr<const ActorTemplate> tmpl,
     // cell size is measured against the same well-filtered image rather than one of them.
     ImpostorBakeOptions fine = reference;
     fine.cellSize = 2 * reference.cellSize;
-    auto fineContext = createContext(ContextOptions{fine.cellSize, fine.cellSize, false});
+    auto fineContext = createContext({.width = fine.cellSize, .height = fine.cellSize, .api = bakeGl});
     ImpostorBaker fineBaker(fineContext, tmpl, clip, fine);
     std::vector<Sample> samples;
     for (int i = 0; i < 48; ++i) {
@@ -969,7 +973,11 @@ int main(int argc, char** argv) {
         ->delimiter(',')
         ->check(support::oneOf(kSweepKnobs))
         ->default_str("cell_size,views,keyframes_kept,features");
+    std::string gl = "auto";
+    support::declareGlOption(app, gl, false);
     if (const auto code = cl.parse(argc, argv)) return *code;
+    if (const auto code = support::refuseUnavailableGl("throng-impostor-quality", gl)) return *code;
+    bakeGl = glApiFromName(gl);
     const std::set<std::string> sweepKnobs = sweepKnobTexts.empty() ? std::set<std::string>(kSweepKnobs.begin(), kSweepKnobs.end())
                                                                     : std::set<std::string>(sweepKnobTexts.begin(), sweepKnobTexts.end());
     out = outText;

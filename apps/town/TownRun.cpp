@@ -31,7 +31,7 @@ namespace throng::town {
 namespace fs = std::filesystem;
 
 TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks, std::unique_ptr<sim::FrameBudgetAllocator> budget,
-                 std::unique_ptr<vtk::CrowdRecorder> recorder)
+                 std::unique_ptr<CrowdRecording> recorder)
     : o_(o), world_(world), ranks_(ranks), budget_(std::move(budget)), recorder_(std::move(recorder)),
       distributed_(sim::Ranks::launchedByMpi()), pipeline_(o.pipeline) {
     std::string why;

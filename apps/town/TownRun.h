@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "CrowdRecording.h"
 #include "TownOptions.h"
 #include "TownRecords.h"
 #include "throng/actors/ActorProcessor.h"
@@ -22,7 +23,6 @@
 #include "throng/sim/FrameBudgetAllocator.h"
 #include "throng/sim/Ranks.h"
 #include "throng/sim/Simulation.h"
-#include "throng/vtk/CrowdRecorder.h"
 
 namespace throng::town {
 
@@ -35,7 +35,7 @@ public:
     /// Sets up drawing `world` as `o` asks (context, processor, impostors, renderer), opens stats.csv
     /// in o.out. `budget` and `recorder` may be null. Throws when the GL or a file cannot be made.
     TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks, std::unique_ptr<sim::FrameBudgetAllocator> budget,
-            std::unique_ptr<vtk::CrowdRecorder> recorder);
+            std::unique_ptr<CrowdRecording> recorder);
     /// Whether the frames go to a window (else headless).
     bool windowed() const { return window_; }
     /// Runs o.frames frames headless: a PNG every o.every frames, a progress bar. Stops after the
@@ -60,7 +60,7 @@ private:
     sim::Simulation& world_;
     sim::Ranks& ranks_;
     std::unique_ptr<sim::FrameBudgetAllocator> budget_;
-    std::unique_ptr<vtk::CrowdRecorder> recorder_;
+    std::unique_ptr<CrowdRecording> recorder_;
     bool distributed_ = false;
     std::shared_ptr<GlContext> context_;
     bool window_ = false;

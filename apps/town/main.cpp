@@ -28,6 +28,7 @@
 #include <new>
 #include <string>
 
+#include "CrowdRecording.h"
 #include "MemoryNeed.h"
 #include "TownOptions.h"
 #include "TownRun.h"
@@ -39,9 +40,9 @@
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
+#include "throng/support/GlOption.h"
 #include "throng/support/ProgressBar.h"
 #include "throng/support/StopSignals.h"
-#include "throng/vtk/CrowdRecorder.h"
 
 using namespace throng;
 
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
     support::StopSignals::install();  // SIGINT, SIGTERM: the frame in progress ends, the files are closed whole
     town::TownOptions o;
     sim::SceneDescription scene;
-    std::unique_ptr<throng::vtk::CrowdRecorder> recorder;  // --vtk: crowd data for ParaView
+    std::unique_ptr<town::CrowdRecording> recorder;  // --vtk: crowd data for ParaView
     try {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE, THRONG_TOWN_DEFAULT_LADDER);
         scene = sim::parseSceneFile(o.scene);
@@ -99,19 +100,14 @@ int main(int argc, char** argv) {
     }
     // A headless context asked for by name is tried before minutes of building: one missing is a
     // one-line error, exit 2, as for a bad option.
-    if (o.gl == "egl" || o.gl == "osmesa") try {
-        (void)createContext({.width = 16, .height = 16, .api = glApiFromName(o.gl)});
-    } catch (const ContextUnavailable& e) {
-        std::fprintf(stderr, "throng-town: --gl %s: %s\n", o.gl.c_str(), e.what());
-        return 2;
-    }
+    if (const auto code = support::refuseUnavailableGl("throng-town", o.gl)) return *code;
     // Started by mpirun, each rank steps its share of the walkers' regions (one rank alone too, so
     // that `mpirun -np 1` takes the distributed path); rank 0 draws and writes.
     sim::Ranks ranks(std::chrono::milliseconds(std::llround(o.rankTimeout * 1000.0)));
     const bool distributed = sim::Ranks::launchedByMpi();
     // Only rank 0 writes, --vtk files too.
     if (!o.vtk.empty() && ranks.rank() == 0) try {
-        recorder = std::make_unique<throng::vtk::CrowdRecorder>(o.vtk, o.vtkEvery);
+        recorder = town::openCrowdRecording(o.vtk, o.vtkEvery);
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "throng-town: --vtk: %s\n%s", e.what(), town::townUsage().c_str());
         if (ranks.size() > 1) ranks.abort(2);

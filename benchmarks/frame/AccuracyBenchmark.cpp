@@ -694,7 +694,7 @@ int main(int argc, char** argv) {
     o.e = experiment.spec();
     std::string report;
     try {
-        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
+        auto context = bench::experimentContext(o.e);
         AccuracyRun run(o, context);
         run.run();
         report = table(run.settings(), o, run.actors());

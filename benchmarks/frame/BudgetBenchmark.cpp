@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     }
     std::ostringstream report;
     try {
-        auto context = createContext({.width = e.width, .height = e.height, .window = false});
+        auto context = bench::experimentContext(e);
         experiment.progress("building the world");
         auto world = bench::buildWorld(e.scene, e.actors.front());
         experiment.progress("baking impostors");

@@ -937,7 +937,7 @@ int main(int argc, char** argv) {
 
     std::ostringstream report;
     try {
-        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
+        auto context = bench::experimentContext(o.e);
         std::vector<Row> rows;
         std::uint64_t ticks = 0;
         for (std::int64_t n : o.has("methods") ? o.e.actors : std::vector<std::int64_t>{}) {

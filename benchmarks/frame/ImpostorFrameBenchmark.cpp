@@ -359,7 +359,7 @@ int main(int argc, char** argv) {
     o.e = experiment.spec();
     std::ostringstream report;
     try {
-        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
+        auto context = bench::experimentContext(o.e);
         if (o.has("methods")) {
             const std::vector<Row> rows = runMethods(o, context);
             report << "### " << (o.e.actors.front() ? std::to_string(o.e.actors.front()) : std::string("the scene's")) << " actors, " << o.e.frames

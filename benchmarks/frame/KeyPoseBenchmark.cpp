@@ -465,7 +465,7 @@ int main(int argc, char** argv) {
     std::ostringstream report;
     std::vector<Result> results;
     try {
-        auto context = createContext({.width = o.e.width, .height = o.e.height, .window = false});
+        auto context = bench::experimentContext(o.e);
         std::ofstream demands;
         if (!o.demands.empty()) {
             demands.open(o.demands);

@@ -5,7 +5,9 @@
 
 #include "throng/render/EglContext.h"
 #include "throng/render/GlfwWindowContext.h"
+#ifdef THRONG_HAVE_OSMESA
 #include "throng/render/OsMesaContext.h"
+#endif
 
 namespace throng {
 
@@ -54,6 +56,16 @@ std::shared_ptr<GlContext> eglContext(const ContextOptions& o, bool surfacelessT
     }
 }
 
+// OSMesa's software context; throws std::runtime_error when it cannot be made or this build has none.
+std::shared_ptr<GlContext> osMesaContext(const ContextOptions& o) {
+#ifdef THRONG_HAVE_OSMESA
+    return std::make_shared<OsMesaContext>(o.width, o.height);
+#else
+    (void)o;
+    throw std::runtime_error("this build has no OSMesa (configured with THRONG_WITH_OSMESA=OFF)");
+#endif
+}
+
 }  // namespace
 
 std::shared_ptr<GlContext> createContext(const ContextOptions& options, std::string* fallbackReason) {
@@ -71,7 +83,7 @@ std::shared_ptr<GlContext> createContext(const ContextOptions& options, std::str
         case GlApi::Egl: return eglContext(options, true);
         case GlApi::OsMesa:
             try {
-                return std::make_shared<OsMesaContext>(options.width, options.height);
+                return osMesaContext(options);
             } catch (const std::runtime_error& e) {
                 throw ContextUnavailable(std::string(e.what()) + ": try --gl egl");
             }
@@ -100,7 +112,7 @@ std::shared_ptr<GlContext> createContext(const ContextOptions& options, std::str
         failures += std::string("EGL device: ") + e.what() + ". ";
     }
     try {
-        return std::make_shared<OsMesaContext>(options.width, options.height);
+        return osMesaContext(options);
     } catch (const std::runtime_error& e) {
         failures += std::string("OSMesa: ") + e.what() + ". ";
     }

@@ -97,6 +97,10 @@ std::vector<EglContext::DeviceInfo> EglContext::devices() {
         d.software = d.extensions.find("EGL_MESA_device_software") != std::string::npos;
         if (d.extensions.find("EGL_EXT_device_drm") != std::string::npos && f.queryDeviceString)
             if (const char* file = f.queryDeviceString(list[i], EGL_DRM_DEVICE_FILE_EXT)) d.drmFile = file;
+        if (d.extensions.find("EGL_EXT_device_query_name") != std::string::npos && f.queryDeviceString) {
+            if (const char* v = f.queryDeviceString(list[i], EGL_VENDOR)) d.vendor = v;
+            if (const char* r = f.queryDeviceString(list[i], EGL_RENDERER_EXT)) d.renderer = r;
+        }
         out.push_back(d);
     }
     return out;

@@ -23,12 +23,12 @@ void checkTag(int tag, std::string_view what) {
                                     std::to_string(kMaxTag));
 }
 
+#ifdef THRONG_HAVE_MPI
 std::string silentRank(int rank, std::chrono::milliseconds timeout, std::string_view what) {
     return "rank " + std::to_string(rank) + " did not take part in '" + std::string(what) + "' within " +
            std::to_string(timeout.count()) + " ms (it stopped, hangs or is behind)";
 }
 
-#ifdef THRONG_HAVE_MPI
 // Each message of a collective call travels with the tag of its call and kind (size, then payload).
 int sizeTag(int tag) { return tag * 2; }
 int payloadTag(int tag) { return tag * 2 + 1; }

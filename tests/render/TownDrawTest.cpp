@@ -9,6 +9,8 @@
 //     measures it) draws fewer triangles from the overview camera than the full town; its image
 //     difference against full detail is reported (a LOD is meant to change the picture a little:
 //     the number is the price, not a pass mark).
+//   * The town frame drawn through EGL's surfaceless platform agrees with the same frame drawn
+//     through OSMesa within the golden-image tolerance, from every camera above.
 
 #include <gtest/gtest.h>
 
@@ -22,6 +24,7 @@
 #include "throng/actors/ActorProcessor.h"
 #include "throng/render/GlRenderer.h"
 #include "throng/testkit/ImageCompare.h"
+#include "throng/render/EglContext.h"
 #include "throng/render/OsMesaContext.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneParser.h"
@@ -126,6 +129,35 @@ TEST_F(TownDrawTest, TownLodDrawsFewerTrianglesInTheOverview) {
     RecordProperty("town_lod_fraction_over_threshold", std::to_string(d.fractionOverThreshold));
     test::writeOutput(a.image, "town_overview-full");
     test::writeOutput(b.image, "town_overview-lod");
+}
+
+TEST_F(TownDrawTest, TownFrameThroughEglMatchesOsMesa) {
+    auto world = defaultTown(false);
+    ActorProcessor processor(world->crowd());
+    auto egl = std::make_shared<EglContext>(kWidth, kHeight, EglContext::Platform::Surfaceless);
+    GlRenderer throughOsMesa(context_), throughEgl(egl);
+    const double aspect = double(kWidth) / kHeight;
+    for (double t : {0.0, 5.0, 9.0, 13.0, 18.0}) {
+        SCOPED_TRACE("camera at path time " + std::to_string(t) + " s");
+        const Camera camera = world->camera().at(t, aspect);
+        processor.processFrame(world->root(), camera, world->now().time);
+        const Frame a = render(throughOsMesa, camera, processor.drawList());
+        const Frame b = render(throughEgl, camera, processor.drawList());
+        EXPECT_EQ(a.stats.triangles, b.stats.triangles);
+        EXPECT_GT(test::coveredPixels(b.image), std::size_t(kWidth * kHeight / 4)) << "the town must be in view";
+        const testkit::ImageDifference d = testkit::compareImages(a.image, b.image, test::GoldenTolerance{}.threshold);
+        std::printf("t = %4.1f s: EGL against OSMesa: %zu pixels over %d (%.4f %%), max %d, PSNR %.1f dB\n", t,
+                    d.pixelsOverThreshold, test::GoldenTolerance{}.threshold, 100.0 * d.fractionOverThreshold,
+                    d.maxChannelDifference, d.psnr);
+        EXPECT_LE(d.fractionOverThreshold, test::GoldenTolerance{}.maxFraction);
+        EXPECT_GE(d.psnr, test::GoldenTolerance{}.minPsnr);
+        if (d.fractionOverThreshold > test::GoldenTolerance{}.maxFraction || d.psnr < test::GoldenTolerance{}.minPsnr) {
+            const std::string name = "town_egl_t" + std::to_string(int(t));
+            test::writeOutput(a.image, name + "-osmesa");
+            test::writeOutput(b.image, name + "-egl");
+            test::writeOutput(testkit::differenceImage(a.image, b.image), name + "-diff");
+        }
+    }
 }
 
 }  // namespace

@@ -28,6 +28,9 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                rung's, over_budget agrees with app_cull_draw_ms, summary.json counts them; a budget
                nothing meets keeps the cheapest rung, one everything meets the most accurate, and the
                cheapest rung really draws more impostors and evaluates fewer nodes
+  gpuCheck     benchmarks/gpu-check run with this throng-town, small: one CSV row per run with the
+               context, step, APP+CULL, DRAW CPU and GPU and fps, the log with the EGL devices; a
+               budget too small for any run skips them (exit 1); a bad option is refused (exit 2)
 """
 import csv
 import json
@@ -531,6 +534,42 @@ def budget(exe, scenes, work):
     print(f"budget: {total(runs['tiny'], 'impostors'):.0f} impostors on the cheapest rung, {total(runs['huge'], 'impostors'):.0f} on the most accurate")
 
 
+def gpuCheck(exe, scenes, work):
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "benchmarks", "gpu-check")
+    out = os.path.join(work, "check.csv")
+    base = [script, "run", "--town", exe, "--scene", os.path.join(scenes, "plain.json"), "--sizes", "320x180", "--threads", "2"]
+    p = subprocess.run([*base, "--actors", "150,300", "--frames", "8", "--out", out, "--work", os.path.join(work, "runs")],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"gpu-check run failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    rows = list(csv.DictReader(open(out)))
+    if [r["actors"] for r in rows] != ["150", "300"] or any(r["status"] != "completed" for r in rows):
+        sys.exit(f"gpu-check: rows {[(r['actors'], r['status']) for r in rows]}, expected 150 and 300 completed")
+    for r in rows:
+        if not r["context"].startswith("EGL") or r["frames_run"] != "8" or r["frames_measured"] != "8":
+            sys.exit(f"gpu-check: row {r}: expected EGL, 8 frames run and measured (no warm-up at 8 frames)")
+        for column in ("step_ms", "app_cull_ms", "draw_ms", "draw_cpu_ms", "frame_ms", "fps"):
+            if not float(r[column]) > 0:
+                sys.exit(f"gpu-check: {column} = {r[column]} in {r}")
+        # The run's own stats.csv agrees with the row: the mean of its DRAW CPU column.
+        stats = list(csv.DictReader(open(os.path.join(work, "runs", f"{r['actors']}-320x180", "stats.csv"))))
+        mean = sum(float(s["draw_cpu_ms"]) for s in stats) / len(stats)
+        if abs(mean - float(r["draw_cpu_ms"])) > 0.002:
+            sys.exit(f"gpu-check: draw_cpu_ms {r['draw_cpu_ms']} is not the mean of stats.csv's ({mean:.4f})")
+    log = open(out + ".log").read()
+    if "EGL devices:" not in log or "--gl egl:" not in log:
+        sys.exit("gpu-check: the log lacks the EGL devices:\n" + log)
+    # Nothing fits a budget of 1 s: every run is skipped, said in the CSV, and the check fails.
+    p = subprocess.run([*base, "--actors", "150", "--frames", "8", "--budget", "1", "--out", out], capture_output=True, text=True)
+    rows = list(csv.DictReader(open(out)))
+    if p.returncode != 1 or [r["status"] for r in rows] != ["skipped (budget)"]:
+        sys.exit(f"gpu-check with a budget of 1 s: exit {p.returncode}, rows {rows}")
+    p = subprocess.run([*base, "--frames", "0"], capture_output=True, text=True)
+    if p.returncode != 2 or "--frames: must be a whole number from 1, got '0'" not in p.stderr:
+        sys.exit(f"gpu-check --frames 0: exit {p.returncode}:\n{p.stderr}")
+    print("gpu-check: 2 runs measured, a spent budget skips, a bad option is refused")
+
+
 def window(exe, scenes, work):
     out = os.path.join(work, "window")
     p = run(exe, out, "--scene", os.path.join(scenes, "plain.json"), "--frames", "5", "--width", "320", "--height", "180")
@@ -549,4 +588,4 @@ if __name__ == "__main__":
     os.makedirs(work, exist_ok=True)
     {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang,
      "mpiKill": mpiKill, "budget": budget, "signals": signals, "fileLimit": fileLimit, "scale": scale,
-     "memoryLimit": memoryLimit}[mode](exe, scenes, work)
+     "memoryLimit": memoryLimit, "gpuCheck": gpuCheck}[mode](exe, scenes, work)

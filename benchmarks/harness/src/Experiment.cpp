@@ -1,5 +1,6 @@
 #include "throng/bench/Experiment.h"
 
+#include "throng/render/ContextFactory.h"
 #include "throng/scenegraph/OutputPaths.h"
 
 #include <cmath>
@@ -66,6 +67,10 @@ Experiment::Experiment(std::string program, std::string description, unsigned op
     if (options & kImageSize) {
         app_.add_option("--width", spec_.width, "image width")->type_name("W")->check(CLI::Range(16, 8192));
         app_.add_option("--height", spec_.height, "image height")->type_name("H")->check(CLI::Range(16, 8192));
+        app_.add_option("--gl", spec_.gl, "GL context: auto (EGL on a GPU, else OSMesa, else EGL surfaceless), egl (a GPU, else "
+                                          "Mesa's surfaceless platform) or osmesa")
+            ->type_name("KIND")
+            ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
     }
     if (options & kThreads) app_.add_option("--threads", spec_.threads, "threads of the step")->type_name("N")->check(CLI::Range(1, 256));
     if (options & kStarts)
@@ -106,6 +111,10 @@ void Experiment::progress(const std::string& message) const { std::fprintf(stder
 void Experiment::fail(const std::string& why) const {
     std::fprintf(stderr, "%s: %s\n", program_.c_str(), why.c_str());
     std::exit(kFailure);
+}
+
+std::shared_ptr<GlContext> experimentContext(const ExperimentSpec& spec) {
+    return createContext({.width = spec.width, .height = spec.height, .window = false, .api = glApiFromName(spec.gl)});
 }
 
 void writeWhole(const std::string& path, const std::string& text) {

@@ -9,12 +9,15 @@
 // through a ResultTable (ResultTable.h).
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "throng/render/GlContext.h"
 
 namespace throng::bench {
 
@@ -27,6 +30,7 @@ struct ExperimentSpec {
     int warmup = 60;                           ///< ticks stepped before measuring
     int width = 1280;                          ///< image width
     int height = 720;                          ///< image height
+    std::string gl = "auto";                     ///< the GL context (--gl, with the image size): auto, egl or osmesa
     int threads = 1;                           ///< threads of the step
     std::vector<double> starts{};              ///< camera path times (s) where measured runs start
     int errorEvery = 4;                        ///< measured ticks between accuracy measurements
@@ -44,7 +48,7 @@ enum ExperimentOption : unsigned {
     kCameras = 1u << 3,      ///< --cameras street,overview
     kFrames = 1u << 4,       ///< the measured ticks (named by ExperimentNames::frames)
     kWarmup = 1u << 5,       ///< --warmup N
-    kImageSize = 1u << 6,    ///< --width W --height H
+    kImageSize = 1u << 6,    ///< --width W --height H --gl KIND
     kThreads = 1u << 7,      ///< --threads N
     kCsv = 1u << 8,          ///< --csv FILE
     kAccuracyCsv = 1u << 9,  ///< --accuracy-csv FILE
@@ -108,6 +112,10 @@ private:
     std::vector<std::string> outputs_;
     std::string reproduction_;
 };
+
+/// The off-screen context an experiment draws in: `spec.gl`'s kind at spec.width x spec.height.
+/// Throws ContextUnavailable (what is missing) when a kind asked for by name cannot be made.
+std::shared_ptr<GlContext> experimentContext(const ExperimentSpec& spec);
 
 /// Writes `text` to `path` whole or not at all: into "path.part", then renamed. Throws
 /// std::runtime_error naming the path when it cannot.
