@@ -44,6 +44,9 @@ SKIPPED = [
     (r"^(\w+=(\"[^\"]*\"|\S+) )*benchmarks/(run-report|check-baseline|update-frame-results)\b",
      "builds the release preset and measures for many minutes (run before an issue is resolved); "
      "the programs it runs are run below, one command each"),
+    (r"^(benchmarks|build/gpu-check)/gpu-check\b",
+     "builds a second release tree (the lean throng-town) and measures for minutes; town.gpuCheck runs "
+     "its run step small with the suite's throng-town"),
     (r"^paraview\b", "ParaView is a desktop program, not installed here; the command that writes what it opens runs"),
     (r"--hostfile|^cat > hosts", "the two-host example needs two machines"),
 ]
