@@ -559,6 +559,10 @@ def gpuCheck(exe, scenes, work):
     log = open(out + ".log").read()
     if "EGL devices:" not in log or "--gl egl:" not in log:
         sys.exit("gpu-check: the log lacks the EGL devices:\n" + log)
+    # Without --work the runs' folder is temporary, removed at exit without a shell error.
+    p = subprocess.run([*base, "--actors", "150", "--frames", "2", "--out", out], capture_output=True, text=True)
+    if p.returncode != 0 or re.search(r"gpu-check: line \d+: ", p.stdout + p.stderr):
+        sys.exit(f"gpu-check without --work: exit {p.returncode}:\n{p.stdout}{p.stderr}")
     # Nothing fits a budget of 1 s: every run is skipped, said in the CSV, and the check fails.
     p = subprocess.run([*base, "--actors", "150", "--frames", "8", "--budget", "1", "--out", out], capture_output=True, text=True)
     rows = list(csv.DictReader(open(out)))
