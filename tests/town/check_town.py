@@ -29,7 +29,8 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                nothing meets keeps the cheapest rung, one everything meets the most accurate, and the
                cheapest rung really draws more impostors and evaluates fewer nodes
   gpuCheck     benchmarks/gpu-check run with this throng-town, small: one CSV row per run with the
-               context, step, APP+CULL, DRAW CPU and GPU and fps, the log with the EGL devices; a
+               context, step, APP+CULL, DRAW CPU and GPU and fps, the stamp with the EGL devices, the
+               page made from them; a
                budget too small for any run skips them (exit 1); a bad option is refused (exit 2)
 """
 import csv
@@ -556,9 +557,17 @@ def gpuCheck(exe, scenes, work):
         mean = sum(float(s["draw_cpu_ms"]) for s in stats) / len(stats)
         if abs(mean - float(r["draw_cpu_ms"])) > 0.002:
             sys.exit(f"gpu-check: draw_cpu_ms {r['draw_cpu_ms']} is not the mean of stats.csv's ({mean:.4f})")
-    log = open(out + ".log").read()
-    if "EGL devices:" not in log or "--gl egl:" not in log:
-        sys.exit("gpu-check: the log lacks the EGL devices:\n" + log)
+    about = open(out + ".about").read()
+    if "EGL devices:" not in about or "--gl egl:" not in about or "gpu-check: commit: " not in about:
+        sys.exit("gpu-check: the .about lacks the commit or the EGL devices:\n" + about)
+    if "150-320x180: step " not in open(out + ".log").read():
+        sys.exit("gpu-check: the log lacks the runs' lines")
+    # The page from that CSV: a row per run, with the context the runs used.
+    page = os.path.join(work, "page.md")
+    p = subprocess.run([script, "page", "--out", page, out], capture_output=True, text=True)
+    text = open(page).read() if p.returncode == 0 else ""
+    if p.returncode != 0 or "| 150 | 320x180 | 8 |" not in text or "| 300 | 320x180 | 8 |" not in text or "(EGL" not in text:
+        sys.exit(f"gpu-check page: exit {p.returncode}\n{p.stderr}\n{text}")
     # Without --work the runs' folder is temporary, removed at exit without a shell error.
     p = subprocess.run([*base, "--actors", "150", "--frames", "2", "--out", out], capture_output=True, text=True)
     if p.returncode != 0 or re.search(r"gpu-check: line \d+: ", p.stdout + p.stderr):
