@@ -24,8 +24,8 @@ public:
         int index = 0;          ///< in eglQueryDevicesEXT's order
         bool software = false;  ///< Mesa's software device (EGL_MESA_device_software)
         std::string drmFile;    ///< its DRM node (/dev/dri/cardN), or empty
-        std::string vendor;     ///< the driver's vendor and renderer (EGL_EXT_device_query_name), or empty
-        std::string renderer;
+        std::string vendor;     ///< the driver's vendor (EGL_EXT_device_query_name), or empty
+        std::string renderer;   ///< the device's name (EGL_EXT_device_query_name), or empty
         std::string extensions; ///< the device's extension string
     };
 
