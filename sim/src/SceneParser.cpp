@@ -18,6 +18,7 @@
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneRanges.h"
+#include "throng/sim/SpeedProfile.h"
 #include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
@@ -214,6 +215,24 @@ std::vector<glm::dvec2> geometricLevels(const Reader& lod) {
         previous = until;
     }
     return out;
+}
+
+// "walkways": walkable floor rectangles instead of a town, and the navigation mesh's voxel.
+void readWalkways(const Reader& root, SceneDescription& s) {
+    const Reader w = root.at("walkways");
+    w.object({"floors", "cellSize"});
+    WalkwaysDescription walkways;
+    const Reader floors = w.at("floors");
+    const std::size_t n = floors.array();
+    if (n == 0) floors.fail("must list at least one floor rectangle");
+    for (std::size_t i = 0; i < n; ++i) {
+        const Reader f = floors.at(i);
+        f.object({"center", "size"});
+        walkways.floors.push_back({f.at("center").vecWithin<2>("walkways", "floors[].center"),
+                                   f.at("size").vecWithin<2>("walkways", "floors[].size")});
+    }
+    if (w.has("cellSize")) walkways.cellSize = w.at("cellSize").within("walkways", "cellSize");
+    s.walkways = walkways;
 }
 
 // "town": the grid of blocks, its tiles, occluders, LOD levels and regions.
@@ -415,7 +434,8 @@ void readActors(const Reader& root, SceneDescription& s) {
     std::map<std::string, std::size_t> names;  // group name -> its index, to refuse a repeated one
     for (std::size_t i = 0; i < actors.array(); ++i) {
         const Reader a = actors.at(i);
-        a.object({"name", "template", "count", "behaviour", "area", "speed", "altitude", "groupSize", "levels", "priority"});
+        a.object({"name", "template", "count", "behaviour", "area", "speed", "speedProfile", "goal", "altitude", "groupSize", "levels",
+                  "priority"});
         ActorGroupDescription g;
         g.name = a.has("name") ? a.at("name").name() : "group " + std::to_string(i);
         if (const auto [at, added] = names.emplace(g.name, i); !added)
@@ -439,6 +459,16 @@ void readActors(const Reader& root, SceneDescription& s) {
         };
         if (onlyFor("speed", g.behaviour != "idle", "walk and flight"))
             g.speed = a.at("speed").rangeWithin("actors", g.behaviour == "walk" ? "speed (walk)" : "speed (flight)");
+        if (onlyFor("speedProfile", g.behaviour == "walk", "walk")) {
+            if (a.has("speed")) a.at("speedProfile").fail("give 'speed' or 'speedProfile', not both");
+            g.speedProfile = a.at("speedProfile").string();
+            if (!findSpeedProfile(g.speedProfile)) {
+                std::string known;
+                for (const SpeedProfile& p : speedProfiles()) known += (known.empty() ? "" : ", ") + std::string(p.name);
+                a.at("speedProfile").fail("'" + g.speedProfile + "' is not a speed profile (" + known + ")");
+            }
+        }
+        if (onlyFor("goal", g.behaviour == "walk", "walk")) g.goal = a.at("goal").vecWithin<2>("actors", "goal");
         if (onlyFor("altitude", g.behaviour == "flight", "flight")) g.altitude = a.at("altitude").rangeWithin("actors", "altitude");
         if (onlyFor("groupSize", g.behaviour == "idle", "idle")) {
             g.groupSize = glm::ivec2(a.at("groupSize").rangeWithin("actors", "groupSize"));
@@ -448,7 +478,7 @@ void readActors(const Reader& root, SceneDescription& s) {
         }
         if (a.has("levels")) g.levels = levelEnds(a.at("levels"), "actors", "levels");
         if (a.has("priority")) g.priority = a.at("priority").within("actors", "priority");
-        if (g.behaviour == "walk" && !s.town) a.at("behaviour").fail("'walk' needs a town to walk in");
+        if (g.behaviour == "walk" && !s.town && !s.walkways) a.at("behaviour").fail("'walk' needs a town or walkways to walk in");
         s.actors.push_back(g);
     }
 }
@@ -482,7 +512,7 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
         throw SceneError(file, "", "holds a number beyond a double's range" + (number.empty() ? std::string() : ": " + number));
     }
     const Reader root(doc, "", file);
-    root.object({"name", "seed", "step", "town", "templates", "actors", "effects", "representation", "camera"});
+    root.object({"name", "seed", "step", "town", "walkways", "templates", "actors", "effects", "representation", "camera"});
     SceneDescription s;
     s.baseDirectory = baseDirectory;
     s.file = file;
@@ -491,6 +521,10 @@ SceneDescription parseScene(const std::string& text, const std::string& baseDire
     if (root.has("step")) s.step = root.at("step").within("document", "step");
 
     if (root.has("town")) readTown(root, s, baseDirectory, file);
+    if (root.has("walkways")) {
+        if (root.has("town")) root.at("walkways").fail("give 'town' or 'walkways', not both");
+        readWalkways(root, s);
+    }
 
     readTemplates(root, s, baseDirectory, file);
 

@@ -30,6 +30,7 @@
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/Ranks.h"
+#include "throng/sim/SpeedProfile.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/TownRegions.h"
 
@@ -141,9 +142,32 @@ struct Placement {
         gazeSettings.seed = d.seed;
     }
 
+    // Walkways are narrow and their scenarios start people side by side: a point of the area itself,
+    // onto the mesh within 10 cm (a wall's margin is no place to start), clear of everyone placed
+    // before by a body's width where one of 64 tries is (else the clearest try).
+    glm::vec3 walkwayStart(const AreaDescription& area, const CounterRng& r) {
+        const float body = 2.0f * Locomotion::Settings{}.radius;
+        glm::vec3 best(0.0f);
+        float bestClearance = -1.0f;
+        for (std::uint64_t k = 0; k < 64 && bestClearance < body; ++k) {
+            const glm::vec3 want(float(area.center.x + area.size.x * (r.uniform(2 * k) - 0.5)), 0.0f,
+                                 float(area.center.y + area.size.y * (r.uniform(2 * k + 1) - 0.5)));
+            const auto p = nav->nearestPoint(want, glm::vec3(0.1f, 1.0f, 0.1f));
+            if (!p) continue;
+            float clearance = std::numeric_limits<float>::max();
+            for (const glm::vec3& q : started) clearance = std::min(clearance, glm::length(glm::vec2(p->x - q.x, p->z - q.z)));
+            if (clearance > bestClearance) best = *p, bestClearance = clearance;
+        }
+        if (bestClearance < 0.0f) best = nav->randomPoint(r, 64);  // no point of the area is on the mesh
+        started.push_back(best);
+        return best;
+    }
+    std::vector<glm::vec3> started;  // walkways: where the walkers placed so far start
+
     // A random point of the navigation mesh inside `area` (or the nearest one found).
-    glm::vec3 pointIn(const AreaDescription& area, std::uint64_t s) const {
+    glm::vec3 pointIn(const AreaDescription& area, std::uint64_t s) {
         const CounterRng r(d.seed, s);
+        if (d.walkways) return walkwayStart(area, r);
         for (std::uint64_t k = 0; k < 64; ++k) {
             const glm::vec3 p = nav->randomPoint(r, k);
             if (std::abs(p.x - area.center.x) <= 0.5 * area.size.x && std::abs(p.z - area.center.y) <= 0.5 * area.size.y) return p;
@@ -162,13 +186,17 @@ struct Placement {
             s.farDistance = d.effects.farUpdateDistance;
             s.farEvery = d.effects.farUpdateEvery;
             s.seed = d.seed;
-            s.regions = townRegions(*d.town, file);
-            // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
-            if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256) s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
+            if (d.town) {  // walkways are one region
+                s.regions = townRegions(*d.town, file);
+                // Beyond 16 x 16 blocks (a tiled mesh), people walk to places within 8 blocks.
+                if (std::int64_t(d.town->blocksX) * d.town->blocksZ > 256)
+                    s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
+            }
             walkers = std::make_shared<Locomotion>(nav, s, levels, &effects);
             if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects);
         }
         const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
+        const SpeedProfile* profile = g.speedProfile.empty() ? nullptr : findSpeedProfile(g.speedProfile);
         for (std::int64_t i = 0; i < g.count; ++i, ++stream) {
             Locomotion::Actor a;
             a.tmpl = t.tmpl;
@@ -177,7 +205,8 @@ struct Placement {
             a.runClip = t.runClip;
             a.runClipSpeed = t.runClipSpeed;
             a.start = pointIn(g.area, stream);
-            a.speed = rng.uniform(stream, speed.x, speed.y);
+            a.speed = profile ? profile->draw(rng, stream) : rng.uniform(stream, speed.x, speed.y);
+            if (g.goal) a.goal = glm::vec3(float(g.goal->x), 0.0f, float(g.goal->y));
             a.stream = stream;
             std::uint32_t slot = walkers->addActor(a);
             if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
@@ -285,6 +314,17 @@ void Simulation::setTownLodScale(double scale) {
 void Simulation::buildTown(const BuildProgress& progress) {
     const SceneDescription& d = description_;
     const std::string file = d.file.empty() ? "scene" : d.file;
+    if (d.walkways) {
+        // Floors to walk on, drawn as pale slabs; where there is no floor there is a wall.
+        for (std::size_t i = 0; i < d.walkways->floors.size(); ++i) {
+            const AreaDescription& f = d.walkways->floors[i];
+            const glm::vec3 c(float(f.center.x), -0.05f, float(f.center.y)), half(float(0.5 * f.size.x), 0.05f, float(0.5 * f.size.y));
+            auto slab = makeBox("floor " + std::to_string(i), c, half, glm::vec4(0.72f, 0.7f, 0.66f, 1.0f));
+            root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(slab)));
+            navGeometry_.addBox(c - glm::vec3(half.x, 0.45f, half.z), c + glm::vec3(half.x, 0.05f, half.z), true);
+        }
+        return;
+    }
     if (!d.town) {
         // A plain ground to stand and fly over.
         auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
@@ -389,6 +429,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
         // 2 x 2 blocks, built in parallel.
         if (d.town && std::int64_t(d.town->blocksX) * d.town->blocksZ > 256)
             settings.tileSize = float(2 * (d.town->blockTiles + 1) * d.town->tileSize);
+        if (d.walkways) settings.cellSize = float(d.walkways->cellSize);
         nav_ = NavMesh::build(navGeometry_, settings);
     }
     navGeometry_ = NavGeometry{};

@@ -68,6 +68,13 @@ struct AreaDescription {
     glm::dvec2 size{100.0};  ///< extent across (x) and deep (z), metres
 };
 
+/// Walkways instead of a town: rectangles of flat floor people may walk on, everything else a
+/// wall. Corridors, corners and bottlenecks, as pedestrian-dynamics validation scenarios draw them.
+struct WalkwaysDescription {
+    std::vector<AreaDescription> floors;  ///< walkable rectangles (centre and size, metres), overlapping or touching
+    double cellSize = 0.1;                ///< navigation mesh voxel across, metres (fine enough for narrow doors)
+};
+
 /// A group of actors sharing a template and a behaviour.
 struct ActorGroupDescription {
     std::string name;                    ///< for statistics ("group 0" if not given)
@@ -80,6 +87,11 @@ struct ActorGroupDescription {
     glm::ivec2 groupSize{3, 5};          ///< idle: people per group
     std::vector<double> levels;          ///< behavioural LOD bands (ends, metres); empty: defaults
     double priority = 1.0;               ///< detail priority
+    /// walk: a fixed destination (x, z), walked to and stayed at; none: random destinations.
+    std::optional<glm::dvec2> goal;
+    /// walk: free speeds drawn from a named table of measured people instead of `speed` (see
+    /// speedProfile(): "rimea-under-30", "rimea-30-to-50", "rimea-over-50", "rimea-impaired").
+    std::string speedProfile;
 };
 
 /// Effects that exist only when declared.
@@ -133,7 +145,8 @@ struct SceneDescription {
     std::string name;                                      ///< root node's name ("scene" if empty)
     std::uint64_t seed = 1;                                ///< actors' randomness (not the town's)
     double step = 1.0 / 60.0;                              ///< simulation step, seconds
-    std::optional<TownDescription> town;                   ///< none: a flat ground
+    std::optional<TownDescription> town;                   ///< none: walkways, or else a flat ground
+    std::optional<WalkwaysDescription> walkways;           ///< instead of a town: walkable floors
     std::map<std::string, TemplateDescription> templates;  ///< actor templates by name
     std::vector<ActorGroupDescription> actors;             ///< groups of actors, in file order
     EffectsDescription effects;                            ///< declared effects (none by default)
