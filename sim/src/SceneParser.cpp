@@ -220,7 +220,7 @@ std::vector<glm::dvec2> geometricLevels(const Reader& lod) {
 // "walkways": walkable floor rectangles instead of a town, and the navigation mesh's voxel.
 void readWalkways(const Reader& root, SceneDescription& s) {
     const Reader w = root.at("walkways");
-    w.object({"floors", "cellSize"});
+    w.object({"floors", "cellSize", "bodyRadius"});
     WalkwaysDescription walkways;
     const Reader floors = w.at("floors");
     const std::size_t n = floors.array();
@@ -232,6 +232,7 @@ void readWalkways(const Reader& root, SceneDescription& s) {
                                    f.at("size").vecWithin<2>("walkways", "floors[].size")});
     }
     if (w.has("cellSize")) walkways.cellSize = w.at("cellSize").within("walkways", "cellSize");
+    if (w.has("bodyRadius")) walkways.bodyRadius = w.at("bodyRadius").within("walkways", "bodyRadius");
     s.walkways = walkways;
 }
 

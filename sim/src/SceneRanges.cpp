@@ -21,6 +21,7 @@ constexpr std::array kRanges{
     SceneRange{"walkways", "floors[].center", -kFar, kFar, false, false, false, "m"},
     SceneRange{"walkways", "floors[].size", 0.0, kFar, true, false, false, "m"},
     SceneRange{"walkways", "cellSize", 0.02, 1.0, false, false, false, "m"},
+    SceneRange{"walkways", "bodyRadius", 0.1, 1.0, false, false, false, "m"},
     SceneRange{"templates", "walkClipSpeed", 0.05, 20.0, false, false, false, "m/s"},
     SceneRange{"templates", "runClipSpeed", 0.05, 20.0, false, false, false, "m/s"},
     SceneRange{"templates", "scale", 0.0001, 1000.0},

@@ -146,7 +146,7 @@ struct Placement {
     // onto the mesh within 10 cm (a wall's margin is no place to start), clear of everyone placed
     // before by a body's width where one of 64 tries is (else the clearest try).
     glm::vec3 walkwayStart(const AreaDescription& area, const CounterRng& r) {
-        const float body = 2.0f * Locomotion::Settings{}.radius;
+        const float body = 2.0f * float(d.walkways->bodyRadius);
         glm::vec3 best(0.0f);
         float bestClearance = -1.0f;
         for (std::uint64_t k = 0; k < 64 && bestClearance < body; ++k) {
@@ -184,6 +184,7 @@ struct Placement {
             s.avoidanceQuality = d.effects.avoidanceQuality;
             s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
             s.farDistance = d.effects.farUpdateDistance;
+            if (d.walkways) s.radius = float(d.walkways->bodyRadius);
             s.farEvery = d.effects.farUpdateEvery;
             s.seed = d.seed;
             if (d.town) {  // walkways are one region
@@ -429,7 +430,10 @@ void Simulation::buildActors(const BuildProgress& progress) {
         // 2 x 2 blocks, built in parallel.
         if (d.town && std::int64_t(d.town->blocksX) * d.town->blocksZ > 256)
             settings.tileSize = float(2 * (d.town->blockTiles + 1) * d.town->tileSize);
-        if (d.walkways) settings.cellSize = float(d.walkways->cellSize);
+        if (d.walkways) {
+            settings.cellSize = float(d.walkways->cellSize);
+            settings.agentRadius = float(d.walkways->bodyRadius);
+        }
         nav_ = NavMesh::build(navGeometry_, settings);
     }
     navGeometry_ = NavGeometry{};

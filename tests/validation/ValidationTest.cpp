@@ -11,6 +11,16 @@
 //     1993), walking without interaction: every walker's measured speed lies in its population's
 //     range, and each population's speeds follow the distribution drawn from (Kolmogorov-Smirnov,
 //     1 % level).
+//   * Bottleneck (Seyfried et al. 2009, Kretz et al. 2006): 60 walkers (0.44 m across) leave a room
+//     through a corridor 2 m long, 0.8, 1.0 and 1.2 m wide: all through within 120 s, the specific
+//     flow within 1.4 to 2.2 persons/(m s) (the experiments' 1.6 to 2.0 widened by their own
+//     spread), bodies overlapping under 2 %. DetourCrowd fails it: a known failure, as below.
+//   * Counter-flow: two groups of 30 walk at each other along a corridor 4 m wide: every walker
+//     passes the other group within 90 s (no deadlock), and lanes form: the lane order parameter
+//     (below) of the walkers between the groups' starts exceeds 0.5 while they pass. DetourCrowd
+//     fails it (one walker stuck, bodies overlapping in 10 % of agent-seconds): a known failure,
+//     skipped in the suite, run and reported when THRONG_VALIDATION_KNOWN_FAILURES=1 (the results
+//     page's script sets it), until the avoidance that passes it lands.
 //
 // Each prints what it measured (the figures the results page reports).
 
@@ -19,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -34,7 +45,6 @@ namespace throng {
 namespace {
 
 const std::string kScenes = THRONG_VALIDATION_SCENES;
-constexpr double kBodyRadius = 0.35;  // Locomotion's agent radius, metres
 
 // A scenario's world and its walkers, group by group.
 class Scenario {
@@ -43,6 +53,7 @@ public:
         sim::SceneDescription scene = sim::parseSceneFile(kScenes + "/" + file);
         if (edit) edit(scene);
         floors_ = scene.walkways->floors;
+        bodyRadius_ = scene.walkways->bodyRadius;
         world_ = sim::Simulation::build(std::move(scene));
         for (const auto& g : world_->groups()) {
             std::vector<std::uint32_t> slots;
@@ -55,6 +66,7 @@ public:
     double stepSeconds() const { return world_->description().step; }
     const std::vector<std::uint32_t>& group(std::size_t g) const { return slots_.at(g); }
     glm::vec3 position(std::uint32_t slot) const { return world_->locomotion()->position(slot); }
+    double bodyRadius() const { return bodyRadius_; }
     // Whether a body of radius `radius` centred at `p` lies on the floors (its disc inside their
     // union, checked at its centre and eight points of its rim).
     bool bodyOnFloors(glm::vec3 p, double radius) const {
@@ -71,6 +83,7 @@ public:
 
 private:
     std::vector<sim::AreaDescription> floors_;
+    double bodyRadius_ = 0.35;
     std::unique_ptr<sim::Simulation> world_;
     std::vector<std::vector<std::uint32_t>> slots_;
 };
@@ -78,6 +91,7 @@ private:
 // Bodies interpenetrating: each step, every counted walker whose disc overlaps another's by more
 // than `depth` adds the step's time to the overlapping agent-seconds.
 struct OverlapMeter {
+    double radius = 0.35;  // the walkers' body radius
     double depth = 0.05;
     double agentSeconds = 0.0, overlappingSeconds = 0.0, deepest = 0.0;
 
@@ -87,7 +101,7 @@ struct OverlapMeter {
             for (std::size_t j = 0; j < bodies.size(); ++j) {
                 if (i == j) continue;
                 const double dx = bodies[i].x - bodies[j].x, dz = bodies[i].z - bodies[j].z;
-                worst = std::max(worst, 2.0 * kBodyRadius - std::sqrt(dx * dx + dz * dz));
+                worst = std::max(worst, 2.0 * radius - std::sqrt(dx * dx + dz * dz));
             }
             agentSeconds += dt;
             if (worst > depth) overlappingSeconds += dt;
@@ -120,7 +134,7 @@ TEST(Validation, Rimea1KeepsSpeedInCorridor) {
     const auto t = rimea1Time(s);
     ASSERT_TRUE(t) << "the walker never reached the corridor's end";
     std::printf("RiMEA 1: 40 m in %.2f s (accepted: 26 to 34 s; 1.33 m/s gives 30.1 s)\n", *t);
-    RecordProperty("rimea1_seconds", std::to_string(*t));
+    RecordProperty("seconds", std::to_string(*t));
     EXPECT_GE(*t, 26.0);
     EXPECT_LE(*t, 34.0);
 }
@@ -130,6 +144,7 @@ TEST(Validation, Rimea1FailsForAWalker30PercentFaster) {
     const auto t = rimea1Time(s);
     ASSERT_TRUE(t);
     std::printf("RiMEA 1 at 1.73 m/s: 40 m in %.2f s, outside 26 to 34 s as it must be\n", *t);
+    RecordProperty("seconds", std::to_string(*t));
     EXPECT_LT(*t, 26.0) << "a walker 30 % faster than the guideline's passed its check: the check cannot fail";
 }
 
@@ -139,14 +154,14 @@ TEST(Validation, Rimea6TurnsTheCorner) {
     ASSERT_EQ(walkers.size(), 20u);
     const double arrival = 8.0;  // z of the line 6 m round the corner
     std::vector<double> arrived(walkers.size(), -1.0);
-    OverlapMeter overlaps;
+    OverlapMeter overlaps{s.bodyRadius()};
     std::size_t offFloor = 0;
     while (s.time() < 60.0 && std::count(arrived.begin(), arrived.end(), -1.0) > 0) {
         s.step();
         std::vector<glm::vec3> turning;  // walkers not yet round the corner
         for (std::size_t i = 0; i < walkers.size(); ++i) {
             const glm::vec3 p = s.position(walkers[i]);
-            if (!s.bodyOnFloors(p, kBodyRadius - 0.05)) ++offFloor;
+            if (!s.bodyOnFloors(p, s.bodyRadius() - 0.05)) ++offFloor;
             if (arrived[i] < 0.0 && p.z >= arrival) arrived[i] = s.time();
             if (arrived[i] < 0.0) turning.push_back(p);
         }
@@ -158,7 +173,11 @@ TEST(Validation, Rimea6TurnsTheCorner) {
                 "walker-steps; overlapping by more than 5 cm: %.3f %% of %.0f agent-seconds, deepest %.3f m\n",
                 walkers.size() - std::size_t(missing), last, offFloor, 100.0 * overlaps.share(), overlaps.agentSeconds,
                 overlaps.deepest);
-    RecordProperty("rimea6_overlap_share", std::to_string(overlaps.share()));
+    RecordProperty("arrived", std::to_string(walkers.size() - std::size_t(missing)));
+    RecordProperty("last_arrival_s", std::to_string(last));
+    RecordProperty("off_floor_steps", std::to_string(offFloor));
+    RecordProperty("overlap_share", std::to_string(overlaps.share()));
+    RecordProperty("deepest_overlap_m", std::to_string(overlaps.deepest));
     EXPECT_EQ(missing, 0) << "walkers still before the corner after 60 s";
     EXPECT_EQ(offFloor, 0u) << "a body crossed a wall";
     EXPECT_LT(overlaps.share(), 0.02);
@@ -220,10 +239,146 @@ TEST(Validation, Rimea7SpeedsFollowThePopulations) {
         std::printf("RiMEA 7, %s: %zu walkers at %.2f to %.2f m/s (table: %.2f to %.2f); KS distance %.3f (1 %% level: %.3f)\n",
                     std::string(profile.who).c_str(), speeds.size(), speeds.front(), speeds.back(), profile.lo, profile.hi, d,
                     critical);
+        const std::string key(profile.name);
+        RecordProperty(key + "_min", std::to_string(speeds.front()));
+        RecordProperty(key + "_max", std::to_string(speeds.back()));
+        RecordProperty(key + "_ks", std::to_string(d));
+        RecordProperty(key + "_ks_critical", std::to_string(critical));
         EXPECT_GE(speeds.front(), profile.lo - 0.01) << profile.who;
         EXPECT_LE(speeds.back(), profile.hi + 0.01) << profile.who;
         EXPECT_LT(d, critical) << profile.who << ": the measured speeds do not follow the drawn distribution";
     }
+}
+
+// Bottleneck: the specific flow through the corridor of `width` metres (its floor resized), measured
+// where the walkers cross its middle: passages 10 to 50 of 60, persons per metre and second; with the
+// time the last walker crossed.
+struct BottleneckRun {
+    double specificFlow = 0.0, lastCrossing = -1.0;
+    std::size_t crossed = 0;
+    double overlapShare = 0.0, deepest = 0.0;
+};
+
+BottleneckRun runBottleneck(double width) {
+    Scenario s("bottleneck.json", [&](sim::SceneDescription& d) { d.walkways->floors.at(1).size.y = width; });
+    const auto& walkers = s.group(0);
+    std::vector<glm::vec3> last;
+    for (std::uint32_t slot : walkers) last.push_back(s.position(slot));
+    std::vector<double> crossings;
+    std::vector<char> done(walkers.size(), 0);
+    OverlapMeter overlaps{s.bodyRadius()};
+    double lastT = 0.0;
+    while (s.time() < 120.0 && crossings.size() < walkers.size()) {
+        s.step();
+        std::vector<glm::vec3> before;
+        for (std::size_t i = 0; i < walkers.size(); ++i) {
+            const glm::vec3 p = s.position(walkers[i]);
+            if (!done[i] && last[i].x < 9.0f && p.x >= 9.0f) {
+                crossings.push_back(lastT + (s.time() - lastT) * (9.0 - last[i].x) / (p.x - last[i].x));
+                done[i] = 1;
+            }
+            if (!done[i]) before.push_back(p);
+            last[i] = p;
+        }
+        overlaps.add(before, s.stepSeconds());
+        lastT = s.time();
+    }
+    BottleneckRun r;
+    r.crossed = crossings.size();
+    std::sort(crossings.begin(), crossings.end());
+    if (crossings.size() > 50) r.specificFlow = 40.0 / (crossings[49] - crossings[9]) / width;
+    if (!crossings.empty()) r.lastCrossing = crossings.back();
+    r.overlapShare = overlaps.share(), r.deepest = overlaps.deepest;
+    return r;
+}
+
+TEST(Validation, BottleneckFlowMatchesExperiments) {
+    if (!std::getenv("THRONG_VALIDATION_KNOWN_FAILURES"))
+        GTEST_SKIP() << "a known failure of DetourCrowd's avoidance (at 0.8 m three walkers clog the door for good; 2 to 4 % of "
+                        "agent-seconds overlapping): run with THRONG_VALIDATION_KNOWN_FAILURES=1";
+    for (double width : {0.8, 1.0, 1.2}) {
+        const BottleneckRun r = runBottleneck(width);
+        std::printf("Bottleneck %.1f m: %zu of 60 through, the last after %.1f s; specific flow %.2f persons/(m s) (experiments: about "
+                    "1.6 to 2.0); overlapping by more than 5 cm: %.3f %%, deepest %.3f m\n",
+                    width, r.crossed, r.lastCrossing, r.specificFlow, 100.0 * r.overlapShare, r.deepest);
+        const std::string key = "width_" + std::to_string(int(std::lround(width * 10)));
+        RecordProperty(key + "_specific_flow", std::to_string(r.specificFlow));
+        RecordProperty(key + "_overlap_share", std::to_string(r.overlapShare));
+        RecordProperty(key + "_through", std::to_string(r.crossed));
+        EXPECT_EQ(r.crossed, 60u) << width << " m: walkers left behind after 120 s";
+        // The experiments' 1.6 to 2.0, widened by 0.2 each way: about how far apart the experiments
+        // themselves lie (Seyfried et al. 2009, Kretz et al. 2006).
+        EXPECT_GE(r.specificFlow, 1.4) << width << " m";
+        EXPECT_LE(r.specificFlow, 2.2) << width << " m";
+        EXPECT_LT(r.overlapShare, 0.02) << width << " m";
+    }
+}
+
+// Lane order: for each walker, those walking the same way (+1) or the other way (-1) within 0.5 m
+// across and 3 m along it; its order is ((same - other) / (same + other))^2, 1 in a lane of its own
+// kind, about 0 in a mixed crowd; the mean over walkers with anyone near (nullopt: nobody near anyone).
+std::optional<double> laneOrder(const std::vector<glm::vec3>& bodies, const std::vector<int>& direction) {
+    double sum = 0.0;
+    int counted = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        int same = 0, other = 0;
+        for (std::size_t j = 0; j < bodies.size(); ++j)
+            if (j != i && std::abs(bodies[j].z - bodies[i].z) < 0.5f && std::abs(bodies[j].x - bodies[i].x) < 3.0f)
+                (direction[j] == direction[i] ? same : other) += 1;
+        if (same + other == 0) continue;
+        const double f = double(same - other) / double(same + other);
+        sum += f * f;
+        ++counted;
+    }
+    return counted ? std::optional<double>(sum / counted) : std::nullopt;
+}
+
+TEST(Validation, CounterFlowFormsLanesWithoutDeadlock) {
+    if (!std::getenv("THRONG_VALIDATION_KNOWN_FAILURES"))
+        GTEST_SKIP() << "a known failure of DetourCrowd's avoidance (a walker stuck, 10 % of agent-seconds overlapping): "
+                        "run with THRONG_VALIDATION_KNOWN_FAILURES=1";
+    Scenario s("counterflow.json");
+    const auto& east = s.group(0);
+    const auto& west = s.group(1);
+    std::vector<double> passed(east.size() + west.size(), -1.0);
+    OverlapMeter overlaps{s.bodyRadius()};
+    double peakOrder = 0.0, orderSum = 0.0;
+    int orderSamples = 0;
+    while (s.time() < 90.0 && std::count(passed.begin(), passed.end(), -1.0) > 0) {
+        s.step();
+        std::vector<glm::vec3> middle, passing;
+        std::vector<int> direction;
+        for (std::size_t i = 0; i < passed.size(); ++i) {
+            const bool eastward = i < east.size();
+            const glm::vec3 p = s.position(eastward ? east[i] : west[i - east.size()]);
+            if (passed[i] < 0.0 && (eastward ? p.x >= 22.0f : p.x <= 8.0f)) passed[i] = s.time();
+            if (passed[i] < 0.0) passing.push_back(p);
+            if (p.x > 8.0f && p.x < 22.0f) middle.push_back(p), direction.push_back(eastward ? 1 : -1);
+        }
+        overlaps.add(passing, s.stepSeconds());
+        if (middle.size() >= 10 && std::count(direction.begin(), direction.end(), 1) >= 3 &&
+            std::count(direction.begin(), direction.end(), -1) >= 3)
+            if (const auto order = laneOrder(middle, direction)) {
+                peakOrder = std::max(peakOrder, *order);
+                orderSum += *order;
+                ++orderSamples;
+            }
+    }
+    const auto stuck = std::count(passed.begin(), passed.end(), -1.0);
+    const double mean = orderSamples ? orderSum / orderSamples : 0.0;
+    std::printf("Counter-flow: %zu of %zu passed the other group, the last after %.1f s; lane order while they pass: mean %.2f, "
+                "peak %.2f over %d steps; overlapping by more than 5 cm: %.3f %% of %.0f agent-seconds, deepest %.3f m\n",
+                passed.size() - std::size_t(stuck), passed.size(), *std::max_element(passed.begin(), passed.end()), mean,
+                peakOrder, orderSamples, 100.0 * overlaps.share(), overlaps.agentSeconds, overlaps.deepest);
+    RecordProperty("passed", std::to_string(passed.size() - std::size_t(stuck)));
+    RecordProperty("last_passed_s", std::to_string(*std::max_element(passed.begin(), passed.end())));
+    RecordProperty("lane_order_mean", std::to_string(mean));
+    RecordProperty("overlap_share", std::to_string(overlaps.share()));
+    RecordProperty("deepest_overlap_m", std::to_string(overlaps.deepest));
+    EXPECT_EQ(stuck, 0) << "walkers still stuck behind the other group after 90 s: a deadlock";
+    EXPECT_GT(orderSamples, 0) << "the groups never met";
+    EXPECT_GT(mean, 0.5) << "no lanes formed";
+    EXPECT_LT(overlaps.share(), 0.02);
 }
 
 }  // namespace

@@ -73,6 +73,7 @@ struct AreaDescription {
 struct WalkwaysDescription {
     std::vector<AreaDescription> floors;  ///< walkable rectangles (centre and size, metres), overlapping or touching
     double cellSize = 0.1;                ///< navigation mesh voxel across, metres (fine enough for narrow doors)
+    double bodyRadius = 0.35;             ///< the walkers' radius, metres: kept from walls and from each other
 };
 
 /// A group of actors sharing a template and a behaviour.
