@@ -30,8 +30,8 @@
 #include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/Ranks.h"
-#include "throng/sim/SpeedProfile.h"
 #include "throng/sim/SceneError.h"
+#include "throng/sim/SpeedProfile.h"
 #include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
@@ -144,9 +144,13 @@ struct Placement {
 
     // Walkways are narrow and their scenarios start people side by side: a point of the area itself,
     // onto the mesh within 10 cm (a wall's margin is no place to start), clear of everyone placed
-    // before by a body's width where one of 64 tries is (else the clearest try).
+    // before by a body's width where one of 64 tries is (else the clearest try). Those placed are
+    // kept in a grid of cells a body wide, so a try looks at the 3 x 3 cells around it only.
     glm::vec3 walkwayStart(const AreaDescription& area, const CounterRng& r) {
         const float body = 2.0f * float(d.walkways->bodyRadius);
+        const auto cell = [&](float x, float z) {
+            return std::pair(std::int64_t(std::floor(x / body)), std::int64_t(std::floor(z / body)));
+        };
         glm::vec3 best(0.0f);
         float bestClearance = -1.0f;
         for (std::uint64_t k = 0; k < 64 && bestClearance < body; ++k) {
@@ -154,15 +158,19 @@ struct Placement {
                                  float(area.center.y + area.size.y * (r.uniform(2 * k + 1) - 0.5)));
             const auto p = nav->nearestPoint(want, glm::vec3(0.1f, 1.0f, 0.1f));
             if (!p) continue;
-            float clearance = std::numeric_limits<float>::max();
-            for (const glm::vec3& q : started) clearance = std::min(clearance, glm::length(glm::vec2(p->x - q.x, p->z - q.z)));
+            float clearance = body;  // nobody within a body's width: clear
+            const auto [cx, cz] = cell(p->x, p->z);
+            for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
+                for (std::int64_t j = cz - 1; j <= cz + 1; ++j)
+                    if (const auto it = started.find({i, j}); it != started.end())
+                        for (const glm::vec3& q : it->second) clearance = std::min(clearance, glm::length(glm::vec2(p->x - q.x, p->z - q.z)));
             if (clearance > bestClearance) best = *p, bestClearance = clearance;
         }
         if (bestClearance < 0.0f) best = nav->randomPoint(r, 64);  // no point of the area is on the mesh
-        started.push_back(best);
+        started[cell(best.x, best.z)].push_back(best);
         return best;
     }
-    std::vector<glm::vec3> started;  // walkways: where the walkers placed so far start
+    std::map<std::pair<std::int64_t, std::int64_t>, std::vector<glm::vec3>> started;  // walkways: who starts where, by cell
 
     // A random point of the navigation mesh inside `area` (or the nearest one found).
     glm::vec3 pointIn(const AreaDescription& area, std::uint64_t s) {
