@@ -435,7 +435,7 @@ void readActors(const Reader& root, SceneDescription& s) {
     std::map<std::string, std::size_t> names;  // group name -> its index, to refuse a repeated one
     for (std::size_t i = 0; i < actors.array(); ++i) {
         const Reader a = actors.at(i);
-        a.object({"name", "template", "count", "behaviour", "area", "speed", "speedProfile", "goal", "altitude", "groupSize", "levels",
+        a.object({"name", "template", "count", "behaviour", "area", "speed", "speedProfile", "goal", "period", "altitude", "groupSize", "levels",
                   "priority"});
         ActorGroupDescription g;
         g.name = a.has("name") ? a.at("name").name() : "group " + std::to_string(i);
@@ -470,6 +470,11 @@ void readActors(const Reader& root, SceneDescription& s) {
             }
         }
         if (onlyFor("goal", g.behaviour == "walk", "walk")) g.goal = a.at("goal").vecWithin<2>("actors", "goal");
+        if (onlyFor("period", g.behaviour == "walk", "walk")) {
+            g.period = a.at("period").vecWithin<2>("actors", "period");
+            if (!g.goal || !s.walkways) a.at("period").fail("needs a 'goal' and walkways (the walkers re-enter before the goal)");
+            if (glm::length(*g.period) < 2.0) a.at("period").fail("must be at least 2 m long");
+        }
         if (onlyFor("altitude", g.behaviour == "flight", "flight")) g.altitude = a.at("altitude").rangeWithin("actors", "altitude");
         if (onlyFor("groupSize", g.behaviour == "idle", "idle")) {
             g.groupSize = glm::ivec2(a.at("groupSize").rangeWithin("actors", "groupSize"));

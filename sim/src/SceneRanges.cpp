@@ -34,6 +34,7 @@ constexpr std::array kRanges{
     SceneRange{"actors", "speed (walk)", 0.1, 10.0, false, false, false, "m/s"},
     SceneRange{"actors", "speed (flight)", 0.5, 50.0, false, false, false, "m/s"},
     SceneRange{"actors", "goal", -kFar, kFar, false, false, false, "m"},
+    SceneRange{"actors", "period", -kFar, kFar, false, false, false, "m"},
     SceneRange{"actors", "altitude", 0.5, 2000.0, false, false, false, "m"},
     SceneRange{"actors", "groupSize", 1, 1000, false, false, true, "people"},
     SceneRange{"actors", "levels", 0.0, kFar, true, false, false, "m"},

@@ -216,6 +216,7 @@ struct Placement {
             a.start = pointIn(g.area, stream);
             a.speed = profile ? profile->draw(rng, stream) : rng.uniform(stream, speed.x, speed.y);
             if (g.goal) a.goal = glm::vec3(float(g.goal->x), 0.0f, float(g.goal->y));
+            if (g.period) a.period = glm::vec3(float(g.period->x), 0.0f, float(g.period->y));
             a.stream = stream;
             std::uint32_t slot = walkers->addActor(a);
             if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);

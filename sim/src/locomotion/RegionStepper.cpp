@@ -213,7 +213,21 @@ void RegionStepper::stepRegion(std::uint32_t r, float dt) {
         const dtCrowdAgent* agent = region.crowd->getAgent(s.agent);
         s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
         s.velocity = glm::vec3(agent->vel[0], agent->vel[1], agent->vel[2]);
+        wrapAround(region, r, slot);
     }
+}
+
+void RegionStepper::wrapAround(Region& region, std::uint32_t r, std::uint32_t slot) {
+    const Locomotion::Actor& a = actors_[slot];
+    if (!a.goal || (a.period.x == 0.0f && a.period.z == 0.0f)) return;  // most walkers: no goal, or not periodic
+    const float period = glm::length(a.period);
+    WalkerState& s = state_[slot];
+    if (glm::dot(s.position - s.target, a.period) / period < -1.0f) return;  // not yet within 1 m of the goal's line
+    const glm::vec3 back = s.position - a.period;
+    region.crowd->removeAgent(s.agent);
+    s.position = nav_.nearestPoint(back, glm::vec3(1.0f, 2.0f, 1.0f)).value_or(back);
+    s.agent = addAgent(region, r, slot, &s.position.x, &s.velocity.x, false);
+    requestTarget(region, slot);
 }
 
 void RegionStepper::exportHandovers(std::uint32_t r) {

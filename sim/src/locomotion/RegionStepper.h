@@ -83,6 +83,8 @@ public:
 private:
     int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity, bool ghost);
     void requestTarget(Region& region, std::uint32_t slot);
+    // A walker of a periodic corridor past its goal's line re-enters one period back.
+    void wrapAround(Region& region, std::uint32_t r, std::uint32_t slot);
     void newDestination(Region& region, std::uint32_t slot);
     void startRegion(std::uint32_t r);
     void importGhosts(std::uint32_t r);

@@ -98,6 +98,10 @@ public:
         /// A fixed destination (moved onto the mesh): the actor walks there and stays. Without one
         /// it walks between random destinations drawn from its stream.
         std::optional<glm::vec3> goal;
+        /// With a goal: a periodic corridor. A walker that comes within 1 m of the line through its
+        /// goal across this vector re-enters one such vector back, velocity kept (walkers do not see
+        /// each other across that seam). Zero: none.
+        glm::vec3 period{0.0f};
     };
 
     /// Locomotion on `navMesh`, with the given level bands, counting into `counters` (may be null).

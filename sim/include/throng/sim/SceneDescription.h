@@ -90,6 +90,9 @@ struct ActorGroupDescription {
     double priority = 1.0;               ///< detail priority
     /// walk: a fixed destination (x, z), walked to and stayed at; none: random destinations.
     std::optional<glm::dvec2> goal;
+    /// walk, with a goal, on walkways: a periodic corridor; a walker within 1 m of the line through
+    /// the goal across this vector (x, z) re-enters this far back (Locomotion::Actor::period).
+    std::optional<glm::dvec2> period;
     /// walk: free speeds drawn from a named table of measured people instead of `speed` (see
     /// speedProfile(): "rimea-under-30", "rimea-30-to-50", "rimea-over-50", "rimea-impaired").
     std::string speedProfile;
