@@ -1,0 +1,145 @@
+// ORCA's half-planes and linear programs (sim/OrcaSolver.h) on their own: small crowds stepped with
+// the solver alone (no navigation mesh) must never interpenetrate and must get where they go.
+//
+//   * A preferred velocity that breaks no line is returned as it is; one above the speed limit is
+//     cut to it, in its direction.
+//   * Two walkers head-on, four crossing at right angles, and eight swapping places across a circle
+//     keep their bodies apart (within 1 cm: the time step's rounding) and all reach their goals.
+//   * Two bodies that start overlapping are pushed apart within a few steps.
+//   * A walker hemmed in by more neighbours than it can avoid still gets a finite velocity within
+//     its limit (the infeasible case, solved by the 3-D program).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "throng/sim/OrcaSolver.h"
+
+namespace throng::sim {
+namespace {
+
+using orca::Body;
+using orca::Line;
+
+constexpr float kRadius = 0.3f, kSpeed = 1.3f, kHorizon = 2.0f, kDt = 0.05f;
+
+struct Walker {
+    Body body;
+    glm::vec2 goal;
+};
+
+// Steps `walkers` toward their goals for `seconds`, every one avoiding every other; returns the
+// smallest distance between two bodies' surfaces seen (negative: they overlapped). Preferred
+// velocities are turned by up to a degree each way, differently for each walker and step: exactly
+// symmetric encounters (head-on on one line) otherwise stall, each walker only slowing for the other,
+// and ORCA's users break that symmetry so.
+float stepCrowd(std::vector<Walker>& walkers, float seconds) {
+    std::vector<Line> lines, scratch(walkers.size());
+    std::vector<glm::vec2> next(walkers.size());
+    float closest = 1e9f;
+    for (float t = 0.0f; t < seconds; t += kDt) {
+        for (std::size_t i = 0; i < walkers.size(); ++i) {
+            lines.clear();
+            for (std::size_t j = 0; j < walkers.size(); ++j)
+                if (j != i) lines.push_back(orca::agentLine(walkers[i].body, walkers[j].body, kHorizon, kDt));
+            const glm::vec2 to = walkers[i].goal - walkers[i].body.position;
+            const float d = glm::length(to);
+            glm::vec2 preferred = d > kSpeed * kDt ? to / d * kSpeed : to / kDt;
+            const float turn = 0.017f * std::sin(float(i) * 12.9898f + t * 78.233f);
+            preferred = glm::vec2(preferred.x * std::cos(turn) - preferred.y * std::sin(turn),
+                                  preferred.x * std::sin(turn) + preferred.y * std::cos(turn));
+            next[i] = orca::solve(lines, 0, preferred, kSpeed, scratch);
+        }
+        for (std::size_t i = 0; i < walkers.size(); ++i) {
+            walkers[i].body.velocity = next[i];
+            walkers[i].body.position += next[i] * kDt;
+        }
+        for (std::size_t i = 0; i < walkers.size(); ++i)
+            for (std::size_t j = i + 1; j < walkers.size(); ++j)
+                closest = std::min(closest, glm::length(walkers[i].body.position - walkers[j].body.position) - 2.0f * kRadius);
+    }
+    return closest;
+}
+
+Walker walker(glm::vec2 from, glm::vec2 to) { return {{from, glm::vec2(0.0f), kRadius}, to}; }
+
+void expectAllArrived(const std::vector<Walker>& walkers) {
+    for (std::size_t i = 0; i < walkers.size(); ++i)
+        EXPECT_LT(glm::length(walkers[i].goal - walkers[i].body.position), 0.1f) << "walker " << i << " did not arrive";
+}
+
+TEST(OrcaSolver, KeepsAVelocityThatBreaksNoLine) {
+    std::vector<Line> scratch(1);
+    const Line l{glm::vec2(0.0f, -1.0f), glm::vec2(1.0f, 0.0f)};  // allowed: above y = -1 (left of +x)
+    const glm::vec2 v = orca::solve(std::span(&l, 1), 0, glm::vec2(0.5f, 0.2f), kSpeed, scratch);
+    EXPECT_FLOAT_EQ(v.x, 0.5f);
+    EXPECT_FLOAT_EQ(v.y, 0.2f);
+}
+
+TEST(OrcaSolver, CutsAPreferredSpeedToTheLimit) {
+    std::vector<Line> scratch;
+    const glm::vec2 v = orca::solve({}, 0, glm::vec2(3.0f, 4.0f), 1.0f, scratch);
+    EXPECT_NEAR(glm::length(v), 1.0f, 1e-6f);
+    EXPECT_NEAR(v.x / v.y, 0.75f, 1e-6f);
+}
+
+TEST(OrcaSolver, MovesOntoAViolatedLine) {
+    std::vector<Line> scratch(1);
+    const Line l{glm::vec2(0.0f, 0.5f), glm::vec2(1.0f, 0.0f)};  // allowed: y >= 0.5
+    const glm::vec2 v = orca::solve(std::span(&l, 1), 0, glm::vec2(0.3f, 0.0f), kSpeed, scratch);
+    EXPECT_NEAR(v.x, 0.3f, 1e-6f);
+    EXPECT_NEAR(v.y, 0.5f, 1e-6f);
+}
+
+TEST(OrcaSolver, TwoWalkersHeadOnPassWithoutTouching) {
+    std::vector<Walker> w{walker({0.0f, 0.0f}, {8.0f, 0.0f}), walker({8.0f, 0.0f}, {0.0f, 0.0f})};
+    const float closest = stepCrowd(w, 12.0f);
+    EXPECT_GT(closest, -0.01f);
+    expectAllArrived(w);
+}
+
+TEST(OrcaSolver, FourWalkersCrossingAtRightAnglesKeepApart) {
+    std::vector<Walker> w{walker({-5.0f, 0.0f}, {5.0f, 0.0f}), walker({5.0f, 0.1f}, {-5.0f, 0.1f}),
+                          walker({0.05f, -5.0f}, {0.05f, 5.0f}), walker({-0.1f, 5.0f}, {-0.1f, -5.0f})};
+    const float closest = stepCrowd(w, 20.0f);
+    EXPECT_GT(closest, -0.01f);
+    expectAllArrived(w);
+}
+
+TEST(OrcaSolver, EightWalkersSwapPlacesAcrossACircle) {
+    std::vector<Walker> w;
+    for (int k = 0; k < 8; ++k) {
+        const float a = float(k) * 0.785398f;
+        const glm::vec2 p(4.0f * std::cos(a), 4.0f * std::sin(a));
+        w.push_back(walker(p, -p));
+    }
+    const float closest = stepCrowd(w, 30.0f);
+    EXPECT_GT(closest, -0.01f);
+    expectAllArrived(w);
+}
+
+TEST(OrcaSolver, PushesOverlappingBodiesApart) {
+    std::vector<Walker> w{walker({0.0f, 0.0f}, {0.0f, 0.0f}), walker({0.3f, 0.0f}, {0.3f, 0.0f})};  // 0.3 m into each other
+    stepCrowd(w, 1.0f);
+    EXPECT_GT(glm::length(w[0].body.position - w[1].body.position), 2.0f * kRadius - 0.01f);
+}
+
+TEST(OrcaSolver, AHemmedInWalkerGetsAFiniteVelocityWithinItsLimit) {
+    // Twelve neighbours closing in from every side, all at once: no velocity avoids them all.
+    const Body self{glm::vec2(0.0f), glm::vec2(0.0f), kRadius};
+    std::vector<Line> lines, scratch(12);
+    for (int k = 0; k < 12; ++k) {
+        const float a = float(k) * 0.523599f;
+        const glm::vec2 dir(std::cos(a), std::sin(a));
+        lines.push_back(orca::agentLine(self, {dir * 0.7f, -dir * kSpeed, kRadius}, kHorizon, kDt));
+    }
+    const glm::vec2 v = orca::solve(lines, 0, glm::vec2(kSpeed, 0.0f), kSpeed, scratch);
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y));
+    EXPECT_LE(glm::length(v), kSpeed + 1e-4f);
+}
+
+}  // namespace
+}  // namespace throng::sim
