@@ -11,18 +11,13 @@
 namespace throng::support {
 
 void declareGlOption(CLI::App& app, std::string& value, bool window) {
-    if (window)
-        app.add_option("--gl", value,
-                       "GL context: auto (a window when there is a display and --headless is not given, else EGL on a GPU, "
-                       "else OSMesa, else EGL surfaceless), window, egl (a GPU, else Mesa's surfaceless platform) or osmesa")
-            ->type_name("KIND")
-            ->check(oneOf({"auto", "window", "egl", "osmesa"}));
-    else
-        app.add_option("--gl", value,
-                       "GL context, off-screen: auto (EGL on a GPU, else OSMesa, else EGL surfaceless), egl (a GPU, else "
-                       "Mesa's surfaceless platform) or osmesa")
-            ->type_name("KIND")
-            ->check(oneOf({"auto", "egl", "osmesa"}));
+    const std::string kinds = "egl (a GPU, else Mesa's surfaceless platform) or osmesa";
+    app.add_option("--gl", value,
+                   window ? "GL context: auto (a window when there is a display and --headless is not given, else EGL on a GPU, "
+                            "else OSMesa, else EGL surfaceless), window, " + kinds
+                          : "GL context, off-screen: auto (EGL on a GPU, else OSMesa, else EGL surfaceless), " + kinds)
+        ->type_name("KIND")
+        ->check(window ? oneOf({"auto", "window", "egl", "osmesa"}) : oneOf({"auto", "egl", "osmesa"}));
     app.add_flag_callback(
         "--gl-info",
         [] {

@@ -25,14 +25,18 @@ RegionStepper::~RegionStepper() {
     }
 }
 
+dtPolyRef RegionStepper::nearestOnMesh(Region& region, const glm::vec3& p, const glm::vec3& extents, glm::vec3& snapped) {
+    dtQueryFilter filter;
+    dtPolyRef ref = 0;
+    region.query->findNearestPoly(&p.x, &extents.x, &filter, &ref, &snapped.x);
+    return ref;
+}
+
 void RegionStepper::requestTarget(Region& region, std::uint32_t slot) {
     WalkerState& s = state_[slot];
-    dtQueryFilter filter;
-    const glm::vec3 extents(2.0f, 4.0f, 2.0f);
-    dtPolyRef ref = 0;
     glm::vec3 snapped;
-    region.query->findNearestPoly(&s.target.x, &extents.x, &filter, &ref, &snapped.x);
-    if (ref) region.crowd->requestMoveTarget(s.agent, ref, &snapped.x);
+    if (const dtPolyRef ref = nearestOnMesh(region, s.target, glm::vec3(2.0f, 4.0f, 2.0f), snapped))
+        region.crowd->requestMoveTarget(s.agent, ref, &snapped.x);
 }
 
 void RegionStepper::newDestination(Region& region, std::uint32_t slot) {
@@ -43,16 +47,12 @@ void RegionStepper::newDestination(Region& region, std::uint32_t slot) {
     bool found = false;
     if (!a.goal && settings_.destinationRange > 0.0) {
         // A few tries at a point within range that lies on the mesh; then anywhere.
-        dtQueryFilter filter;
-        const glm::vec3 extents(2.0f, 4.0f, 2.0f);
         for (std::uint64_t k = 0; k < 8 && !found; ++k) {
             const std::uint64_t c = (s.trips * 8 + k) * 2 + (std::uint64_t(1) << 40);  // apart from randomPoint's counters
             const glm::vec3 want = s.position + glm::vec3(float(rng.uniform(c, -1.0, 1.0) * settings_.destinationRange), 0.0f,
                                                           float(rng.uniform(c + 1, -1.0, 1.0) * settings_.destinationRange));
-            dtPolyRef ref = 0;
             glm::vec3 snapped;
-            region.query->findNearestPoly(&want.x, &extents.x, &filter, &ref, &snapped.x);
-            if (ref) s.target = snapped, found = true;
+            if (nearestOnMesh(region, want, glm::vec3(2.0f, 4.0f, 2.0f), snapped)) s.target = snapped, found = true;
         }
     }
     if (!found) s.target = a.goal ? *a.goal : nav_.randomPoint(rng, s.trips, *region.query);
@@ -225,7 +225,8 @@ void RegionStepper::wrapAround(Region& region, std::uint32_t r, std::uint32_t sl
     if (glm::dot(s.position - s.target, a.period) / period < -1.0f) return;  // not yet within 1 m of the goal's line
     const glm::vec3 back = s.position - a.period;
     region.crowd->removeAgent(s.agent);
-    s.position = nav_.nearestPoint(back, glm::vec3(1.0f, 2.0f, 1.0f)).value_or(back);
+    // The region's own query: regions step in parallel, and the mesh's shared one is not thread-safe.
+    if (!nearestOnMesh(region, back, glm::vec3(1.0f, 2.0f, 1.0f), s.position)) s.position = back;
     s.agent = addAgent(region, r, slot, &s.position.x, &s.velocity.x, false);
     requestTarget(region, slot);
 }

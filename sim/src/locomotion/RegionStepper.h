@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include <DetourNavMesh.h>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -83,6 +84,9 @@ public:
 private:
     int addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity, bool ghost);
     void requestTarget(Region& region, std::uint32_t slot);
+    // The nearest point of the mesh to `p` within `extents`, with the region's own query (thread-safe
+    // across regions); 0 and `snapped` untouched when there is none.
+    static dtPolyRef nearestOnMesh(Region& region, const glm::vec3& p, const glm::vec3& extents, glm::vec3& snapped);
     // A walker of a periodic corridor past its goal's line re-enters one period back.
     void wrapAround(Region& region, std::uint32_t r, std::uint32_t slot);
     void newDestination(Region& region, std::uint32_t slot);
