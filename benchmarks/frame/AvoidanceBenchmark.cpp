@@ -1,6 +1,6 @@
 // bench_avoidance: avoidance quality as a measured knob. The same walkers (scene, seed, actor count)
-// are stepped for the same ticks once per avoidance setting (DetourCrowd's velocity sampling, 0
-// coarsest to 3 finest, and how far agents look for neighbours); for each: the shared step's time,
+// are stepped for the same ticks once per avoidance setting (the model, DetourCrowd or ORCA; for
+// DetourCrowd its velocity sampling, 0 coarsest to 3 finest; how far agents look for neighbours); for each: the shared step's time,
 // contacts per agent-second (two walkers coming into contact: centres closer than two radii and
 // 5 cm, as test Avoidance.* counts it), the share of time walkers spend in contact, overlaps per
 // agent-second (centres closer than two radii less 5 cm: DetourCrowd pushes overlaps apart after
@@ -8,7 +8,7 @@
 // deviate from the finest setting's, tick by tick. --far-every adds the update rate of regions far
 // from the camera path (effects.farUpdate) as a third axis.
 //
-//   bench_avoidance [--actors N] [--warmup N] [--ticks N] [--qualities 0,1,2,3] [--ranges 6,12] [--threads N]
+//   bench_avoidance [--actors N] [--warmup N] [--ticks N] [--models detour,orca] [--qualities 0,1,2,3] [--ranges 6,12] [--threads N]
 //                   [--far-every 1,4] [--far-distance M] [--markdown FILE] [--accuracy-csv FILE]
 
 #include <algorithm>
@@ -38,6 +38,7 @@ namespace {
 
 // The experiment's own settings (the common ones are in bench::ExperimentSpec).
 struct Options {
+    std::vector<std::string> models{"detour"};
     std::vector<int> qualities{0, 1, 2, 3};
     std::vector<double> ranges{6.0, 12.0};
     std::vector<int> farEvery{1};
@@ -45,7 +46,8 @@ struct Options {
 };
 
 struct Setting {
-    int quality = 3;
+    std::string model = "detour";
+    int quality = 3;  // DetourCrowd's sampling (ORCA has none)
     double range = 12.0;
     int farEvery = 1;  // far regions step every N steps (1: every region every step)
 };
@@ -53,6 +55,8 @@ struct Setting {
 struct Result {
     Setting setting;
     double stepMs = 0;          // mean shared step
+    double walkMs = 0;          // of which the walkers' own step (Locomotion)
+    double stepBytes = 0;       // bytes the walkers' step holds per walker, after the last tick
     double collisions = 0;      // new contacts per agent-second
     double contact = 0;         // pair-seconds in contact per agent-second
     double overlaps = 0;        // new overlaps (centres closer than two radii less 5 cm) per agent-second
@@ -92,12 +96,16 @@ void closePairs(const std::vector<glm::vec3>& p, float reach, float inner, std::
     }
 }
 
+// "ORCA", or DetourCrowd's model and sampling quality.
+std::string label(const Setting& s) { return s.model == "orca" ? "ORCA" : "DetourCrowd, quality " + std::to_string(s.quality); }
+
 // Steps the scene's walkers with `setting`; `reference` holds the finest setting's positions per
 // tick (filled when empty).
 Result run(const bench::ExperimentSpec& e, const Options& o, const Setting& setting, std::vector<std::vector<glm::vec3>>& reference) {
     sim::SceneDescription d = sim::parseSceneFile(e.scene);
     if (e.actors.front() > 0) sim::scaleActors(d, e.actors.front());
     d.effects.avoidance = true;
+    d.effects.avoidanceModel = setting.model;
     d.effects.avoidanceQuality = setting.quality;
     d.effects.avoidanceRange = setting.range;
     d.effects.farUpdateEvery = setting.farEvery;
@@ -123,7 +131,7 @@ Result run(const bench::ExperimentSpec& e, const Options& o, const Setting& sett
         const double dt = world->step().deltaTime;
         const bool measured = t >= e.warmup, since = t > e.warmup;  // since: a measured step before this one
         if (measured)
-            r.stepMs += world->lastStepMs(), r.ghosts += static_cast<double>(walk->lastGhostCount()),
+            r.stepMs += world->lastStepMs(), r.walkMs += walk->lastAdvanceMs(), r.ghosts += static_cast<double>(walk->lastGhostCount()),
                 r.deferred += static_cast<double>(walk->lastDeferredCount());
         for (std::uint32_t s = 0; s < n; ++s) pos[s] = walk->position(s);
         closePairs(pos, reach, reach - 0.1f, now, overlapNow);
@@ -153,6 +161,8 @@ Result run(const bench::ExperimentSpec& e, const Options& o, const Setting& sett
         if (t == total - 1) r.finalDeviation = sum / static_cast<double>(n);
     }
     r.stepMs /= e.frames;
+    r.stepBytes = double(walk->stepBytes()) / double(n);
+    r.walkMs /= e.frames;
     r.ghosts /= e.frames;
     r.deferred /= e.frames;
     r.deviation = deviation / e.frames;
@@ -160,18 +170,20 @@ Result run(const bench::ExperimentSpec& e, const Options& o, const Setting& sett
     r.contact = seconds > 0 ? r.contact / (static_cast<double>(n) * seconds) : 0.0;
     r.collisions = seconds > 0 ? static_cast<double>(collisions) / (static_cast<double>(n) * seconds) : 0.0;
     r.progress = seconds > 0 ? progress / (static_cast<double>(n) * seconds) : 0.0;
-    std::fprintf(stderr, "bench_avoidance: quality %d, range %.0f, far regions every %d: done\n", setting.quality, setting.range,
+    std::fprintf(stderr, "bench_avoidance: %s, range %.0f, far regions every %d: done\n", label(setting).c_str(), setting.range,
                  setting.farEvery);
     return r;
 }
 
 bench::ResultTable table(const std::vector<Result>& rows) {
-    bench::ResultTable t({{"", "quality", "%lld"},
+    bench::ResultTable t({{"", "avoidance", "%s"},
                           {"", "neighbour range (radii)", "%.0f"},
                           {"", "far regions step every", "%lld"},
                           {"", "walkers deferred", "%.0f"},
                           {"", "walkers", "%lld"},
                           {"", "step ms", "%.2f"},
+                          {"", "walkers ms", "%.2f"},
+                          {"", "step bytes per walker", "%.0f"},
                           {"", "vs finest", "%.2fx"},
                           {"", "contacts per agent-second", "%.4f"},
                           {"", "contact s per agent-second", "%.4f"},
@@ -182,8 +194,8 @@ bench::ResultTable table(const std::vector<Result>& rows) {
                           {"", "ghosts per step", "%.0f"}});
     const double finest = rows.front().stepMs;
     for (const Result& r : rows)
-        t.add({std::int64_t(r.setting.quality), r.setting.range, std::int64_t(r.setting.farEvery), r.deferred, std::int64_t(r.walkers), r.stepMs,
-               r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts});
+        t.add({label(r.setting), r.setting.range, std::int64_t(r.setting.farEvery), r.deferred, std::int64_t(r.walkers), r.stepMs,
+               r.walkMs, r.stepBytes, r.stepMs / finest, r.collisions, r.contact, r.overlaps, r.progress, r.deviation, r.finalDeviation, r.ghosts});
     return t;
 }
 
@@ -201,7 +213,9 @@ int main(int argc, char** argv) {
                                  {.scene = testkit::townDefaultScene(), .actors = {2000}, .frames = 300, .warmup = 30},
                                  {.frames = "--ticks", .framesHelp = "measured steps per setting", .minFrames = 2});
     CLI::App& app = experiment.app();
-    app.add_option("--qualities", o.qualities, "avoidance qualities (0 coarsest to 3 finest)")->delimiter(',')->type_name("Q,Q,...")
+    app.add_option("--models", o.models, "avoidance models: detour (DetourCrowd) and orca")->delimiter(',')->type_name("M,M,...")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::IsMember({"detour", "orca"}));
+    app.add_option("--qualities", o.qualities, "DetourCrowd's avoidance qualities (0 coarsest to 3 finest)")->delimiter(',')->type_name("Q,Q,...")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::Range(0, 3));
     app.add_option("--ranges", o.ranges, "neighbour ranges, agent radii (at least 1)")->delimiter(',')->type_name("R,R,...")
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(bench::finiteNumber(1.0, 1000.0));
@@ -214,11 +228,21 @@ int main(int argc, char** argv) {
     std::vector<Result> rows;
     try {
         // The finest setting first: it is the reference the others deviate from.
-        std::vector<Setting> settings{{3, *std::max_element(o.ranges.begin(), o.ranges.end()), 1}};
-        for (int every : o.farEvery)
-            for (double range : o.ranges)
-                for (int q : o.qualities)
-                    if (!(q == settings[0].quality && range == settings[0].range && every == 1)) settings.push_back({q, range, every});
+        // (DetourCrowd's when it is measured, else ORCA's at the widest range.)
+        const double widest = *std::max_element(o.ranges.begin(), o.ranges.end());
+        const bool detour = std::find(o.models.begin(), o.models.end(), "detour") != o.models.end();
+        std::vector<Setting> settings{{detour ? "detour" : "orca", 3, widest, 1}};
+        const auto add = [&](const Setting& s) {
+            if (!(s.model == settings[0].model && s.quality == settings[0].quality && s.range == settings[0].range && s.farEvery == 1))
+                settings.push_back(s);
+        };
+        for (const std::string& model : o.models)
+            for (int every : o.farEvery)
+                for (double range : o.ranges) {
+                    if (model == "orca") add({model, 3, range, every});
+                    else
+                        for (int q : o.qualities) add({model, q, range, every});
+                }
         std::vector<std::vector<glm::vec3>> reference;
         for (const Setting& s : settings) rows.push_back(run(e, o, s, reference));
     } catch (const std::exception& ex) {
@@ -226,7 +250,7 @@ int main(int argc, char** argv) {
     }
     std::ostringstream report;
     report << "### Avoidance: " << rows.front().walkers << " walkers, " << e.frames << " steps after " << e.warmup << ", " << e.threads
-           << " thread(s); deviation from quality 3 at the widest range\n\n"
+           << " thread(s); deviation from " << label(rows.front().setting) << " at the widest range\n\n"
            << table(rows).markdown() << "\n";
     std::fputs(report.str().c_str(), stdout);
     try {
@@ -243,7 +267,7 @@ int main(int argc, char** argv) {
                 sim::AccuracyRecord a;
                 a.knob = r.setting.farEvery > 1 ? "avoidance quality and far update" : "avoidance quality";
                 std::ostringstream value;
-                value << r.setting.quality << " at range " << r.setting.range;
+                value << (r.setting.model == "orca" ? std::string("orca") : std::to_string(r.setting.quality)) << " at range " << r.setting.range;
                 if (r.setting.farEvery > 1) value << ", far every " << r.setting.farEvery;
                 a.value = value.str();
                 a.off = &r == &rows.front();

@@ -31,6 +31,13 @@ void forEachChunk(std::size_t n, std::size_t grain, ChunkBody body) {
         oneapi::tbb::simple_partitioner());
 }
 
+std::size_t workerSlots() { return static_cast<std::size_t>(std::max(1, oneapi::tbb::this_task_arena::max_concurrency())); }
+
+std::size_t workerIndex() {
+    const int index = oneapi::tbb::this_task_arena::current_thread_index();
+    return index < 0 ? 0 : static_cast<std::size_t>(index);
+}
+
 struct ThreadTeam::Impl {
     // Lets the scheduler run more threads than the machine has cores when a team asks for them.
     std::optional<oneapi::tbb::global_control> allowance;

@@ -185,6 +185,7 @@ void Locomotion::advance(const FrameContext& context) {
         mine.waitMs += wait.elapsedMs();
         lastGhosts_ = mine.ghosts;
     }
+    regions.prepareStep();
     eachRegion([&](std::uint32_t r) { regions.stepRegion(r, dt); });
     // Handover: agents now in another region leave their crowd and join the other's.
     eachRegion([&](std::uint32_t r) { regions.exportHandovers(r); });
@@ -212,6 +213,7 @@ void Locomotion::advance(const FrameContext& context) {
         forEachChunk(actors_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
             for (std::size_t slot = begin; slot < end; ++slot) walk(std::uint32_t(slot), context.deltaTime);
         });
+        lastAdvanceMs_ = watch.elapsedMs();
         return;
     }
     ownSlots_.clear();
@@ -222,6 +224,7 @@ void Locomotion::advance(const FrameContext& context) {
     });
     mine.agents = ownSlots_.size();
     mine.workMs = watch.elapsedMs() - mine.waitMs;
+    lastAdvanceMs_ = watch.elapsedMs();
     const locomotion::RankExchange::Totals totals = exchange_->gather(mine, ownSlots_, gatherView_, gatherMargin_);
     if (exchange_->rank() == 0) lastGhosts_ = totals.ghosts, lastHandovers_ = totals.handovers, lastDeferred_ = totals.deferred;
 }
@@ -253,6 +256,12 @@ glm::vec3 Locomotion::destination(std::uint32_t slot) const { return state_[slot
 std::uint32_t Locomotion::region(std::uint32_t slot) const { return state_[slot].region; }
 BoundingSphere Locomotion::skeletonRootExtent(std::uint32_t slot) const { return state_[slot].extent; }
 double Locomotion::poseMargin(std::uint32_t slot) const { return state_[slot].blendMargin; }
+std::size_t Locomotion::stepBytes() const {
+    if (!regions_) return 0;
+    return actors_.capacity() * sizeof(Actor) + state_.capacity() * sizeof(locomotion::WalkerState) +
+           clipBounds_.capacity() * sizeof(ClipBounds) + ownSlots_.capacity() * sizeof(std::uint32_t) + regions_->bytes();
+}
+
 std::size_t Locomotion::bytesPerSlot() const { return sizeof(Actor) + sizeof(WalkerState); }
 bool Locomotion::present(std::uint32_t slot) const { return !exchange_ || exchange_->present(slot); }
 std::size_t Locomotion::presentCount() const { return exchange_ ? exchange_->presentCount(actors_.size()) : actors_.size(); }

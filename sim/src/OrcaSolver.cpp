@@ -101,6 +101,25 @@ Line agentLine(const Body& self, const Body& other, float horizon, float dt) {
     return line;
 }
 
+bool wallLine(const Body& self, glm::vec2 a, glm::vec2 b, float horizon, float dt, Line& line) {
+    const glm::vec2 ab = b - a;
+    const float length = std::sqrt(glm::dot(ab, ab));
+    if (length <= kEpsilon) return false;
+    const glm::vec2 along = ab / length;
+    const glm::vec2 into(-along.y, along.x);  // across the segment, from its free side into the wall
+    const float t = glm::dot(self.position - a, along);
+    // Beyond its ends the next segment (or the mesh's clamp) takes over: a segment's end is not a
+    // post to walk round, or every joint of a straight wall would stop walkers.
+    if (t < 0.0f || t > length) return false;
+    const float distance = glm::dot(a - self.position, into);  // > 0 on the free side
+    if (distance < -self.radius) return false;                 // behind the wall
+    const float gap = distance - self.radius;
+    const float limit = gap > 0.0f ? gap / horizon : gap / dt;
+    line.point = into * limit;
+    line.direction = -along;  // allowed velocities (v . into <= limit) lie on its left
+    return true;
+}
+
 glm::vec2 solve(std::span<const Line> lines, std::size_t firstSoft, glm::vec2 preferred, float maxSpeed, std::span<Line> scratch) {
     glm::vec2 result;
     const std::size_t satisfied = program2(lines, maxSpeed, preferred, false, result);

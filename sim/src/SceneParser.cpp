@@ -293,8 +293,14 @@ void readEffects(const Reader& root, SceneDescription& s) {
         if (av.value().is_boolean()) {
             s.effects.avoidance = av.boolean();
         } else {
-            av.object({"quality", "range"});
+            av.object({"model", "quality", "range"});
             s.effects.avoidance = true;
+            if (av.has("model")) {
+                const std::string model = av.at("model").string();
+                if (model != "detour" && model != "orca") av.at("model").fail("must be \"detour\" or \"orca\", got \"" + model + "\"");
+                s.effects.avoidanceModel = model;
+                if (model == "orca" && av.has("quality")) av.at("quality").fail("is DetourCrowd's velocity sampling: ORCA has none");
+            }
             if (av.has("quality")) s.effects.avoidanceQuality = int(av.at("quality").wholeWithin("effects", "avoidance.quality"));
             if (av.has("range")) s.effects.avoidanceRange = av.at("range").within("effects", "avoidance.range");
         }

@@ -190,6 +190,7 @@ struct Placement {
             Locomotion::Settings s;
             s.avoidance = d.effects.avoidance;
             s.avoidanceQuality = d.effects.avoidanceQuality;
+            s.avoidanceModel = d.effects.avoidanceModel == "orca" ? Locomotion::AvoidanceModel::Orca : Locomotion::AvoidanceModel::Detour;
             s.neighbourRange = static_cast<float>(d.effects.avoidanceRange);
             s.farDistance = d.effects.farUpdateDistance;
             if (d.walkways) s.radius = float(d.walkways->bodyRadius);

@@ -1,9 +1,10 @@
-// Internal to sim: Locomotion's regions, each stepped by its own DetourCrowd (see RegionStepper.h).
+// Internal to sim: Locomotion's regions, each stepped by its own crowd (see RegionStepper.h).
 
 #include "RegionStepper.h"
 
-#include <DetourCrowd.h>
 #include <DetourNavMeshQuery.h>
+
+#include "DetourRegionCrowd.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -20,7 +21,7 @@ RegionStepper::RegionStepper(const NavMesh& nav, const Locomotion::Settings& set
 
 RegionStepper::~RegionStepper() {
     for (Region& r : regions_) {
-        dtFreeCrowd(r.crowd);
+        r.crowd.reset();
         dtFreeNavMeshQuery(r.query);
     }
 }
@@ -36,7 +37,7 @@ void RegionStepper::requestTarget(Region& region, std::uint32_t slot) {
     WalkerState& s = state_[slot];
     glm::vec3 snapped;
     if (const dtPolyRef ref = nearestOnMesh(region, s.target, glm::vec3(2.0f, 4.0f, 2.0f), snapped))
-        region.crowd->requestMoveTarget(s.agent, ref, &snapped.x);
+        region.crowd->requestTarget(s.agent, ref, &snapped.x);
 }
 
 void RegionStepper::newDestination(Region& region, std::uint32_t slot) {
@@ -62,46 +63,20 @@ void RegionStepper::newDestination(Region& region, std::uint32_t slot) {
 
 int RegionStepper::addAgent(Region& region, std::uint32_t r, std::uint32_t slot, const float* position, const float* velocity,
                             bool ghost) {
-    dtCrowdAgentParams p{};
-    p.radius = settings_.radius;
-    p.height = settings_.height;
-    p.maxAcceleration = settings_.maxAcceleration;
-    p.maxSpeed = static_cast<float>(actors_[slot].speed);
-    p.collisionQueryRange = settings_.radius * settings_.neighbourRange;
-    p.pathOptimizationRange = settings_.radius * 30.0f;
-    // A ghost only stands in the way: it neither steers nor avoids, and its own move is discarded.
-    p.updateFlags = ghost ? 0 : DT_CROWD_ANTICIPATE_TURNS | DT_CROWD_OPTIMIZE_VIS | DT_CROWD_OPTIMIZE_TOPO;
-    if (settings_.avoidance && !ghost) p.updateFlags |= DT_CROWD_OBSTACLE_AVOIDANCE | DT_CROWD_SEPARATION;
-    p.obstacleAvoidanceType = static_cast<unsigned char>(settings_.avoidanceQuality);
-    p.separationWeight = 2.0f;
-    const int agent = region.crowd->addAgent(position, &p);
+    const int agent = region.crowd->add(slot, position, velocity, static_cast<float>(actors_[slot].speed), ghost);
     if (agent < 0)
         throw std::runtime_error("Locomotion: region " + std::to_string(r) + " is full (" + std::to_string(region.capacity) +
                                  " agents with its ghosts); declare smaller regions");
-    if (velocity) {
-        dtCrowdAgent* ag = region.crowd->getEditableAgent(agent);
-        for (int k = 0; k < 3; ++k) ag->vel[k] = ag->dvel[k] = ag->nvel[k] = velocity[k];
-        if (ghost) region.crowd->requestMoveVelocity(agent, velocity);  // it keeps going as it went
-    }
     return agent;
 }
 
 void RegionStepper::startRegion(std::uint32_t r) {
     Region& region = regions_[r];
     region.query = nav_.newQuery();
-    region.crowd = dtAllocCrowd();
-    if (!region.crowd || !region.crowd->init(region.capacity, settings_.radius, nav_.detourMesh()))
-        throw std::runtime_error("Locomotion: DetourCrowd could not be initialised for " + std::to_string(region.capacity) +
-                                 " agents in region " + std::to_string(r));
-    // Avoidance quality: the adaptive sampling's divisions, rings and depth, from coarse to Detour's
-    // own default (3); Detour's other weights stay as they are.
-    static constexpr unsigned char kSampling[4][3] = {{5, 2, 1}, {5, 2, 2}, {7, 2, 3}, {7, 2, 5}};
-    const int q = settings_.avoidanceQuality;
-    dtObstacleAvoidanceParams params = *region.crowd->getObstacleAvoidanceParams(q);
-    params.adaptiveDivs = kSampling[q][0];
-    params.adaptiveRings = kSampling[q][1];
-    params.adaptiveDepth = kSampling[q][2];
-    region.crowd->setObstacleAvoidanceParams(q, &params);
+    if (settings_.avoidanceModel == Locomotion::AvoidanceModel::Orca)
+        region.crowd = std::make_unique<OrcaRegionCrowd>(settings_, *region.query, orcaWorkers_);
+    else
+        region.crowd = std::make_unique<DetourRegionCrowd>(nav_, settings_, region.capacity);
     for (std::uint32_t slot : region.owned) {
         state_[slot].agent = addAgent(region, r, slot, &state_[slot].position.x, nullptr, false);
         newDestination(region, slot);
@@ -138,6 +113,21 @@ void RegionStepper::start(std::uint32_t first, std::uint32_t end) {
     forEachChunk(end - first, 1, [&](std::size_t, std::size_t begin, std::size_t stop) {
         for (std::size_t r = begin; r < stop; ++r) startRegion(first + std::uint32_t(r));
     });
+}
+
+void RegionStepper::prepareStep() {
+    if (settings_.avoidanceModel == Locomotion::AvoidanceModel::Orca) orcaWorkers_.prepare(nav_);
+}
+
+std::size_t RegionStepper::bytes() const {
+    std::size_t b = orcaWorkers_.bytes() + regions_.capacity() * sizeof(Region);
+    for (const Region& r : regions_) {
+        if (r.crowd) b += r.crowd->bytes();
+        b += (r.owned.capacity() + r.scratch.capacity()) * sizeof(std::uint32_t) + r.ghostAgents.capacity() * sizeof(int);
+        b += (r.ghostsOut.capacity() + r.ghostsIn.capacity()) * sizeof(GhostRecord);
+        b += (r.leaving.capacity() + r.arriving.capacity()) * sizeof(HandoverRecord);
+    }
+    return b;
 }
 
 std::size_t RegionStepper::chooseStepping(std::uint32_t first, std::uint32_t end, double dt, glm::vec3 viewpoint) {
@@ -206,13 +196,12 @@ void RegionStepper::stepRegion(std::uint32_t r, float dt) {
         if (d.x * d.x + d.z * d.z < 1.0f) newDestination(region, slot);
     }
     importGhosts(r);
-    region.crowd->update(dt, nullptr);
-    for (int agent : region.ghostAgents) region.crowd->removeAgent(agent);
+    region.crowd->update(dt);
+    for (int agent : region.ghostAgents) region.crowd->remove(agent);
     for (std::uint32_t slot : region.owned) {
         WalkerState& s = state_[slot];
-        const dtCrowdAgent* agent = region.crowd->getAgent(s.agent);
-        s.position = glm::vec3(agent->npos[0], agent->npos[1], agent->npos[2]);
-        s.velocity = glm::vec3(agent->vel[0], agent->vel[1], agent->vel[2]);
+        s.position = region.crowd->position(s.agent);
+        s.velocity = region.crowd->velocity(s.agent);
         wrapAround(region, r, slot);
     }
 }
@@ -224,7 +213,7 @@ void RegionStepper::wrapAround(Region& region, std::uint32_t r, std::uint32_t sl
     WalkerState& s = state_[slot];
     if (glm::dot(s.position - s.target, a.period) / period < -1.0f) return;  // not yet within 1 m of the goal's line
     const glm::vec3 back = s.position - a.period;
-    region.crowd->removeAgent(s.agent);
+    region.crowd->remove(s.agent);
     // The region's own query: regions step in parallel, and the mesh's shared one is not thread-safe.
     if (!nearestOnMesh(region, back, glm::vec3(1.0f, 2.0f, 1.0f), s.position)) s.position = back;
     s.agent = addAgent(region, r, slot, &s.position.x, &s.velocity.x, false);
@@ -246,7 +235,7 @@ void RegionStepper::exportHandovers(std::uint32_t r) {
         for (int i = 0; i < 3; ++i) h.position[i] = s.position[i], h.velocity[i] = s.velocity[i], h.target[i] = s.target[i];
         h.heading = s.heading, h.speed = s.speed, h.runWeight = s.runWeight, h.phase = s.phase, h.trips = s.trips;
         region.leaving.push_back(h);
-        region.crowd->removeAgent(s.agent);
+        region.crowd->remove(s.agent);
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Internal to sim: the region stepper of Locomotion. The ground is divided into fixed regions (a
-// RegionGrid), each stepped by its own DetourCrowd and navigation query, in parallel. An agent near
+// RegionGrid), each stepped by its own crowd (DetourCrowd, or ORCA along Detour's corridors: the
+// scene's avoidance model) and navigation query, in parallel. An agent near
 // a border is seen by the neighbouring region as a ghost (a copy of it at the start of the step,
 // which that region never moves); an agent that crosses a border is handed over at the end of the
 // step, in order of actor slot. Far regions may step less often. Ghost export and import and the
@@ -15,10 +16,13 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <memory>
+
+#include "OrcaRegionCrowd.h"
+#include "RegionCrowd.h"
 #include "WalkerState.h"
 #include "throng/sim/Locomotion.h"
 
-class dtCrowd;
 class dtNavMeshQuery;
 
 namespace throng::sim::locomotion {
@@ -29,7 +33,7 @@ public:
     /// One region: its crowd and query, the actors it owns (increasing slots) and the records it
     /// exchanges with the others during a step.
     struct Region {
-        dtCrowd* crowd = nullptr;                 ///< its DetourCrowd
+        std::unique_ptr<RegionCrowd> crowd;       ///< its crowd
         dtNavMeshQuery* query = nullptr;          ///< its navigation query
         int capacity = 0;                         ///< agents its crowd holds, ghosts included
         std::vector<std::uint32_t> owned;         ///< the walkers it steps, increasing slots
@@ -55,6 +59,10 @@ public:
     void place();
     /// Makes the crowds of regions [first, end), in parallel, their walkers added and sent walking.
     void start(std::uint32_t first, std::uint32_t end);
+    /// Readies the threads' scratch of the next step (call before stepping regions in parallel).
+    void prepareStep();
+    /// Bytes the regions' crowds and records hold.
+    std::size_t bytes() const;
     /// Number of regions.
     std::uint32_t count() const { return std::uint32_t(regions_.size()); }
     /// Region `r`.
@@ -104,6 +112,7 @@ private:
     std::vector<double> pending_;
     std::vector<std::uint8_t> stepping_;
     std::uint64_t steps_ = 0;
+    OrcaWorkers orcaWorkers_;  // ORCA crowds' per-thread queries and scratch
 };
 
 }  // namespace throng::sim::locomotion

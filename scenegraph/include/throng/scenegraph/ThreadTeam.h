@@ -24,6 +24,13 @@ inline std::size_t chunkCount(std::size_t n, std::size_t grain) { return grain =
 /// first exception a chunk throws is rethrown here. Throws std::invalid_argument if `grain` is 0.
 void forEachChunk(std::size_t n, std::size_t grain, ChunkBody body);
 
+/// How many threads may run the chunks of a forEachChunk started here (the enclosing team's size, or
+/// the machine's outside one): the number of per-thread scratch slots a loop body may index.
+std::size_t workerSlots();
+/// The calling thread's index among workerSlots() (each thread running chunks has its own), for
+/// scratch a chunk must not share with one running at the same time, such as a navigation query.
+std::size_t workerIndex();
+
 /// A bounded set of threads (a oneTBB task arena).
 class ThreadTeam {
 public:

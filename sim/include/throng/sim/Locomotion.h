@@ -45,6 +45,9 @@ class RankExchange;
 /// Navigation-mesh locomotion for many actors.
 class Locomotion : public Behaviour {
 public:
+    /// How walkers keep apart: DetourCrowd's sampled velocities, or ORCA's half-planes (sim/OrcaSolver)
+    /// on Detour's path corridors.
+    enum class AvoidanceModel { Detour, Orca };
     /// Shared settings.
     struct Settings {
         bool avoidance = false;        ///< local avoidance and separation between agents (an effect of its own)
@@ -60,6 +63,9 @@ public:
         /// Avoidance: how far an agent looks for neighbours, in agent radii (DetourCrowd's collision
         /// query range; also how near a border an agent is seen by the next region as a ghost).
         float neighbourRange = 12.0f;
+        /// Avoidance: which model keeps walkers apart (DetourCrowd's or ORCA); the path following is
+        /// Detour's in both.
+        AvoidanceModel avoidanceModel = AvoidanceModel::Detour;
         /// Random destinations lie within this many metres of where the actor is (each way); 0:
         /// anywhere on the mesh. Large towns need it: DetourCrowd's path corridor holds 256
         /// polygons, and a path across kilometres of town is longer.
@@ -136,6 +142,12 @@ public:
     std::size_t lastHandoverCount() const { return lastHandovers_; }
     /// Walkers of far regions that did not step in the last step (counted as ghosts are).
     std::size_t lastDeferredCount() const { return lastDeferred_; }
+    /// Milliseconds the last step of the walkers took (regions, their crowds and gaits; distributed,
+    /// this rank's share without the gather).
+    double lastAdvanceMs() const { return lastAdvanceMs_; }
+    /// Bytes the walkers' step holds: the actors, their moving state and the regions (crowds with their
+    /// paths and neighbour grids, the records they exchange); 0 before the first step.
+    std::size_t stepBytes() const;
     /// Where the camera is for the next steps: far regions (Settings::farDistance) lie far from it.
     void setViewpoint(glm::vec3 eye) { viewpoint_ = eye; }
 
@@ -203,6 +215,7 @@ private:
     std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
     std::size_t lastGhosts_ = 0, lastHandovers_ = 0, lastDeferred_ = 0;
+    double lastAdvanceMs_ = 0.0;
     glm::vec3 viewpoint_{0.0f};  // far regions lie far from it
     std::unique_ptr<locomotion::RegionStepper> regions_;  // from the first step
     // Distributed: the ranks, their exchanges (from the first step), the region range this rank

@@ -36,6 +36,14 @@ struct Body {
 /// the change needed; when they already overlap, resolved within one step of `dt` seconds.
 Line agentLine(const Body& self, const Body& other, float horizon, float dt);
 
+/// The half-plane of velocities by which `self` keeps clear of the wall segment from `a` to `b`, whose
+/// free side is the one (-d.y, d.x) points away from, d = b - a (Detour's winding of a navigation
+/// mesh's boundary edges, x and z on the ground as x and y), for `horizon` seconds; when it
+/// already reaches into the wall, out of it within one step of `dt` seconds. Only the velocity
+/// across the wall is limited, sliding along it is not. False (and `line` untouched) when the wall
+/// does not face the walker: it stands beyond the segment's ends or behind it.
+bool wallLine(const Body& self, glm::vec2 a, glm::vec2 b, float horizon, float dt, Line& line);
+
 /// The velocity nearest `preferred` inside every line and within `maxSpeed`. When no velocity
 /// satisfies all of them, the lines from `firstSoft` on are relaxed together (the first ones, such as
 /// walls, stay hard as far as possible) and the velocity that enters the deepest of those least is

@@ -101,7 +101,8 @@ struct ActorGroupDescription {
 /// Effects that exist only when declared.
 struct EffectsDescription {
     bool avoidance = false;                ///< local avoidance between walkers
-    int avoidanceQuality = 3;              ///< avoidance's velocity sampling, 0 (coarsest) to 3 (finest)
+    std::string avoidanceModel = "detour"; ///< what keeps walkers apart: "detour" (DetourCrowd) or "orca"
+    int avoidanceQuality = 3;              ///< DetourCrowd's velocity sampling, 0 (coarsest) to 3 (finest)
     double avoidanceRange = 12.0;          ///< how far walkers look for neighbours, agent radii
     double farUpdateDistance = 0.0;        ///< walkers' regions farther than this from the camera step less often (0: never)
     int farUpdateEvery = 1;                ///< how often those far regions step: every N steps

@@ -1,0 +1,384 @@
+// Internal to sim: a region's crowd kept apart by ORCA along Detour path corridors (see
+// OrcaRegionCrowd.h).
+
+#include "OrcaRegionCrowd.h"
+
+#include <DetourLocalBoundary.h>
+#include <DetourNavMeshQuery.h>
+#include <DetourPathCorridor.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "throng/scenegraph/ThreadTeam.h"
+
+namespace throng::sim::locomotion {
+namespace {
+
+const dtQueryFilter kFilter;
+
+// Walkers per chunk of the parallel loops.
+constexpr std::size_t kGrain = 64;
+// Node pool of a worker's query: paths of kMaxPath polygons need far fewer than the mesh's 4096.
+constexpr int kWorkerNodes = 1024;
+
+glm::vec2 ground(const glm::vec3& v) { return {v.x, v.z}; }
+
+}  // namespace
+
+OrcaWorkers::~OrcaWorkers() {
+    for (Worker& w : workers_) dtFreeNavMeshQuery(w.query);
+}
+
+void OrcaWorkers::prepare(const NavMesh& nav) {
+    const std::size_t want = workerSlots();
+    while (workers_.size() < want) {
+        Worker w;
+        w.query = dtAllocNavMeshQuery();
+        if (!w.query || dtStatusFailed(w.query->init(nav.detourMesh(), kWorkerNodes))) {
+            dtFreeNavMeshQuery(w.query);
+            throw std::runtime_error("Locomotion: Detour could not initialise a navigation query for ORCA's threads");
+        }
+        w.path.resize(OrcaRegionCrowd::kMaxPath);
+        w.lines.resize(8 + OrcaRegionCrowd::kMaxNeighbours);  // a local boundary holds at most 8 walls
+        w.scratch.resize(w.lines.size());
+        workers_.push_back(std::move(w));
+    }
+}
+
+OrcaWorkers::Worker& OrcaWorkers::mine() {
+    const std::size_t index = workerIndex();
+    if (index >= workers_.size()) throw std::logic_error("Locomotion: a thread ORCA's workers were not prepared for");
+    return workers_[index];
+}
+
+std::size_t OrcaWorkers::bytes() const {
+    std::size_t b = workers_.capacity() * sizeof(Worker);
+    for (const Worker& w : workers_)
+        b += sizeof(dtNavMeshQuery) + std::size_t(kWorkerNodes) * 48 + w.path.capacity() * sizeof(dtPolyRef) +
+             (w.lines.capacity() + w.scratch.capacity()) * sizeof(orca::Line);  // 48: a node and its hash entry
+    return b;
+}
+
+OrcaRegionCrowd::OrcaRegionCrowd(const Locomotion::Settings& settings, dtNavMeshQuery& query, OrcaWorkers& workers)
+    : settings_(settings), query_(query), workers_(workers) {
+    cellSize_ = std::max(0.25f, 0.5f * settings.radius * settings.neighbourRange);
+}
+
+OrcaRegionCrowd::~OrcaRegionCrowd() = default;
+
+int OrcaRegionCrowd::add(std::uint32_t slot, const float* position, const float* velocity, float maxSpeed, bool ghost) {
+    int agent;
+    if (!free_.empty()) {
+        agent = free_.back();
+        free_.pop_back();
+    } else {
+        agent = int(position_.size());
+        position_.emplace_back(), velocity_.emplace_back(), target_.emplace_back(), next_.emplace_back();
+        planned_.emplace_back(), corrected_.emplace_back(), neighbourCount_.push_back(0);
+        neighbours_.resize(neighbours_.size() + kMaxNeighbours);
+        maxSpeed_.push_back(0.0f), slot_.push_back(0), kind_.push_back(kFree), needsPath_.push_back(0), targetRef_.push_back(0);
+        corridor_.emplace_back(), boundary_.emplace_back();
+    }
+    const std::size_t i = std::size_t(agent);
+    position_[i] = glm::vec3(position[0], position[1], position[2]);
+    velocity_[i] = velocity ? glm::vec3(velocity[0], 0.0f, velocity[2]) : glm::vec3(0.0f);
+    next_[i] = ground(velocity_[i]);
+    target_[i] = position_[i];
+    maxSpeed_[i] = maxSpeed;
+    slot_[i] = slot;
+    kind_[i] = ghost ? kGhost : kWalker;
+    needsPath_[i] = 0;
+    targetRef_[i] = 0;
+    neighbourCount_[i] = 0;
+    if (ghost) return agent;
+    if (!corridor_[i]) {
+        corridor_[i] = std::make_unique<dtPathCorridor>();
+        boundary_[i] = std::make_unique<dtLocalBoundary>();
+        if (!corridor_[i]->init(kMaxPath)) throw std::runtime_error("Locomotion: Detour could not allocate a path corridor");
+    }
+    // Onto the mesh, as DetourCrowd places its agents; one nowhere near it stands where it is.
+    const float r = settings_.radius;
+    const float extents[3] = {2.0f * r, 1.5f * r, 2.0f * r};
+    dtPolyRef ref = 0;
+    float nearest[3];
+    query_.findNearestPoly(position, extents, &kFilter, &ref, nearest);
+    if (ref) position_[i] = glm::vec3(nearest[0], nearest[1], nearest[2]);
+    corridor_[i]->reset(ref, &position_[i].x);
+    boundary_[i]->reset();
+    return agent;
+}
+
+void OrcaRegionCrowd::remove(int agent) {
+    kind_[std::size_t(agent)] = kFree;
+    free_.push_back(agent);
+}
+
+void OrcaRegionCrowd::requestTarget(int agent, dtPolyRef ref, const float* target) {
+    const std::size_t i = std::size_t(agent);
+    targetRef_[i] = ref;
+    target_[i] = glm::vec3(target[0], target[1], target[2]);
+    needsPath_[i] = 1;
+}
+
+std::uint32_t OrcaRegionCrowd::bucketOf(std::int32_t cx, std::int32_t cz) const {
+    return (std::uint32_t(cx) * 73856093u ^ std::uint32_t(cz) * 19349663u) & std::uint32_t(bucketStart_.size() - 2);
+}
+
+void OrcaRegionCrowd::buildGrid() {
+    std::size_t buckets = 64;
+    while (buckets < 2 * agents_.size()) buckets *= 2;
+    bucketStart_.assign(buckets + 1, 0);
+    agentBucket_.resize(position_.size());
+    const float inverse = 1.0f / cellSize_;
+    for (std::uint32_t i : agents_) {
+        const std::uint32_t b = bucketOf(std::int32_t(std::floor(position_[i].x * inverse)), std::int32_t(std::floor(position_[i].z * inverse)));
+        agentBucket_[i] = b;
+        ++bucketStart_[b];
+    }
+    // Each bucket's end, then walking the agents backwards its start: every bucket lists its agents
+    // in increasing index, each with its position, so that a neighbour search reads memory in order.
+    for (std::size_t b = 1; b <= buckets; ++b) bucketStart_[b] += bucketStart_[b - 1];
+    bucketAgents_.resize(agents_.size());
+    bucketPositions_.resize(agents_.size());
+    for (std::size_t k = agents_.size(); k-- > 0;) {
+        const std::uint32_t i = agents_[k], at = --bucketStart_[agentBucket_[i]];
+        bucketAgents_[at] = i;
+        bucketPositions_[at] = ground(position_[i]);
+    }
+}
+
+void OrcaRegionCrowd::plan(std::size_t i, Worker& w) {
+    needsPath_[i] = 0;
+    dtPathCorridor& corridor = *corridor_[i];
+    const dtPolyRef start = corridor.getFirstPoly();
+    if (!start || !targetRef_[i]) return;
+    int n = 0;
+    w.query->findPath(start, targetRef_[i], &position_[i].x, &target_[i].x, &kFilter, w.path.data(), &n, kMaxPath);
+    if (n == 0) {
+        corridor.reset(start, &position_[i].x);
+        return;
+    }
+    // A partial path (too long for the corridor, or the target out of reach) ends on its last polygon.
+    glm::vec3 end = target_[i];
+    if (w.path[std::size_t(n - 1)] != targetRef_[i]) w.query->closestPointOnPoly(w.path[std::size_t(n - 1)], &target_[i].x, &end.x, nullptr);
+    corridor.setCorridor(&end.x, w.path.data(), n);
+}
+
+glm::vec2 OrcaRegionCrowd::steer(std::size_t i, Worker& w) {
+    dtPathCorridor& corridor = *corridor_[i];
+    if (!corridor.getFirstPoly()) return glm::vec2(0.0f);
+    float corners[6];
+    unsigned char flags[2];
+    dtPolyRef polys[2];
+    int n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
+    const glm::vec2 p = ground(position_[i]);
+    const bool turn = (steps_ + slot_[i]) % 16 == 0;  // the occasional replanning, staggered over the walkers
+    // A partial path walked to near its end: the next part.
+    if (turn && targetRef_[i] && corridor.getLastPoly() != targetRef_[i] && n > 0 && (flags[n - 1] & DT_STRAIGHTPATH_END)) {
+        const glm::vec2 last(corners[3 * (n - 1)], corners[3 * (n - 1) + 2]);
+        if (glm::dot(last - p, last - p) < 16.0f) {
+            plan(i, w);
+            n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
+        }
+    }
+    // Shortcuts through what the walker can see, as DetourCrowd's visibility optimisation does.
+    if (turn && n > 0) {
+        corridor.optimizePathVisibility(&corners[3 * (n - 1)], settings_.radius * 30.0f, w.query, &kFilter);
+        n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
+    }
+    if (n == 0) return glm::vec2(0.0f);
+    // Towards the next corner, anticipating the one after (DetourCrowd's smooth steering).
+    glm::vec2 direction = glm::vec2(corners[0], corners[2]) - p;
+    if (n > 1) {
+        glm::vec2 after = glm::vec2(corners[3], corners[5]) - p;
+        const float afterLength = glm::length(after);
+        if (afterLength > 0.001f) after /= afterLength;
+        direction -= after * glm::length(direction) * 0.5f;
+    }
+    const float length = glm::length(direction);
+    if (length < 1e-4f) return glm::vec2(0.0f);
+    direction /= length;
+    // Slowing down within two radii of the end.
+    float speed = maxSpeed_[i];
+    if (flags[n - 1] & DT_STRAIGHTPATH_END) {
+        const float slow = 2.0f * settings_.radius;
+        const float left = glm::length(glm::vec2(corners[3 * (n - 1)], corners[3 * (n - 1) + 2]) - p);
+        if (left < slow) speed *= left / slow;
+    }
+    // A small turn, fixed per walker, so that two walkers meeting exactly head-on do not stall
+    // (ORCA's half-planes are symmetric): within a degree either way.
+    const float angle = (float((slot_[i] * 2654435761u) >> 16 & 0xffffu) / 65535.0f * 2.0f - 1.0f) * 0.01745f;
+    const float c = std::cos(angle), s = std::sin(angle);
+    return glm::vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y) * speed;
+}
+
+glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, Worker& w) {
+    const orca::Body self{ground(position_[i]), ground(velocity_[i]), settings_.radius};
+    std::size_t n = 0;
+    // Walls first: they stay hard when the walkers' half-planes leave no room.
+    dtLocalBoundary& boundary = *boundary_[i];
+    const float wallRange = settings_.radius + maxSpeed_[i] * kWallHorizon + 0.5f;
+    const glm::vec3 moved = position_[i] - glm::vec3(boundary.getCenter()[0], boundary.getCenter()[1], boundary.getCenter()[2]);
+    if (corridor_[i]->getFirstPoly() && (boundary.getSegmentCount() == 0 || glm::dot(moved, moved) > 0.0625f * wallRange * wallRange))
+        boundary.update(corridor_[i]->getFirstPoly(), &position_[i].x, 2.0f * wallRange, w.query, &kFilter);
+    const orca::Body wallSelf{self.position, self.velocity, kWallClearance};
+    for (int k = 0; k < boundary.getSegmentCount(); ++k) {
+        const float* s = boundary.getSegment(k);
+        if (orca::wallLine(wallSelf, glm::vec2(s[0], s[2]), glm::vec2(s[3], s[5]), kWallHorizon, dt, w.lines[n])) ++n;
+    }
+    const std::size_t walls = n;
+    // The nearest neighbours, nearest first (ties by actor slot): the same set and order whatever
+    // the thread count.
+    struct Near {
+        float d2;
+        std::uint32_t slot, agent;
+        bool operator<(const Near& o) const { return d2 < o.d2 || (d2 == o.d2 && slot < o.slot); }
+    };
+    Near nearest[kMaxNeighbours];
+    int found = 0;
+    const float range = settings_.radius * settings_.neighbourRange;
+    // The cells (half the range wide) that the disc of the range reaches, each bucket scanned once.
+    const float inverse = 1.0f / cellSize_;
+    const auto x0 = std::int32_t(std::floor((self.position.x - range) * inverse)), x1 = std::int32_t(std::floor((self.position.x + range) * inverse));
+    const auto z0 = std::int32_t(std::floor((self.position.y - range) * inverse)), z1 = std::int32_t(std::floor((self.position.y + range) * inverse));
+    std::uint32_t seen[36];
+    int buckets = 0;
+    for (std::int32_t cx = x0; cx <= x1; ++cx)
+        for (std::int32_t cz = z0; cz <= z1 && buckets < 36; ++cz) {
+            const std::uint32_t b = bucketOf(cx, cz);
+            if (std::find(seen, seen + buckets, b) != seen + buckets) continue;  // two cells in one bucket
+            seen[buckets++] = b;
+            for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
+                const glm::vec2 d = bucketPositions_[k] - self.position;
+                const float d2 = glm::dot(d, d);
+                if (d2 >= range * range) continue;
+                const std::uint32_t j = bucketAgents_[k];
+                if (j == i) continue;
+                const Near candidate{d2, slot_[j], j};
+                if (found == kMaxNeighbours) {
+                    if (!(candidate < nearest[kMaxNeighbours - 1])) continue;
+                    --found;
+                }
+                int at = found++;
+                for (; at > 0 && candidate < nearest[at - 1]; --at) nearest[at] = nearest[at - 1];
+                nearest[at] = candidate;
+            }
+        }
+    // Room to step: a walker needs more room ahead the faster it walks, centre to centre 2r plus
+    // 1.06 s of its speed (Seyfried et al. 2005, from single-file experiments; 2r stands for their
+    // 0.36 m, a standing person's room), so it slows behind a walker going on ahead in its lane
+    // (less than one radius to either side) whatever ORCA allows. This gives the fundamental diagram
+    // its slope: ORCA alone lets a dense crowd walk at full speed when everyone moves alike.
+    const float speed = glm::length(preferred);
+    if (speed > 1e-4f) {
+        const glm::vec2 heading = preferred / speed;
+        float room = speed;
+        for (int k = 0; k < found; ++k) {
+            const glm::vec2 d = ground(position_[nearest[k].agent]) - self.position;
+            const float ahead = glm::dot(d, heading), across = std::abs(heading.x * d.y - heading.y * d.x);
+            if (ahead <= 0.0f || across >= settings_.radius) continue;
+            const glm::vec2 other = ground(velocity_[nearest[k].agent]);
+            if (glm::dot(other, heading) < kLeaderSpeed || glm::dot(other, d) <= 0.0f) continue;  // not going on ahead of it
+            room = std::min(room, std::max(0.0f, (ahead - 2.0f * settings_.radius) / kStepTime));
+        }
+        preferred *= room / speed;
+    }
+    neighbourCount_[i] = std::uint8_t(found);
+    for (int k = 0; k < found; ++k) neighbours_[i * kMaxNeighbours + std::size_t(k)] = nearest[k].agent;
+    for (int k = 0; k < found; ++k) {
+        const std::size_t j = nearest[k].agent;
+        w.lines[n++] = orca::agentLine(self, orca::Body{ground(position_[j]), ground(velocity_[j]), settings_.radius}, kHorizon, dt);
+    }
+    return orca::solve(std::span<const orca::Line>(w.lines.data(), n), walls, preferred, maxSpeed_[i], w.scratch);
+}
+
+void OrcaRegionCrowd::update(float dt) {
+    ++steps_;
+    walkers_.clear();
+    agents_.clear();
+    for (std::uint32_t i = 0; i < kind_.size(); ++i) {
+        if (kind_[i] == kFree) continue;
+        agents_.push_back(i);
+        if (kind_[i] == kWalker) walkers_.push_back(i);
+    }
+    if (settings_.avoidance) buildGrid();
+    // New velocities from the state at the start of the step, then the moves along the corridors.
+    const float maxChange = settings_.maxAcceleration * dt;
+    forEachChunk(walkers_.size(), kGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Worker& w = workers_.mine();
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::size_t i = walkers_[k];
+            if (needsPath_[i]) plan(i, w);
+            const glm::vec2 preferred = steer(i, w);
+            glm::vec2 v = settings_.avoidance ? avoid(i, preferred, dt, w) : preferred;
+            // As fast as people change pace (DetourCrowd's acceleration limit).
+            const glm::vec2 change = v - ground(velocity_[i]);
+            const float changeLength = glm::length(change);
+            if (changeLength > maxChange) v = ground(velocity_[i]) + change * (maxChange / changeLength);
+            next_[i] = v;
+                std::fprintf(stderr, "step %llu pos %.2f %.2f pref %.2f %.2f v %.2f %.2f npath %d target %.2f %.2f ref %u\n", (unsigned long long)steps_, position_[i].x, position_[i].z, preferred.x, preferred.y, v.x, v.y, corridor_[i]->getPathCount(), target_[i].x, target_[i].z, unsigned(targetRef_[i]));
+        }
+    });
+    // Where each agent would be (ghosts move on as they went), then bodies that would still
+    // interpenetrate by more than kSeparationSlack pushed apart, each taking half (DetourCrowd resolves
+    // its collisions the same way): ORCA's velocities leave some overlap where its programs were
+    // infeasible or a walker could not change pace fast enough. Read from one array, written to
+    // another: the same with any thread count.
+    for (std::uint32_t i : agents_) planned_[i] = ground(position_[i]) + (kind_[i] == kWalker ? next_[i] : ground(velocity_[i])) * dt;
+    forEachChunk(walkers_.size(), kGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::size_t i = walkers_[k];
+            glm::vec2 push(0.0f);
+            const float reach = 2.0f * settings_.radius;
+            if (settings_.avoidance)
+                for (std::size_t m = 0; m < neighbourCount_[i]; ++m) {
+                    const std::size_t j = neighbours_[i * kMaxNeighbours + m];
+                    const glm::vec2 d = planned_[i] - planned_[j];
+                    const float distance2 = glm::dot(d, d);
+                    if (distance2 >= reach * reach) continue;
+                    const float distance = std::sqrt(distance2);
+                    // Exactly on top of each other: apart along a direction fixed by their slots.
+                    const glm::vec2 away = distance > 1e-4f ? d / distance : glm::vec2(slot_[i] < slot_[j] ? -1.0f : 1.0f, 0.0f);
+                    if (reach - distance <= kSeparationSlack) continue;
+                    push += away * (0.5f * (reach - distance - kSeparationSlack));
+                }
+            corrected_[i] = planned_[i] + push;
+        }
+    });
+    forEachChunk(walkers_.size(), kGrain, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Worker& w = workers_.mine();
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::size_t i = walkers_[k];
+            dtPathCorridor& corridor = *corridor_[i];
+            if (!corridor.getFirstPoly()) continue;
+            const glm::vec3 to(corrected_[i].x, position_[i].y, corrected_[i].y);
+            corridor.movePosition(&to.x, w.query, &kFilter);
+            const float* p = corridor.getPos();
+            position_[i] = glm::vec3(p[0], p[1], p[2]);
+            // The velocity chosen, not the move the mesh allowed (as DetourCrowd keeps it): a walker
+            // held at a wall still shows its neighbours where it is going.
+            velocity_[i] = glm::vec3(next_[i].x, 0.0f, next_[i].y);
+        }
+    });
+}
+
+std::size_t OrcaRegionCrowd::bytes() const {
+    std::size_t b = sizeof(*this);
+    b += (position_.capacity() + velocity_.capacity() + target_.capacity()) * sizeof(glm::vec3) + next_.capacity() * sizeof(glm::vec2);
+    b += (planned_.capacity() + corrected_.capacity()) * sizeof(glm::vec2) + neighbours_.capacity() * sizeof(std::uint32_t) +
+         neighbourCount_.capacity();
+    b += maxSpeed_.capacity() * sizeof(float) + slot_.capacity() * sizeof(std::uint32_t) + kind_.capacity() + needsPath_.capacity();
+    b += targetRef_.capacity() * sizeof(dtPolyRef) + free_.capacity() * sizeof(int);
+    b += (corridor_.capacity() + boundary_.capacity()) * sizeof(void*);
+    for (std::size_t i = 0; i < corridor_.size(); ++i)
+        if (corridor_[i]) b += sizeof(dtPathCorridor) + kMaxPath * sizeof(dtPolyRef) + sizeof(dtLocalBoundary);
+    b += (walkers_.capacity() + agents_.capacity() + bucketStart_.capacity() + bucketAgents_.capacity() + agentBucket_.capacity()) *
+         sizeof(std::uint32_t);
+    return b;
+}
+
+}  // namespace throng::sim::locomotion

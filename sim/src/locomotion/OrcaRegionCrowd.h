@@ -1,0 +1,133 @@
+#pragma once
+// Internal to sim: a region's crowd kept apart by ORCA (sim/OrcaSolver). Navigation stays Detour's:
+// each walker follows its own path corridor (dtPathCorridor) and sees the walls near it
+// (dtLocalBoundary, the mesh's boundary edges), and this crowd does the rest. Data-oriented: agents
+// are flat arrays indexed by agent; neighbours come from a uniform grid rebuilt in place each step;
+// nothing is allocated per step once the arrays have grown. Each walker's new velocity depends only
+// on the state at the start of the step, and its neighbours are taken in a fixed order (distance,
+// then actor slot), so the result is the same with 1 or N threads: the walkers are shared out on
+// oneTBB, each thread with its own navigation query.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "RegionCrowd.h"
+#include "throng/sim/Locomotion.h"
+#include "throng/sim/OrcaSolver.h"
+
+class dtNavMeshQuery;
+class dtPathCorridor;
+class dtLocalBoundary;
+
+namespace throng::sim::locomotion {
+
+/// Each thread's navigation query and scratch, shared by every ORCA crowd of a Locomotion: a thread
+/// runs one crowd's chunk at a time, so a crowd's step never meets another use of its thread's entry.
+class OrcaWorkers {
+public:
+    /// One thread's entry.
+    struct Worker {
+        dtNavMeshQuery* query = nullptr;   ///< its own navigation query
+        std::vector<dtPolyRef> path;       ///< room for a planned path
+        std::vector<orca::Line> lines;     ///< a walker's half-planes
+        std::vector<orca::Line> scratch;   ///< the solver's scratch
+    };
+    OrcaWorkers() = default;
+    ~OrcaWorkers();
+    OrcaWorkers(const OrcaWorkers&) = delete;
+    OrcaWorkers& operator=(const OrcaWorkers&) = delete;
+    /// Makes room for every thread that may run the next step's chunks (call outside any parallel loop).
+    void prepare(const NavMesh& nav);
+    /// The calling thread's entry. Throws std::logic_error when prepare() did not make room for it.
+    Worker& mine();
+    /// Bytes the entries hold, their queries' node pools included.
+    std::size_t bytes() const;
+
+private:
+    std::vector<Worker> workers_;
+};
+
+/// A region's walkers moved by ORCA along Detour path corridors.
+class OrcaRegionCrowd final : public RegionCrowd {
+public:
+    /// The walkers' time horizon for one another, seconds: how early two walkers start to give way.
+    static constexpr float kHorizon = 2.0f;
+    /// The time horizon for walls, seconds.
+    static constexpr float kWallHorizon = 0.5f;
+    /// How near the centre of a walker may come to the mesh's boundary, metres (the mesh is already
+    /// eroded by the body's radius).
+    static constexpr float kWallClearance = 0.05f;
+    /// Seconds of walking a walker keeps clear ahead of it beyond its body (Seyfried et al. 2005:
+    /// the room a pedestrian needs grows by 1.06 m per m/s of speed).
+    static constexpr float kStepTime = 1.06f;
+    /// A walker ahead slows the one behind only while it goes on at least this fast along the
+    /// follower's way, m/s (one standing is ORCA's to avoid).
+    static constexpr float kLeaderSpeed = 0.1f;
+    /// Bodies interpenetrating by less than this after a move are left to ORCA, metres; deeper
+    /// overlaps are pushed apart. Pushing the shallow ones too makes two groups walking at each other
+    /// push back and forth until they jam (the counter-flow scenario).
+    static constexpr float kSeparationSlack = 0.03f;
+    /// At most this many of the nearest neighbours enter a walker's program.
+    static constexpr int kMaxNeighbours = 10;
+    /// Polygons a path corridor holds; a longer path is walked in parts, each planned on arrival.
+    static constexpr int kMaxPath = 256;
+
+    /// A crowd with `settings`, using `query` outside its steps and `workers` inside them (all the
+    /// caller's, outliving it).
+    OrcaRegionCrowd(const Locomotion::Settings& settings, dtNavMeshQuery& query, OrcaWorkers& workers);
+    ~OrcaRegionCrowd() override;
+    OrcaRegionCrowd(const OrcaRegionCrowd&) = delete;
+    OrcaRegionCrowd& operator=(const OrcaRegionCrowd&) = delete;
+
+    int add(std::uint32_t slot, const float* position, const float* velocity, float maxSpeed, bool ghost) override;
+    void remove(int agent) override;
+    void requestTarget(int agent, dtPolyRef ref, const float* target) override;
+    void update(float dt) override;
+    glm::vec3 position(int agent) const override { return position_[std::size_t(agent)]; }
+    glm::vec3 velocity(int agent) const override { return velocity_[std::size_t(agent)]; }
+    std::size_t bytes() const override;
+
+private:
+    enum : std::uint8_t { kFree = 0, kWalker = 1, kGhost = 2 };
+    using Worker = OrcaWorkers::Worker;
+
+    void buildGrid();
+    // The bucket of grid cell (cx, cz).
+    std::uint32_t bucketOf(std::int32_t cx, std::int32_t cz) const;
+    // Plans agent i's path to its target from where it stands.
+    void plan(std::size_t i, Worker& w);
+    // Agent i's preferred velocity along its corridor (zero when it has arrived or has no path).
+    glm::vec2 steer(std::size_t i, Worker& w);
+    // Agent i's new velocity: the nearest to `preferred` that ORCA allows.
+    glm::vec2 avoid(std::size_t i, glm::vec2 preferred, float dt, Worker& w);
+
+    const Locomotion::Settings& settings_;
+    dtNavMeshQuery& query_;  // for add(), outside the step
+    OrcaWorkers& workers_;
+    // Agents, by index.
+    std::vector<glm::vec3> position_, velocity_, target_;
+    std::vector<glm::vec2> next_;               // the velocity chosen this step
+    std::vector<glm::vec2> planned_, corrected_;  // where it would be, and after bodies are pushed apart
+    std::vector<std::uint32_t> neighbours_;       // this step's nearest, kMaxNeighbours per agent
+    std::vector<std::uint8_t> neighbourCount_;
+    std::vector<float> maxSpeed_;
+    std::vector<std::uint32_t> slot_;
+    std::vector<std::uint8_t> kind_, needsPath_;
+    std::vector<dtPolyRef> targetRef_;
+    std::vector<std::unique_ptr<dtPathCorridor>> corridor_;   // walkers' (kept for the index's next walker)
+    std::vector<std::unique_ptr<dtLocalBoundary>> boundary_;  // walkers' walls near them
+    std::vector<int> free_;
+    // This step's walkers and every agent, in index order.
+    std::vector<std::uint32_t> walkers_, agents_;
+    // The neighbour grid: cells half the neighbour range wide hashed into buckets, each bucket's agents in [start, start + count).
+    float cellSize_ = 1.0f;
+    std::vector<std::uint32_t> bucketStart_, bucketAgents_, agentBucket_;
+    std::vector<glm::vec2> bucketPositions_;  // each of bucketAgents_' position
+    std::uint64_t steps_ = 0;
+};
+
+}  // namespace throng::sim::locomotion
