@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -65,7 +66,6 @@ std::size_t OrcaWorkers::bytes() const {
 
 OrcaRegionCrowd::OrcaRegionCrowd(const Locomotion::Settings& settings, dtNavMeshQuery& query, OrcaWorkers& workers)
     : settings_(settings), query_(query), workers_(workers) {
-    cellSize_ = std::max(0.25f, 0.5f * settings.radius * settings.neighbourRange);
 }
 
 OrcaRegionCrowd::~OrcaRegionCrowd() = default;
@@ -124,31 +124,48 @@ void OrcaRegionCrowd::requestTarget(int agent, dtPolyRef ref, const float* targe
     needsPath_[i] = 1;
 }
 
-std::uint32_t OrcaRegionCrowd::bucketOf(std::int32_t cx, std::int32_t cz) const {
-    return (std::uint32_t(cx) * 73856093u ^ std::uint32_t(cz) * 19349663u) & std::uint32_t(bucketStart_.size() - 2);
+std::int32_t OrcaRegionCrowd::column(float x) const {
+    return std::clamp(std::int32_t(std::floor((x - gridOrigin_.x) / cellSize_)), 0, columns_ - 1);
+}
+
+std::int32_t OrcaRegionCrowd::row(float z) const {
+    return std::clamp(std::int32_t(std::floor((z - gridOrigin_.y) / cellSize_)), 0, rows_ - 1);
 }
 
 void OrcaRegionCrowd::buildGrid() {
-    std::size_t buckets = 64;
-    while (buckets < 2 * agents_.size()) buckets *= 2;
-    bucketStart_.assign(buckets + 1, 0);
-    agentBucket_.resize(position_.size());
-    const float inverse = 1.0f / cellSize_;
+    // Cells half the neighbour range wide over the agents' bounds; wider when that would make many
+    // more cells than agents (a few walkers spread over a large region).
+    glm::vec2 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (std::uint32_t i : agents_) lo = glm::min(lo, ground(position_[i])), hi = glm::max(hi, ground(position_[i]));
+    if (agents_.empty()) lo = hi = glm::vec2(0.0f);
+    cellSize_ = std::max(0.25f, 0.5f * settings_.radius * settings_.neighbourRange);
+    const double most = std::max<double>(4096.0, 4.0 * double(agents_.size()));
+    while (double((hi.x - lo.x) / cellSize_ + 1.0f) * double((hi.y - lo.y) / cellSize_ + 1.0f) > most) cellSize_ *= 2.0f;
+    gridOrigin_ = lo;
+    columns_ = std::int32_t((hi.x - lo.x) / cellSize_) + 1;
+    rows_ = std::int32_t((hi.y - lo.y) / cellSize_) + 1;
+    const std::size_t cells = std::size_t(columns_) * std::size_t(rows_);
+    cellStart_.assign(cells + 1, 0);
+    agentCell_.resize(position_.size());
     for (std::uint32_t i : agents_) {
-        const std::uint32_t b = bucketOf(std::int32_t(std::floor(position_[i].x * inverse)), std::int32_t(std::floor(position_[i].z * inverse)));
-        agentBucket_[i] = b;
-        ++bucketStart_[b];
+        const std::uint32_t c = std::uint32_t(row(position_[i].z) * columns_ + column(position_[i].x));
+        agentCell_[i] = c;
+        ++cellStart_[c];
     }
-    // Each bucket's end, then walking the agents backwards its start: every bucket lists its agents
-    // in increasing index, each with its position, so that a neighbour search reads memory in order.
-    for (std::size_t b = 1; b <= buckets; ++b) bucketStart_[b] += bucketStart_[b - 1];
-    bucketAgents_.resize(agents_.size());
-    bucketPositions_.resize(agents_.size());
+    // Each cell's end, then walking the agents backwards its start: every cell lists its agents in
+    // increasing index.
+    for (std::size_t c = 1; c <= cells; ++c) cellStart_[c] += cellStart_[c - 1];
+    cellAgents_.resize(agents_.size());
+    cellPositions_.resize(agents_.size());
     for (std::size_t k = agents_.size(); k-- > 0;) {
-        const std::uint32_t i = agents_[k], at = --bucketStart_[agentBucket_[i]];
-        bucketAgents_[at] = i;
-        bucketPositions_[at] = ground(position_[i]);
+        const std::uint32_t i = agents_[k], at = --cellStart_[agentCell_[i]];
+        cellAgents_[at] = i;
+        cellPositions_[at] = ground(position_[i]);
     }
+    // The walkers in the grid's order: neighbours stepped one after another share the cache.
+    walkers_.clear();
+    for (std::uint32_t i : cellAgents_)
+        if (kind_[i] == kWalker) walkers_.push_back(i);
 }
 
 void OrcaRegionCrowd::plan(std::size_t i, Worker& w) {
@@ -241,33 +258,27 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
     Near nearest[kMaxNeighbours];
     int found = 0;
     const float range = settings_.radius * settings_.neighbourRange;
-    // The cells (half the range wide) that the disc of the range reaches, each bucket scanned once.
-    const float inverse = 1.0f / cellSize_;
-    const auto x0 = std::int32_t(std::floor((self.position.x - range) * inverse)), x1 = std::int32_t(std::floor((self.position.x + range) * inverse));
-    const auto z0 = std::int32_t(std::floor((self.position.y - range) * inverse)), z1 = std::int32_t(std::floor((self.position.y + range) * inverse));
-    std::uint32_t seen[36];
-    int buckets = 0;
-    for (std::int32_t cx = x0; cx <= x1; ++cx)
-        for (std::int32_t cz = z0; cz <= z1 && buckets < 36; ++cz) {
-            const std::uint32_t b = bucketOf(cx, cz);
-            if (std::find(seen, seen + buckets, b) != seen + buckets) continue;  // two cells in one bucket
-            seen[buckets++] = b;
-            for (std::uint32_t k = bucketStart_[b]; k < bucketStart_[b + 1]; ++k) {
-                const glm::vec2 d = bucketPositions_[k] - self.position;
-                const float d2 = glm::dot(d, d);
-                if (d2 >= range * range) continue;
-                const std::uint32_t j = bucketAgents_[k];
-                if (j == i) continue;
-                const Near candidate{d2, slot_[j], j};
-                if (found == kMaxNeighbours) {
-                    if (!(candidate < nearest[kMaxNeighbours - 1])) continue;
-                    --found;
-                }
-                int at = found++;
-                for (; at > 0 && candidate < nearest[at - 1]; --at) nearest[at] = nearest[at - 1];
-                nearest[at] = candidate;
+    // The cells the disc of the range reaches: a run of adjacent cells per row.
+    const std::int32_t x0 = column(self.position.x - range), x1 = column(self.position.x + range);
+    const std::int32_t z0 = row(self.position.y - range), z1 = row(self.position.y + range);
+    for (std::int32_t z = z0; z <= z1; ++z) {
+        const std::uint32_t first = cellStart_[std::size_t(z * columns_ + x0)], last = cellStart_[std::size_t(z * columns_ + x1 + 1)];
+        for (std::uint32_t k = first; k < last; ++k) {
+            const glm::vec2 d = cellPositions_[k] - self.position;
+            const float d2 = glm::dot(d, d);
+            if (d2 >= range * range) continue;
+            const std::uint32_t j = cellAgents_[k];
+            if (j == i) continue;
+            const Near candidate{d2, slot_[j], j};
+            if (found == kMaxNeighbours) {
+                if (!(candidate < nearest[kMaxNeighbours - 1])) continue;
+                --found;
             }
+            int at = found++;
+            for (; at > 0 && candidate < nearest[at - 1]; --at) nearest[at] = nearest[at - 1];
+            nearest[at] = candidate;
         }
+    }
     // Room to step: a walker needs more room ahead the faster it walks, centre to centre 2r plus
     // 1.06 s of its speed (Seyfried et al. 2005, from single-file experiments; 2r stands for their
     // 0.36 m, a standing person's room), so it slows behind a walker going on ahead in its lane
@@ -320,7 +331,6 @@ void OrcaRegionCrowd::update(float dt) {
             const float changeLength = glm::length(change);
             if (changeLength > maxChange) v = ground(velocity_[i]) + change * (maxChange / changeLength);
             next_[i] = v;
-                std::fprintf(stderr, "step %llu pos %.2f %.2f pref %.2f %.2f v %.2f %.2f npath %d target %.2f %.2f ref %u\n", (unsigned long long)steps_, position_[i].x, position_[i].z, preferred.x, preferred.y, v.x, v.y, corridor_[i]->getPathCount(), target_[i].x, target_[i].z, unsigned(targetRef_[i]));
         }
     });
     // Where each agent would be (ghosts move on as they went), then bodies that would still
@@ -376,8 +386,8 @@ std::size_t OrcaRegionCrowd::bytes() const {
     b += (corridor_.capacity() + boundary_.capacity()) * sizeof(void*);
     for (std::size_t i = 0; i < corridor_.size(); ++i)
         if (corridor_[i]) b += sizeof(dtPathCorridor) + kMaxPath * sizeof(dtPolyRef) + sizeof(dtLocalBoundary);
-    b += (walkers_.capacity() + agents_.capacity() + bucketStart_.capacity() + bucketAgents_.capacity() + agentBucket_.capacity()) *
-         sizeof(std::uint32_t);
+    b += (walkers_.capacity() + agents_.capacity() + cellStart_.capacity() + cellAgents_.capacity() + agentCell_.capacity()) *
+         sizeof(std::uint32_t) + cellPositions_.capacity() * sizeof(glm::vec2);
     return b;
 }
 

@@ -96,8 +96,9 @@ private:
     using Worker = OrcaWorkers::Worker;
 
     void buildGrid();
-    // The bucket of grid cell (cx, cz).
-    std::uint32_t bucketOf(std::int32_t cx, std::int32_t cz) const;
+    // The grid column or row of a coordinate (x or z), clamped to the grid.
+    std::int32_t column(float x) const;
+    std::int32_t row(float z) const;
     // Plans agent i's path to its target from where it stands.
     void plan(std::size_t i, Worker& w);
     // Agent i's preferred velocity along its corridor (zero when it has arrived or has no path).
@@ -123,10 +124,14 @@ private:
     std::vector<int> free_;
     // This step's walkers and every agent, in index order.
     std::vector<std::uint32_t> walkers_, agents_;
-    // The neighbour grid: cells half the neighbour range wide hashed into buckets, each bucket's agents in [start, start + count).
+    // The neighbour grid: square cells over the agents' bounds, row by row, each cell's agents (in
+    // increasing index) at [cellStart_[c], cellStart_[c + 1]) of cellAgents_, with their positions,
+    // so that the cells of one row a search reads lie side by side in memory.
     float cellSize_ = 1.0f;
-    std::vector<std::uint32_t> bucketStart_, bucketAgents_, agentBucket_;
-    std::vector<glm::vec2> bucketPositions_;  // each of bucketAgents_' position
+    glm::vec2 gridOrigin_{0.0f};
+    std::int32_t columns_ = 1, rows_ = 1;
+    std::vector<std::uint32_t> cellStart_, cellAgents_, agentCell_;
+    std::vector<glm::vec2> cellPositions_;
     std::uint64_t steps_ = 0;
 };
 
