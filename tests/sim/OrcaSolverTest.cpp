@@ -142,4 +142,36 @@ TEST(OrcaSolver, AHemmedInWalkerGetsAFiniteVelocityWithinItsLimit) {
 }
 
 }  // namespace
+// A wall along z = 0 from x = -5 to 5, its free side z > 0 (Detour's winding runs it towards -x).
+TEST(OrcaSolver, AWallLimitsOnlyTheVelocityTowardsIt) {
+    const orca::Body walker{{0.0f, 0.5f}, {0.0f, 0.0f}, 0.1f};
+    orca::Line wall;
+    ASSERT_TRUE(orca::wallLine(walker, {5.0f, 0.0f}, {-5.0f, 0.0f}, 0.5f, 0.1f, wall));
+    std::vector<orca::Line> scratch(1);
+    const std::vector<orca::Line> lines{wall};
+    // Straight at the wall: slowed to the gap (0.4 m) over the horizon; along it: untouched.
+    const glm::vec2 into = orca::solve(lines, 1, {0.0f, -2.0f}, 2.0f, scratch);
+    EXPECT_NEAR(into.y, -0.8f, 1e-4f);
+    const glm::vec2 along = orca::solve(lines, 1, {1.5f, 0.0f}, 2.0f, scratch);
+    EXPECT_NEAR(along.x, 1.5f, 1e-5f);
+    EXPECT_NEAR(along.y, 0.0f, 1e-5f);
+    // Away from it: free.
+    EXPECT_NEAR(orca::solve(lines, 1, {0.0f, 1.0f}, 2.0f, scratch).y, 1.0f, 1e-5f);
+}
+
+TEST(OrcaSolver, AWallFacesOnlyWalkersBesideItOnItsFreeSide) {
+    orca::Line wall;
+    // Beyond its ends: the next segment's business (a joint in a straight wall is no post).
+    EXPECT_FALSE(orca::wallLine({{6.0f, 0.3f}, {}, 0.1f}, {5.0f, 0.0f}, {-5.0f, 0.0f}, 0.5f, 0.1f, wall));
+    // Behind it (the far side of the wall).
+    EXPECT_FALSE(orca::wallLine({{0.0f, -0.5f}, {}, 0.1f}, {5.0f, 0.0f}, {-5.0f, 0.0f}, 0.5f, 0.1f, wall));
+    // A walker reaching into it is sent out within one step.
+    const orca::Body touching{{0.0f, 0.05f}, {0.0f, 0.0f}, 0.1f};
+    ASSERT_TRUE(orca::wallLine(touching, {5.0f, 0.0f}, {-5.0f, 0.0f}, 0.5f, 0.1f, wall));
+    std::vector<orca::Line> scratch(1);
+    EXPECT_NEAR(orca::solve(std::vector<orca::Line>{wall}, 1, {0.0f, 0.0f}, 2.0f, scratch).y, 0.5f, 1e-4f);
+    // A degenerate segment is no wall.
+    EXPECT_FALSE(orca::wallLine(touching, {1.0f, 0.0f}, {1.0f, 0.0f}, 0.5f, 0.1f, wall));
+}
+
 }  // namespace throng::sim

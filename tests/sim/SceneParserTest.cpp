@@ -234,6 +234,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "/effects/avoidance/quality", "must be from 0 to 3, got 4"},
         BadScene{"avoidance range under a radius", scene(kActors, R"(, "effects": {"avoidance": {"range": 0.5}})"),
                  "/effects/avoidance/range", "must be from 1 to 100 agent radii, got 0.5"},
+        BadScene{"unknown avoidance model", scene(kActors, R"(, "effects": {"avoidance": {"model": "rvo"}})"),
+                 "/effects/avoidance/model", "must be \"detour\" or \"orca\", got \"rvo\""},
+        BadScene{"ORCA with DetourCrowd's quality", scene(kActors, R"(, "effects": {"avoidance": {"model": "orca", "quality": 2}})"),
+                 "/effects/avoidance/quality", "ORCA has none"},
         BadScene{"unknown avoidance field", scene(kActors, R"(, "effects": {"avoidance": {"speed": 1}})"),
                  "/effects/avoidance/speed", "not a known field"},
         BadScene{"far update every step", scene(kActors, R"(, "effects": {"farUpdate": {"distance": 80, "every": 1}})"),
@@ -443,6 +447,10 @@ TEST(SceneParser, AvoidanceQualityAndRangeAreRead) {
     EXPECT_TRUE(coarse.effects.avoidance);
     EXPECT_EQ(coarse.effects.avoidanceQuality, 1);
     EXPECT_DOUBLE_EQ(coarse.effects.avoidanceRange, 6.0);
+    EXPECT_EQ(coarse.effects.avoidanceModel, "detour");
+    const SceneDescription orca = parseScene(scene(kActors, R"(, "effects": {"avoidance": {"model": "orca"}})"), kAssets);
+    EXPECT_TRUE(orca.effects.avoidance);
+    EXPECT_EQ(orca.effects.avoidanceModel, "orca");
 }
 
 TEST(SceneParser, FarUpdateIsReadOnlyWhenDeclared) {
