@@ -41,7 +41,7 @@ SKIPPED = [
     (r"^(\w+=(\"[^\"]*\"|\S+) )*(cmake|ctest)\b",
      "the project's own configure, build, install and test steps: CI runs them (./run-tests), "
      "and the package.* tests install the libraries and build the consumer"),
-    (r"^(\w+=(\"[^\"]*\"|\S+) )*benchmarks/(run-report|check-baseline|update-frame-results|update-validation-results)\b",
+    (r"^(\w+=(\"[^\"]*\"|\S+) )*benchmarks/(run-report|check-baseline|update-frame-results|update-validation-results|update-avoidance-results)\b",
      "builds the release preset and measures for many minutes (run before an issue is resolved); "
      "the programs it runs are run below, one command each"),
     (r"^(benchmarks|build/gpu-check)/gpu-check\b",

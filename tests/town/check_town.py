@@ -120,6 +120,37 @@ def determinism(exe, scenes, work):
             if other_frames[n] != reference_frames[n]:
                 sys.exit(f"frame {n} of run '{name}' differs from the first run")
     print(f"{len(variants)} runs agree (threads, pipeline, OSMesa and EGL): {len(reference)} rows of stats.csv, {len(reference_frames)} frames")
+    # The same with ORCA keeping the walkers apart: the scene with its avoidance model switched (its
+    # relative paths made absolute, since the copy lives in the work folder).
+    scene = json.load(open(os.path.join(scenes, "effects.json")))
+
+    def absolute(value):
+        if isinstance(value, dict):
+            return {k: absolute(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [absolute(v) for v in value]
+        if isinstance(value, str) and value.startswith("../"):
+            return os.path.normpath(os.path.join(scenes, value))
+        return value
+
+    scene = absolute(scene)
+    scene["effects"]["avoidance"] = {"model": "orca"}
+    orca_scene = os.path.join(work, "effects-orca.json")
+    with open(orca_scene, "w") as f:
+        json.dump(scene, f)
+    orca_common = [a if a != os.path.join(scenes, "effects.json") else orca_scene for a in common]
+    orca_runs = {name: os.path.join(work, "orca-" + name) for name in ("one", "two-threads")}
+    run(exe, orca_runs["one"], *orca_common, "--threads", "1", "--pipeline", "off")
+    run(exe, orca_runs["two-threads"], *orca_common, "--threads", "2", "--pipeline", "off")
+    orca_reference = stats_without_timing(orca_runs["one"])
+    if orca_reference == reference:
+        sys.exit("the ORCA runs match DetourCrowd's: the avoidance model was not switched")
+    other = stats_without_timing(orca_runs["two-threads"])
+    if other != orca_reference:
+        sys.exit(f"stats.csv with ORCA differs between 1 and 2 threads: {first_difference(orca_reference, other)}")
+    if frames(orca_runs["two-threads"]) != frames(orca_runs["one"]):
+        sys.exit("the frames with ORCA differ between 1 and 2 threads")
+    print(f"ORCA: 1 and 2 threads agree: {len(orca_reference)} rows of stats.csv")
 
 
 def mpi(exe, scenes, work):

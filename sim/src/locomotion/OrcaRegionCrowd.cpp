@@ -23,7 +23,8 @@ const dtQueryFilter kFilter;
 
 // Walkers per chunk of the parallel loops.
 constexpr std::size_t kGrain = 64;
-// Node pool of a worker's query: paths of kMaxPath polygons need far fewer than the mesh's 4096.
+// Node pool of a worker's query (the mesh's own queries have 4096): a search that runs out of nodes
+// returns the part it found, walked and then planned on from near its end.
 constexpr int kWorkerNodes = 1024;
 
 glm::vec2 ground(const glm::vec3& v) { return {v.x, v.z}; }

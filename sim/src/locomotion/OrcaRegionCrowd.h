@@ -73,7 +73,8 @@ public:
     static constexpr float kSeparationSlack = 0.03f;
     /// At most this many of the nearest neighbours enter a walker's program.
     static constexpr int kMaxNeighbours = 10;
-    /// Polygons a path corridor holds; a longer path is walked in parts, each planned on arrival.
+    /// Polygons a path corridor holds (as DetourCrowd's); a longer path is walked in parts, each
+    /// planned when the walker comes near the end of the last.
     static constexpr int kMaxPath = 256;
 
     /// A crowd with `settings`, using `query` outside its steps and `workers` inside them (all the
