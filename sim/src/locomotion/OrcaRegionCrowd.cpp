@@ -79,7 +79,7 @@ int OrcaRegionCrowd::add(std::uint32_t slot, const float* position, const float*
     } else {
         agent = int(position_.size());
         position_.emplace_back(), velocity_.emplace_back(), target_.emplace_back(), next_.emplace_back();
-        planned_.emplace_back(), corrected_.emplace_back(), neighbourCount_.push_back(0);
+        planned_.emplace_back(), corrected_.emplace_back(), neighbourCount_.push_back(0), corners_.emplace_back(), turn_.emplace_back();
         neighbours_.resize(neighbours_.size() + kMaxNeighbours);
         maxSpeed_.push_back(0.0f), slot_.push_back(0), kind_.push_back(kFree), needsPath_.push_back(0), targetRef_.push_back(0);
         corridor_.emplace_back(), boundary_.emplace_back();
@@ -95,6 +95,11 @@ int OrcaRegionCrowd::add(std::uint32_t slot, const float* position, const float*
     needsPath_[i] = 0;
     targetRef_[i] = 0;
     neighbourCount_[i] = 0;
+    corners_[i].count = -1;
+    // A small turn of its way, fixed per walker, so that two walkers meeting exactly head-on do not
+    // stall (ORCA's half-planes are symmetric): within a degree either way.
+    const float angle = (float((slot * 2654435761u) >> 16 & 0xffffu) / 65535.0f * 2.0f - 1.0f) * 0.01745f;
+    turn_[i] = glm::vec2(std::cos(angle), std::sin(angle));
     if (ghost) return agent;
     if (!corridor_[i]) {
         corridor_[i] = std::make_unique<dtPathCorridor>();
@@ -171,6 +176,7 @@ void OrcaRegionCrowd::buildGrid() {
 
 void OrcaRegionCrowd::plan(std::size_t i, Worker& w) {
     needsPath_[i] = 0;
+    corners_[i].count = -1;
     dtPathCorridor& corridor = *corridor_[i];
     const dtPolyRef start = corridor.getFirstPoly();
     if (!start || !targetRef_[i]) return;
@@ -189,24 +195,31 @@ void OrcaRegionCrowd::plan(std::size_t i, Worker& w) {
 glm::vec2 OrcaRegionCrowd::steer(std::size_t i, Worker& w) {
     dtPathCorridor& corridor = *corridor_[i];
     if (!corridor.getFirstPoly()) return glm::vec2(0.0f);
-    float corners[6];
-    unsigned char flags[2];
+    Corners& cached = corners_[i];
+    float* corners = cached.at;
+    unsigned char* flags = cached.flags;
     dtPolyRef polys[2];
-    int n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
     const glm::vec2 p = ground(position_[i]);
     const bool turn = (steps_ + slot_[i]) % 16 == 0;  // the occasional replanning, staggered over the walkers
+    // The next two corners of the path, found again every kCornerEvery steps, or sooner when the
+    // walker nears the first (a corner stays a point of the path as the walker moves along it).
+    const glm::vec2 first(corners[0], corners[2]);
+    if (cached.count < 0 || turn || (steps_ + slot_[i]) % kCornerEvery == 0 || cached.count == 0 ||
+        glm::dot(first - p, first - p) < kCornerNear * kCornerNear)
+        cached.count = std::int8_t(corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter));
+    int n = cached.count;
     // A partial path walked to near its end: the next part.
     if (turn && targetRef_[i] && corridor.getLastPoly() != targetRef_[i] && n > 0 && (flags[n - 1] & DT_STRAIGHTPATH_END)) {
         const glm::vec2 last(corners[3 * (n - 1)], corners[3 * (n - 1) + 2]);
         if (glm::dot(last - p, last - p) < 16.0f) {
             plan(i, w);
-            n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
+            n = cached.count = std::int8_t(corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter));
         }
     }
     // Shortcuts through what the walker can see, as DetourCrowd's visibility optimisation does.
     if (turn && n > 0) {
         corridor.optimizePathVisibility(&corners[3 * (n - 1)], settings_.radius * 30.0f, w.query, &kFilter);
-        n = corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter);
+        n = cached.count = std::int8_t(corridor.findCorners(corners, flags, polys, 2, w.query, &kFilter));
     }
     if (n == 0) return glm::vec2(0.0f);
     // Towards the next corner, anticipating the one after (DetourCrowd's smooth steering).
@@ -227,11 +240,8 @@ glm::vec2 OrcaRegionCrowd::steer(std::size_t i, Worker& w) {
         const float left = glm::length(glm::vec2(corners[3 * (n - 1)], corners[3 * (n - 1) + 2]) - p);
         if (left < slow) speed *= left / slow;
     }
-    // A small turn, fixed per walker, so that two walkers meeting exactly head-on do not stall
-    // (ORCA's half-planes are symmetric): within a degree either way.
-    const float angle = (float((slot_[i] * 2654435761u) >> 16 & 0xffffu) / 65535.0f * 2.0f - 1.0f) * 0.01745f;
-    const float c = std::cos(angle), s = std::sin(angle);
-    return glm::vec2(c * direction.x - s * direction.y, s * direction.x + c * direction.y) * speed;
+    const glm::vec2 turnBy = turn_[i];
+    return glm::vec2(turnBy.x * direction.x - turnBy.y * direction.y, turnBy.y * direction.x + turnBy.x * direction.y) * speed;
 }
 
 glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, Worker& w) {
@@ -382,6 +392,7 @@ std::size_t OrcaRegionCrowd::bytes() const {
     b += (position_.capacity() + velocity_.capacity() + target_.capacity()) * sizeof(glm::vec3) + next_.capacity() * sizeof(glm::vec2);
     b += (planned_.capacity() + corrected_.capacity()) * sizeof(glm::vec2) + neighbours_.capacity() * sizeof(std::uint32_t) +
          neighbourCount_.capacity();
+    b += corners_.capacity() * sizeof(Corners) + turn_.capacity() * sizeof(glm::vec2);
     b += maxSpeed_.capacity() * sizeof(float) + slot_.capacity() * sizeof(std::uint32_t) + kind_.capacity() + needsPath_.capacity();
     b += targetRef_.capacity() * sizeof(dtPolyRef) + free_.capacity() * sizeof(int);
     b += (corridor_.capacity() + boundary_.capacity()) * sizeof(void*);

@@ -71,6 +71,10 @@ public:
     /// overlaps are pushed apart. Pushing the shallow ones too makes two groups walking at each other
     /// push back and forth until they jam (the counter-flow scenario).
     static constexpr float kSeparationSlack = 0.03f;
+    /// A walker's next corners are found again every this many steps...
+    static constexpr int kCornerEvery = 4;
+    /// ...or sooner, once it is this near the first, metres.
+    static constexpr float kCornerNear = 0.5f;
     /// At most this many of the nearest neighbours enter a walker's program.
     static constexpr int kMaxNeighbours = 10;
     /// Polygons a path corridor holds (as DetourCrowd's); a longer path is walked in parts, each
@@ -94,6 +98,12 @@ public:
 
 private:
     enum : std::uint8_t { kFree = 0, kWalker = 1, kGhost = 2 };
+    // The next two corners of a walker's path (-1: to be found).
+    struct Corners {
+        float at[6] = {};
+        unsigned char flags[2] = {};
+        std::int8_t count = -1;
+    };
     using Worker = OrcaWorkers::Worker;
 
     void buildGrid();
@@ -116,6 +126,8 @@ private:
     std::vector<glm::vec2> planned_, corrected_;  // where it would be, and after bodies are pushed apart
     std::vector<std::uint32_t> neighbours_;       // this step's nearest, kMaxNeighbours per agent
     std::vector<std::uint8_t> neighbourCount_;
+    std::vector<Corners> corners_;   // the next corners, found every kCornerEvery steps
+    std::vector<glm::vec2> turn_;    // cosine and sine of each walker's small fixed turn
     std::vector<float> maxSpeed_;
     std::vector<std::uint32_t> slot_;
     std::vector<std::uint8_t> kind_, needsPath_;
