@@ -225,6 +225,32 @@ TEST_P(RegionModels, RegionsStepBitwiseIdenticallyWithOneTwoOrFourThreads) {
     }
 }
 
+TEST_P(RegionModels, ARegionThatFillsMakesRoomForItsArrivals) {
+    // 240 walkers start in the left half and walk into the right one, which starts empty: its crowd
+    // has room for its share and a quarter more at first (DetourCrowd's is allocated up front: 214
+    // agents), so it grows as they arrive, and every one is handed over and walks on.
+    const auto nav = corridor();
+    std::vector<std::pair<glm::vec3, glm::vec3>> legs;
+    for (int i = 0; i < 240; ++i) {
+        const float x = -19.5f + float(i % 24) * 0.8f, z = -2.7f + float(i / 24) * 0.6f;
+        legs.push_back({glm::vec3(x, 0, z), glm::vec3(x + 20.5f, 0, z)});
+    }
+    auto run = walkers(nav, false, halves(), GetParam(), legs);
+    SimulationClock clock;
+    std::size_t handovers = 0, bytesBefore = 0;
+    for (int f = 0; f < 30 * 60; ++f, clock.advance()) {
+        ASSERT_NO_THROW(run->crowd.step(clock.context())) << "frame " << f;
+        if (f == 0) bytesBefore = run->walk->stepBytes();
+        handovers += run->walk->lastHandoverCount();
+    }
+    EXPECT_EQ(handovers, legs.size()) << "every walker crossed into the right half once";
+    for (std::uint32_t i = 0; i < legs.size(); ++i) {
+        EXPECT_EQ(run->walk->region(i), 1u) << "walker " << i;
+        EXPECT_NEAR(at(*run->walk, i).x, legs[i].second.x, 1.5f) << "walker " << i << " arrived";
+    }
+    EXPECT_GT(run->walk->stepBytes(), bytesBefore + 200000) << "the right half's crowd grew: " << bytesBefore << " to " << run->walk->stepBytes() << " bytes";
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, RegionModels,
                          ::testing::Values(Locomotion::AvoidanceModel::Detour, Locomotion::AvoidanceModel::Orca),
                          [](const ::testing::TestParamInfo<Locomotion::AvoidanceModel>& model) {

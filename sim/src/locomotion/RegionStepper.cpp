@@ -65,8 +65,8 @@ int RegionStepper::addAgent(Region& region, std::uint32_t r, std::uint32_t slot,
                             bool ghost) {
     const int agent = region.crowd->add(slot, position, velocity, static_cast<float>(actors_[slot].speed), ghost);
     if (agent < 0)
-        throw std::runtime_error("Locomotion: region " + std::to_string(r) + " is full (" + std::to_string(region.capacity) +
-                                 " agents with its ghosts); declare smaller regions");
+        throw std::runtime_error("Locomotion: region " + std::to_string(r) + " is full (" + std::to_string(DetourRegionCrowd::kMostAgents) +
+                                 " agents with its ghosts, DetourCrowd's most); declare smaller regions");
     return agent;
 }
 
@@ -97,11 +97,13 @@ void RegionStepper::place() {
         s.region = grid.regionOf(s.position.x, s.position.z);
         regions_[s.region].owned.push_back(slot);
     }
-    // Room for the agents a region starts with, its share of the crowd three times over (people
-    // gather where destinations lie) and its ghosts; DetourCrowd numbers agents with 16 bits.
+    // Room for the agents a region starts with (or its share of the crowd) and a quarter more, and
+    // its ghosts; a DetourCrowd grows when people gather (an ORCA crowd grows as it goes); DetourCrowd
+    // numbers agents with 16 bits.
     const std::size_t share = state_.size() / regions_.size();
     for (std::uint32_t r = 0; r < regions_.size(); ++r) {
-        const std::size_t want = 3 * std::max(regions_[r].owned.size(), share) + 64;
+        const std::size_t most = std::max(regions_[r].owned.size(), share);
+        const std::size_t want = most + most / 4 + 64;
         if (regions_[r].owned.size() > 40000)
             throw std::runtime_error("Locomotion: region " + std::to_string(r) + " starts with " + std::to_string(regions_[r].owned.size()) +
                                      " agents; DetourCrowd numbers a crowd's agents with 16 bits, so declare smaller regions");

@@ -35,7 +35,7 @@ public:
     struct Region {
         std::unique_ptr<RegionCrowd> crowd;       ///< its crowd
         dtNavMeshQuery* query = nullptr;          ///< its navigation query
-        int capacity = 0;                         ///< agents its crowd holds, ghosts included
+        int capacity = 0;                         ///< agents a DetourCrowd has room for at first, ghosts included
         std::vector<std::uint32_t> owned;         ///< the walkers it steps, increasing slots
         std::vector<std::uint32_t> scratch;       ///< room to merge `owned` with arrivals
         std::vector<GhostRecord> ghostsOut;       ///< its agents other regions see this step
