@@ -35,8 +35,7 @@ DetourRegionCrowd::DetourRegionCrowd(const NavMesh& nav, const Locomotion::Setti
 
 DetourRegionCrowd::~DetourRegionCrowd() { dtFreeCrowd(crowd_); }
 
-void DetourRegionCrowd::fillParams(const Kept& kept, void* out) const {
-    dtCrowdAgentParams& p = *static_cast<dtCrowdAgentParams*>(out);
+void DetourRegionCrowd::fillParams(const Kept& kept, dtCrowdAgentParams& p) const {
     p = dtCrowdAgentParams{};
     p.radius = settings_.radius;
     p.height = settings_.height;
@@ -61,7 +60,7 @@ bool DetourRegionCrowd::grow() {
         if (agentOf_[h] < 0) continue;
         const dtCrowdAgent* old = crowd_->getAgent(agentOf_[h]);
         dtCrowdAgentParams p;
-        fillParams(kept_[h], &p);
+        fillParams(kept_[h], p);
         const int agent = bigger->addAgent(old->npos, &p);
         if (agent < 0) {
             dtFreeCrowd(bigger);
@@ -84,7 +83,7 @@ int DetourRegionCrowd::add(std::uint32_t, const float* position, const float* ve
     kept.maxSpeed = maxSpeed;
     kept.ghost = ghost;
     dtCrowdAgentParams p;
-    fillParams(kept, &p);
+    fillParams(kept, p);
     int agent = crowd_->addAgent(position, &p);
     if (agent < 0 && grow()) agent = crowd_->addAgent(position, &p);
     if (agent < 0) return -1;

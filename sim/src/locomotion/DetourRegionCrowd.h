@@ -12,6 +12,7 @@
 #include "throng/sim/Locomotion.h"
 
 class dtCrowd;
+struct dtCrowdAgentParams;
 
 namespace throng::sim::locomotion {
 
@@ -46,7 +47,7 @@ private:
     // A DetourCrowd for `capacity` agents with this crowd's sampling.
     dtCrowd* makeCrowd(int capacity) const;
     // DetourCrowd's parameters for an agent.
-    void fillParams(const Kept& kept, void* params) const;
+    void fillParams(const Kept& kept, dtCrowdAgentParams& params) const;
     // Moves every agent into a crowd twice the size; false when the crowd is as large as it may be.
     bool grow();
 
