@@ -125,13 +125,16 @@ glm::vec2 solve(std::span<const Line> lines, std::size_t firstSoft, glm::vec2 pr
     const std::size_t satisfied = program2(lines, maxSpeed, preferred, false, result);
     if (satisfied == lines.size()) return result;
     // Infeasible: from the first line that failed, minimise how deep the velocity lies in the soft
-    // lines, keeping the hard ones (the 3-D program, solved as a 2-D one per violated line).
+    // lines, keeping the hard ones (the 3-D program, solved as a 2-D one per violated line). When the
+    // hard lines alone cannot be met within the speed limit (a wall that asks for a faster way out
+    // than the walker has), every line is soft: the least deep velocity, not none at all.
+    const std::size_t hard = satisfied < firstSoft ? 0 : firstSoft;
     float depth = 0.0f;
-    for (std::size_t i = std::max(satisfied, firstSoft); i < lines.size(); ++i) {
+    for (std::size_t i = std::max(satisfied, hard); i < lines.size(); ++i) {
         if (outside(lines[i], result) <= depth) continue;
         std::size_t n = 0;
-        for (std::size_t j = 0; j < firstSoft; ++j) scratch[n++] = lines[j];
-        for (std::size_t j = firstSoft; j < i; ++j) {
+        for (std::size_t j = 0; j < hard; ++j) scratch[n++] = lines[j];
+        for (std::size_t j = hard; j < i; ++j) {
             // The line of velocities equally deep in lines i and j.
             Line l;
             const float determinant = cross(lines[i].direction, lines[j].direction);

@@ -170,6 +170,9 @@ TEST(OrcaSolver, AWallFacesOnlyWalkersBesideItOnItsFreeSide) {
     ASSERT_TRUE(orca::wallLine(touching, {5.0f, 0.0f}, {-5.0f, 0.0f}, 0.5f, 0.1f, wall));
     std::vector<orca::Line> scratch(1);
     EXPECT_NEAR(orca::solve(std::vector<orca::Line>{wall}, 1, {0.0f, 0.0f}, 2.0f, scratch).y, 0.5f, 1e-4f);
+    // Further into it than it can leave in one step: out of it as fast as it may walk, not standing
+    // still (a hard line that no velocity within the limit meets is relaxed, not given up).
+    EXPECT_NEAR(orca::solve(std::vector<orca::Line>{wall}, 1, {0.0f, 0.0f}, 0.3f, scratch).y, 0.3f, 1e-4f);
     // A degenerate segment is no wall.
     EXPECT_FALSE(orca::wallLine(touching, {1.0f, 0.0f}, {1.0f, 0.0f}, 0.5f, 0.1f, wall));
 }

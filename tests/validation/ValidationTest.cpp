@@ -22,8 +22,8 @@
 //     through a corridor 2 m long, 0.8, 1.0 and 1.2 m wide: all through within 120 s, the specific
 //     flow within 1.4 to 2.2 persons/(m s) (the experiments' 1.6 to 2.0 widened by their own
 //     spread), bodies overlapping under 2 %. Both models fail it: DetourCrowd clogs the narrowest
-//     door and pushes bodies through each other, ORCA's walkers jam in an arch before the door (the
-//     room each needs ahead to walk makes the corridor single file): a known failure, as below.
+//     door and pushes bodies through each other; ORCA's walkers all get through, but the two
+//     narrower doors pass them single file, under 1.4 persons/(m s): a known failure, as below.
 //   * Counter-flow: two groups of 30 walk at each other along a corridor 4 m wide: every walker
 //     passes the other group within 90 s (no deadlock), and lanes form: the lane order parameter
 //     (below) of the walkers between the groups' starts exceeds 0.5 while they pass. DetourCrowd
@@ -32,8 +32,8 @@
 //     page's script sets it), until the avoidance that passes it lands.
 //
 // Every scenario runs for both avoidance models (the scene's effects.avoidance.model): DetourCrowd
-// and ORCA (sim/OrcaSolver on Detour's path corridors, each walker keeping the room it needs ahead
-// after Seyfried et al. 2005). Each prints what it measured (the figures the results page reports).
+// and ORCA (sim/OrcaSolver on Detour's path corridors, each walker slowed to Weidmann's speed for the
+// density ahead of it). Each prints what it measured (the figures the results page reports).
 
 #include <gtest/gtest.h>
 
@@ -384,8 +384,8 @@ BottleneckRun runBottleneck(double width) {
 TEST_P(Validation, BottleneckFlowMatchesExperiments) {
     if (skipKnownFailure(true))
         GTEST_SKIP() << "a known failure of both avoidance models (DetourCrowd: at 0.8 m three walkers clog the door for good, 2 to "
-                        "4 % of agent-seconds overlapping; ORCA: an arch of walkers jams before the door, about a third still "
-                        "inside after 120 s): run with THRONG_VALIDATION_KNOWN_FAILURES=1";
+                        "4 % of agent-seconds overlapping; ORCA: all through, but about 0.9 persons/(m s) through the 0.8 and 1.0 m "
+                        "doors, walked single file): run with THRONG_VALIDATION_KNOWN_FAILURES=1";
     for (double width : {0.8, 1.0, 1.2}) {
         const BottleneckRun r = runBottleneck(width);
         std::printf("Bottleneck %.1f m: %zu of 60 through, the last after %.1f s; specific flow %.2f persons/(m s) (experiments: about "

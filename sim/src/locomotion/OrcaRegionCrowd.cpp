@@ -29,6 +29,13 @@ constexpr int kWorkerNodes = 1024;
 
 glm::vec2 ground(const glm::vec3& v) { return {v.x, v.z}; }
 
+// The share of its free speed a walker keeps at `density` persons/m^2: Weidmann's (1993) fundamental
+// diagram, v(rho) = v0 (1 - exp(-1.913 (1/rho - 1/5.4))), scaled to the walker's own free speed.
+float weidmannShare(float density) {
+    if (density <= 1e-3f) return 1.0f;
+    return std::max(0.0f, 1.0f - std::exp(-1.913f * (1.0f / density - 1.0f / 5.4f)));
+}
+
 }  // namespace
 
 OrcaWorkers::~OrcaWorkers() {
@@ -269,6 +276,12 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
     Near nearest[kMaxNeighbours];
     int found = 0;
     const float range = settings_.radius * settings_.neighbourRange;
+    // The density ahead (see kDensityRange), summed over every agent the grid finds, not only the
+    // nearest kept for ORCA: in cells of a fixed order, the same sum with any thread count.
+    const float speed = glm::length(preferred);
+    const glm::vec2 heading = speed > 1e-4f ? preferred / speed : glm::vec2(0.0f);
+    const float densityRange = std::min(kDensityRange, range);
+    float crowding = 0.0f;
     // The cells the disc of the range reaches: a run of adjacent cells per row.
     const std::int32_t x0 = column(self.position.x - range), x1 = column(self.position.x + range);
     const std::int32_t z0 = row(self.position.y - range), z1 = row(self.position.y + range);
@@ -280,6 +293,10 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
             if (d2 >= range * range) continue;
             const std::uint32_t j = cellAgents_[k];
             if (j == i) continue;
+            if (d2 < densityRange * densityRange) {
+                const float distance = std::sqrt(d2);
+                if (glm::dot(d, heading) > kDensityCone * distance) crowding += 1.0f - distance / densityRange;
+            }
             const Near candidate{d2, slot_[j], j};
             if (found == kMaxNeighbours) {
                 if (!(candidate < nearest[kMaxNeighbours - 1])) continue;
@@ -290,30 +307,19 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
             nearest[at] = candidate;
         }
     }
-    // Room to step: a walker needs more room ahead the faster it walks, centre to centre 2r plus
-    // 1.06 s of its speed (Seyfried et al. 2005, from single-file experiments; 2r stands for their
-    // 0.36 m, a standing person's room), so it slows behind a walker going on ahead in its lane
-    // (less than one radius to either side) whatever ORCA allows. This gives the fundamental diagram
-    // its slope: ORCA alone lets a dense crowd walk at full speed when everyone moves alike.
-    const float speed = glm::length(preferred);
-    if (speed > 1e-4f) {
-        const glm::vec2 heading = preferred / speed;
-        float room = speed;
-        for (int k = 0; k < found; ++k) {
-            const glm::vec2 d = ground(position_[nearest[k].agent]) - self.position;
-            const float ahead = glm::dot(d, heading), across = std::abs(heading.x * d.y - heading.y * d.x);
-            if (ahead <= 0.0f || across >= settings_.radius) continue;
-            const glm::vec2 other = ground(velocity_[nearest[k].agent]);
-            if (glm::dot(other, heading) < kLeaderSpeed || glm::dot(other, d) <= 0.0f) continue;  // not going on ahead of it
-            room = std::min(room, std::max(0.0f, (ahead - 2.0f * settings_.radius) / kStepTime));
-        }
-        preferred *= room / speed;
-    }
+    // The pace people keep in the crowd ahead (Weidmann's fundamental diagram, as DenseSense, Best
+    // et al. 2014, slows ORCA's agents): ORCA alone lets a dense crowd walk at full speed when
+    // everyone moves alike. The weights' sum over the cone's weighted area, acos(c) R^2 / 3, is the
+    // density; the cone's part beyond a wall counts as empty, so a walker entering a door sees the
+    // few ahead of it in the door, not the crowd beside it.
+    if (speed > 1e-4f) preferred *= weidmannShare(crowding / (std::acos(kDensityCone) * densityRange * densityRange / 3.0f));
     neighbourCount_[i] = std::uint8_t(found);
     for (int k = 0; k < found; ++k) neighbours_[i * kMaxNeighbours + std::size_t(k)] = nearest[k].agent;
     for (int k = 0; k < found; ++k) {
         const std::size_t j = nearest[k].agent;
-        w.lines[n++] = orca::agentLine(self, orca::Body{ground(position_[j]), ground(velocity_[j]), settings_.radius}, kHorizon, dt);
+        const glm::vec2 other = ground(velocity_[j]);
+        const float horizon = glm::dot(other, preferred) < 0.0f ? kHorizon : kAlongHorizon;
+        w.lines[n++] = orca::agentLine(self, orca::Body{ground(position_[j]), other, settings_.radius}, horizon, dt);
     }
     return orca::solve(std::span<const orca::Line>(w.lines.data(), n), walls, preferred, maxSpeed_[i], w.scratch);
 }

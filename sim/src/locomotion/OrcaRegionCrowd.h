@@ -54,19 +54,25 @@ private:
 /// A region's walkers moved by ORCA along Detour path corridors.
 class OrcaRegionCrowd final : public RegionCrowd {
 public:
-    /// The walkers' time horizon for one another, seconds: how early two walkers start to give way.
+    /// The time horizon for a walker coming towards another (its velocity against the other's way),
+    /// seconds: how early two walkers meeting start to give way (long enough for lanes to form).
     static constexpr float kHorizon = 2.0f;
+    /// The time horizon for a walker going the other's way, across it, or standing, seconds. Short:
+    /// with 2 s, walkers pressing towards a door each hold back for the others, and the crowd jams
+    /// before it (an arch whose walkers all wait for one another).
+    static constexpr float kAlongHorizon = 0.25f;
     /// The time horizon for walls, seconds.
     static constexpr float kWallHorizon = 0.5f;
     /// How near the centre of a walker may come to the mesh's boundary, metres (the mesh is already
     /// eroded by the body's radius).
     static constexpr float kWallClearance = 0.05f;
-    /// Seconds of walking a walker keeps clear ahead of it beyond its body (Seyfried et al. 2005:
-    /// the room a pedestrian needs grows by 1.06 m per m/s of speed).
-    static constexpr float kStepTime = 1.06f;
-    /// A walker ahead slows the one behind only while it goes on at least this fast along the
-    /// follower's way, m/s (one standing is ORCA's to avoid).
-    static constexpr float kLeaderSpeed = 0.1f;
+    /// How far ahead a walker judges the crowd's density, metres: the walkers within this distance
+    /// (at most the neighbour range) and within kDensityCone of its way, weighted 1 at its centre
+    /// falling linearly to 0 at this distance.
+    static constexpr float kDensityRange = 2.0f;
+    /// The cone of kDensityRange: the cosine of its half angle (60 degrees; the walkers beside a
+    /// door are not in the way of one entering it).
+    static constexpr float kDensityCone = 0.5f;
     /// Bodies interpenetrating by less than this after a move are left to ORCA, metres; deeper
     /// overlaps are pushed apart. Pushing the shallow ones too makes two groups walking at each other
     /// push back and forth until they jam (the counter-flow scenario).
@@ -114,7 +120,8 @@ private:
     void plan(std::size_t i, Worker& w);
     // Agent i's preferred velocity along its corridor (zero when it has arrived or has no path).
     glm::vec2 steer(std::size_t i, Worker& w);
-    // Agent i's new velocity: the nearest to `preferred` that ORCA allows.
+    // Agent i's new velocity: `preferred` slowed to the speed people keep in the density ahead of it,
+    // then the nearest to that which ORCA allows.
     glm::vec2 avoid(std::size_t i, glm::vec2 preferred, float dt, Worker& w);
 
     const Locomotion::Settings& settings_;

@@ -47,7 +47,8 @@ bool wallLine(const Body& self, glm::vec2 a, glm::vec2 b, float horizon, float d
 /// The velocity nearest `preferred` inside every line and within `maxSpeed`. When no velocity
 /// satisfies all of them, the lines from `firstSoft` on are relaxed together (the first ones, such as
 /// walls, stay hard as far as possible) and the velocity that enters the deepest of those least is
-/// returned. `scratch` holds at least lines.size() lines (used only then).
+/// returned; when the first ones cannot all be met within `maxSpeed` either, every line is relaxed.
+/// `scratch` holds at least lines.size() lines (used only then).
 glm::vec2 solve(std::span<const Line> lines, std::size_t firstSoft, glm::vec2 preferred, float maxSpeed, std::span<Line> scratch);
 
 }  // namespace throng::sim::orca
