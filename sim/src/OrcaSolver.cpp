@@ -64,7 +64,7 @@ std::size_t program2(std::span<const Line> lines, float radius, glm::vec2 target
 
 }  // namespace
 
-Line agentLine(const Body& self, const Body& other, float horizon, float dt) {
+Line agentLine(const Body& self, const Body& other, float horizon, float dt, float share) {
     const glm::vec2 p = other.position - self.position;
     const glm::vec2 v = self.velocity - other.velocity;
     const float r = self.radius + other.radius;
@@ -97,7 +97,7 @@ Line agentLine(const Body& self, const Body& other, float horizon, float dt) {
         line.direction = glm::vec2(unit.y, -unit.x);
         u = (r / dt - wLength) * unit;
     }
-    line.point = self.velocity + 0.5f * u;
+    line.point = self.velocity + share * u;
     return line;
 }
 

@@ -94,6 +94,30 @@ TEST(OrcaSolver, MovesOntoAViolatedLine) {
     EXPECT_NEAR(v.y, 0.5f, 1e-6f);
 }
 
+// Two walkers abreast converging: the one that takes all of the change (share 1, the other having the
+// right of way and keeping its velocity) clears the other within the horizon on its own; taking half
+// (share 0.5, ORCA's reciprocal rule) it would clear it only if the other did its half too.
+TEST(OrcaSolver, AWalkerTakingAllTheChangeClearsTheOtherAlone) {
+    const float horizon = 2.0f, dt = 1.0f / 60.0f;
+    const orca::Body self{glm::vec2(0.0f, 0.0f), glm::vec2(1.0f, 0.3f), kRadius};
+    const orca::Body other{glm::vec2(0.0f, 0.8f), glm::vec2(1.0f, -0.3f), kRadius};
+    // The closest the two bodies' centres come within the horizon, self at `v`, the other as it goes.
+    const auto closest = [&](glm::vec2 v) {
+        float best = 1e9f;
+        for (float t = 0.0f; t <= horizon; t += 0.01f)
+            best = std::min(best, glm::length(other.position + other.velocity * t - (self.position + v * t)));
+        return best;
+    };
+    ASSERT_LT(closest(self.velocity), 2.0f * kRadius);  // as they go, they collide
+    std::vector<Line> scratch(1);
+    for (float share : {0.5f, 1.0f}) {
+        const Line l = orca::agentLine(self, other, horizon, dt, share);
+        const glm::vec2 v = orca::solve(std::span(&l, 1), 0, self.velocity, kSpeed, scratch);
+        if (share == 1.0f) EXPECT_GE(closest(v), 2.0f * kRadius - 1e-3f) << "taking all of the change";
+        else EXPECT_LT(closest(v), 2.0f * kRadius - 0.01f) << "taking half, it relies on the other";
+    }
+}
+
 TEST(OrcaSolver, TwoWalkersHeadOnPassWithoutTouching) {
     std::vector<Walker> w{walker({0.0f, 0.0f}, {8.0f, 0.0f}), walker({8.0f, 0.0f}, {0.0f, 0.0f})};
     const float closest = stepCrowd(w, 12.0f);

@@ -19,21 +19,23 @@
 //     range, and each population's speeds follow the distribution drawn from (Kolmogorov-Smirnov,
 //     1 % level).
 //   * Bottleneck (Seyfried et al. 2009, Kretz et al. 2006): 60 walkers (0.44 m across) leave a room
-//     through a corridor 2 m long, 0.8, 1.0 and 1.2 m wide: all through within 120 s, the specific
-//     flow within 1.4 to 2.2 persons/(m s) (the experiments' 1.6 to 2.0 widened by their own
-//     spread), bodies overlapping under 2 %. Both models fail it: DetourCrowd clogs the narrowest
-//     door and pushes bodies through each other; ORCA's walkers all get through, but the two
-//     narrower doors pass them single file, under 1.4 persons/(m s): a known failure, as below.
+//     through a corridor 2 m long, 0.8, 1.0 and 1.2 m wide, five runs each (the scene's seed and the
+//     next four): in every run all through within 120 s and bodies overlapping under 2 %; the mean
+//     specific flow within 1.4 to 2.2 persons/(m s) (the experiments' 1.6 to 2.0 widened by their own
+//     spread). The scene's navigation cells are 2 cm: the mesh is eroded by whole cells, and 5 cm cells
+//     would take 0.25 m off each side of the door for a 0.22 m body, 17 % of the 0.8 m door's room
+//     for walkers' centres. DetourCrowd fails it (everyone through, but 2.5 persons/(m s) through the
+//     wider doors with bodies pushed through each other in 2 to 4 % of agent-seconds): a known failure.
 //   * Counter-flow: two groups of 30 walk at each other along a corridor 4 m wide: every walker
 //     passes the other group within 90 s (no deadlock), and lanes form: the lane order parameter
 //     (below) of the walkers between the groups' starts exceeds 0.5 while they pass. DetourCrowd
 //     fails it (one walker stuck, bodies overlapping in 10 % of agent-seconds): a known failure,
 //     skipped in the suite, run and reported when THRONG_VALIDATION_KNOWN_FAILURES=1 (the results
-//     page's script sets it), until the avoidance that passes it lands.
+//     page's script sets it).
 //
 // Every scenario runs for both avoidance models (the scene's effects.avoidance.model): DetourCrowd
 // and ORCA (sim/OrcaSolver on Detour's path corridors, each walker slowed to Weidmann's speed for the
-// density ahead of it). Each prints what it measured (the figures the results page reports).
+// density ahead of it, walkers held back abreast giving way by a right of way). Each prints what it measured (the figures the results page reports).
 
 #include <gtest/gtest.h>
 
@@ -348,8 +350,11 @@ struct BottleneckRun {
     double overlapShare = 0.0, deepest = 0.0;
 };
 
-BottleneckRun runBottleneck(double width) {
-    Scenario s("bottleneck.json", [&](sim::SceneDescription& d) { d.walkways->floors.at(1).size.y = width; });
+BottleneckRun runBottleneck(double width, std::uint64_t seedOffset) {
+    Scenario s("bottleneck.json", [&](sim::SceneDescription& d) {
+        d.walkways->floors.at(1).size.y = width;
+        d.seed += seedOffset;
+    });
     const auto& walkers = s.group(0);
     std::vector<glm::vec3> last;
     for (std::uint32_t slot : walkers) last.push_back(s.position(slot));
@@ -382,25 +387,40 @@ BottleneckRun runBottleneck(double width) {
 }
 
 TEST_P(Validation, BottleneckFlowMatchesExperiments) {
-    if (skipKnownFailure(true))
-        GTEST_SKIP() << "a known failure of both avoidance models (DetourCrowd: at 0.8 m three walkers clog the door for good, 2 to "
-                        "4 % of agent-seconds overlapping; ORCA: all through, but about 0.9 persons/(m s) through the 0.8 and 1.0 m "
-                        "doors, walked single file): run with THRONG_VALIDATION_KNOWN_FAILURES=1";
+    if (skipKnownFailure())
+        GTEST_SKIP() << "a known failure of DetourCrowd's avoidance (at 0.8 m three walkers clog the door for good, 2 to 4 % of "
+                        "agent-seconds overlapping): run with THRONG_VALIDATION_KNOWN_FAILURES=1";
+    // One run's flow depends on who reaches the door first (the walkers' places and speeds are drawn
+    // from the scene's seed): each width is run kRuns times, the scene's seed and the next ones, and
+    // their mean compared with the experiments, which are themselves means over runs.
+    constexpr int kRuns = 5;
     for (double width : {0.8, 1.0, 1.2}) {
-        const BottleneckRun r = runBottleneck(width);
-        std::printf("Bottleneck %.1f m: %zu of 60 through, the last after %.1f s; specific flow %.2f persons/(m s) (experiments: about "
-                    "1.6 to 2.0); overlapping by more than 5 cm: %.3f %%, deepest %.3f m\n",
-                    width, r.crossed, r.lastCrossing, r.specificFlow, 100.0 * r.overlapShare, r.deepest);
+        double flowSum = 0.0, flowMin = 1e9, flowMax = 0.0, overlapMax = 0.0;
+        std::size_t fewest = 60;
+        for (int run = 0; run < kRuns; ++run) {
+            const BottleneckRun r = runBottleneck(width, std::uint64_t(run));
+            std::printf("Bottleneck %.1f m, run %d: %zu of 60 through, the last after %.1f s; specific flow %.2f persons/(m s); "
+                        "overlapping by more than 5 cm: %.3f %%, deepest %.3f m\n",
+                        width, run + 1, r.crossed, r.lastCrossing, r.specificFlow, 100.0 * r.overlapShare, r.deepest);
+            flowSum += r.specificFlow, flowMin = std::min(flowMin, r.specificFlow), flowMax = std::max(flowMax, r.specificFlow);
+            overlapMax = std::max(overlapMax, r.overlapShare), fewest = std::min(fewest, r.crossed);
+            EXPECT_EQ(r.crossed, 60u) << width << " m, run " << run + 1 << ": walkers left behind after 120 s";
+            EXPECT_LT(r.overlapShare, 0.02) << width << " m, run " << run + 1;
+        }
+        const double flow = flowSum / kRuns;
+        std::printf("Bottleneck %.1f m: specific flow %.2f persons/(m s), the mean of %d runs (%.2f to %.2f; experiments: about "
+                    "1.6 to 2.0); at least %zu of 60 through; overlapping by more than 5 cm: at most %.3f %%\n",
+                    width, flow, kRuns, flowMin, flowMax, fewest, 100.0 * overlapMax);
         const std::string key = "width_" + std::to_string(int(std::lround(width * 10)));
-        RecordProperty(key + "_specific_flow", std::to_string(r.specificFlow));
-        RecordProperty(key + "_overlap_share", std::to_string(r.overlapShare));
-        RecordProperty(key + "_through", std::to_string(r.crossed));
-        EXPECT_EQ(r.crossed, 60u) << width << " m: walkers left behind after 120 s";
+        RecordProperty(key + "_specific_flow", std::to_string(flow));
+        RecordProperty(key + "_flow_min", std::to_string(flowMin));
+        RecordProperty(key + "_flow_max", std::to_string(flowMax));
+        RecordProperty(key + "_overlap_share", std::to_string(overlapMax));
+        RecordProperty(key + "_through", std::to_string(fewest));
         // The experiments' 1.6 to 2.0, widened by 0.2 each way: about how far apart the experiments
         // themselves lie (Seyfried et al. 2009, Kretz et al. 2006).
-        EXPECT_GE(r.specificFlow, 1.4) << width << " m";
-        EXPECT_LE(r.specificFlow, 2.2) << width << " m";
-        EXPECT_LT(r.overlapShare, 0.02) << width << " m";
+        EXPECT_GE(flow, 1.4) << width << " m";
+        EXPECT_LE(flow, 2.2) << width << " m";
     }
 }
 

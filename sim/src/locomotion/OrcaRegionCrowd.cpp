@@ -85,7 +85,7 @@ int OrcaRegionCrowd::add(std::uint32_t slot, const float* position, const float*
         free_.pop_back();
     } else {
         agent = int(position_.size());
-        position_.emplace_back(), velocity_.emplace_back(), target_.emplace_back(), next_.emplace_back();
+        position_.emplace_back(), velocity_.emplace_back(), target_.emplace_back(), next_.emplace_back(), way_.emplace_back(), nextWay_.emplace_back();
         planned_.emplace_back(), corrected_.emplace_back(), neighbourCount_.push_back(0), corners_.emplace_back(), turn_.emplace_back();
         neighbours_.resize(neighbours_.size() + kMaxNeighbours);
         maxSpeed_.push_back(0.0f), slot_.push_back(0), kind_.push_back(kFree), needsPath_.push_back(0), targetRef_.push_back(0);
@@ -95,6 +95,7 @@ int OrcaRegionCrowd::add(std::uint32_t slot, const float* position, const float*
     position_[i] = glm::vec3(position[0], position[1], position[2]);
     velocity_[i] = velocity ? glm::vec3(velocity[0], 0.0f, velocity[2]) : glm::vec3(0.0f);
     next_[i] = ground(velocity_[i]);
+    way_[i] = nextWay_[i] = glm::vec2(0.0f);
     target_[i] = position_[i];
     maxSpeed_[i] = maxSpeed;
     slot_[i] = slot;
@@ -280,6 +281,7 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
     // nearest kept for ORCA: in cells of a fixed order, the same sum with any thread count.
     const float speed = glm::length(preferred);
     const glm::vec2 heading = speed > 1e-4f ? preferred / speed : glm::vec2(0.0f);
+    nextWay_[i] = heading;
     const float densityRange = std::min(kDensityRange, range);
     float crowding = 0.0f;
     // The cells the disc of the range reaches: a run of adjacent cells per row.
@@ -315,11 +317,20 @@ glm::vec2 OrcaRegionCrowd::avoid(std::size_t i, glm::vec2 preferred, float dt, W
     if (speed > 1e-4f) preferred *= weidmannShare(crowding / (std::acos(kDensityCone) * densityRange * densityRange / 3.0f));
     neighbourCount_[i] = std::uint8_t(found);
     for (int k = 0; k < found; ++k) neighbours_[i * kMaxNeighbours + std::size_t(k)] = nearest[k].agent;
+    const bool held = glm::dot(self.velocity, self.velocity) < kHeldSpeed * kHeldSpeed && glm::dot(preferred, preferred) > kHeldWish * kHeldWish;
     for (int k = 0; k < found; ++k) {
         const std::size_t j = nearest[k].agent;
         const glm::vec2 other = ground(velocity_[j]);
+        float share = 0.5f;
+        if (held && glm::dot(other, other) < kHeldSpeed * kHeldSpeed && glm::dot(way_[j], heading) > kSameWay) {
+            const glm::vec2 d = ground(position_[j]) - self.position;
+            if (std::abs(glm::dot(d, heading)) < kAbreast * std::sqrt(nearest[k].d2)) {
+                if (slot_[i] < slot_[j]) continue;  // the right of way: the other makes the room
+                share = 1.0f;
+            }
+        }
         const float horizon = glm::dot(other, preferred) < 0.0f ? kHorizon : kAlongHorizon;
-        w.lines[n++] = orca::agentLine(self, orca::Body{ground(position_[j]), other, settings_.radius}, horizon, dt);
+        w.lines[n++] = orca::agentLine(self, orca::Body{ground(position_[j]), other, settings_.radius}, horizon, dt, share);
     }
     return orca::solve(std::span<const orca::Line>(w.lines.data(), n), walls, preferred, maxSpeed_[i], w.scratch);
 }
@@ -350,6 +361,7 @@ void OrcaRegionCrowd::update(float dt) {
             next_[i] = v;
         }
     });
+    way_.swap(nextWay_);
     // Where each agent would be (ghosts move on as they went), then bodies that would still
     // interpenetrate by more than kSeparationSlack pushed apart, each taking half (DetourCrowd resolves
     // its collisions the same way): ORCA's velocities leave some overlap where its programs were
@@ -395,7 +407,8 @@ void OrcaRegionCrowd::update(float dt) {
 
 std::size_t OrcaRegionCrowd::bytes() const {
     std::size_t b = sizeof(*this);
-    b += (position_.capacity() + velocity_.capacity() + target_.capacity()) * sizeof(glm::vec3) + next_.capacity() * sizeof(glm::vec2);
+    b += (position_.capacity() + velocity_.capacity() + target_.capacity()) * sizeof(glm::vec3) +
+         (next_.capacity() + way_.capacity() + nextWay_.capacity()) * sizeof(glm::vec2);
     b += (planned_.capacity() + corrected_.capacity()) * sizeof(glm::vec2) + neighbours_.capacity() * sizeof(std::uint32_t) +
          neighbourCount_.capacity();
     b += corners_.capacity() * sizeof(Corners) + turn_.capacity() * sizeof(glm::vec2);

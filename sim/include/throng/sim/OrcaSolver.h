@@ -32,9 +32,10 @@ struct Body {
     float radius = 0.0f;       ///< metres
 };
 
-/// The half-plane of velocities by which `self` avoids `other` for `horizon` seconds, taking half of
-/// the change needed; when they already overlap, resolved within one step of `dt` seconds.
-Line agentLine(const Body& self, const Body& other, float horizon, float dt);
+/// The half-plane of velocities by which `self` avoids `other` for `horizon` seconds, taking `share`
+/// of the change needed (0.5: reciprocal, each does half; 1: `self` does it all, as when `other` has
+/// the right of way); when they already overlap, resolved within one step of `dt` seconds.
+Line agentLine(const Body& self, const Body& other, float horizon, float dt, float share = 0.5f);
 
 /// The half-plane of velocities by which `self` keeps clear of the wall segment from `a` to `b`, whose
 /// free side is the one (-d.y, d.x) points away from, d = b - a (Detour's winding of a navigation
