@@ -135,8 +135,13 @@ void GazeLayer::advance(const FrameContext& context) {
     for (std::size_t c = 1; c < cellStart_.size(); ++c) cellStart_[c] += cellStart_[c - 1];
     cellFill_.assign(cellStart_.begin(), cellStart_.end() - 1);
     cellActors_.resize(cellStart_.back());
+    cellPositions_.resize(cellStart_.back());
     for (std::size_t j = 0; j < n; ++j)
-        if (present_[j]) cellActors_[cellFill_[std::size_t(cellOf(state_[j].position))]++] = std::uint32_t(j);
+        if (present_[j]) {
+            const std::uint32_t k = cellFill_[std::size_t(cellOf(state_[j].position))]++;
+            cellActors_[k] = std::uint32_t(j);
+            cellPositions_[k] = glm::dvec2(state_[j].position.x, state_[j].position.z);
+        }
     // Each actor looks, for one of its periods (a few seconds, its own length and phase), at whoever
     // within range draws its lowest number for that period: anyone near is equally likely, the
     // choice holds while the same people stay near, and it depends on nothing but who is near now.
@@ -155,10 +160,12 @@ void GazeLayer::advance(const FrameContext& context) {
             for (int z = std::max(0, cz - 1); z <= std::min(nz - 1, cz + 1); ++z)
                 for (int x = std::max(0, cx - 1); x <= std::min(nx - 1, cx + 1); ++x)
                     for (std::uint32_t k = cellStart_[std::size_t(z * nx + x)]; k < cellStart_[std::size_t(z * nx + x) + 1]; ++k) {
+                        // Positions read beside the cell's actors, not from each actor's state: the
+                        // candidates' states lie all over memory, and most are out of range.
+                        const glm::dvec2 d = cellPositions_[k] - glm::dvec2(s.position.x, s.position.z);
+                        if (d.x * d.x + d.y * d.y > range2) continue;
                         const std::uint32_t j = cellActors_[k];
                         if (j == i) continue;
-                        const glm::dvec3 d = state_[j].position - s.position;
-                        if (d.x * d.x + d.z * d.z > range2) continue;
                         const std::uint64_t draw = rng.bits((bucket << 32) ^ (std::uint64_t(j) + 2));  // counters 0 and 1 set the period
                         if (chosen < 0 || draw < lowest || (draw == lowest && int(j) < chosen)) chosen = int(j), lowest = draw;
                     }

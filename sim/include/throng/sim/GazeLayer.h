@@ -91,6 +91,7 @@ private:
     std::vector<State> state_;
     std::map<const ActorTemplate*, Joints> joints_;
     std::vector<std::uint32_t> cellStart_, cellFill_, cellActors_;  // neighbour grid, reused
+    std::vector<glm::dvec2> cellPositions_;  // the grid's actors' positions (x, z), beside cellActors_
     std::vector<std::uint8_t> present_;  // per slot: a gazing actor whose state is this step's
 };
 
