@@ -1,13 +1,15 @@
 #pragma once
 // The baked viewpoints of an impostor: orthographic views on a hemisphere around the actor,
 // `azimuths` around +Y times `elevations` rings from the horizon up (seed 000 §3: 16 x 4). Views are
-// numbered ring by ring: view = ring * azimuths + azimuth. Blending (seed 003 §4.1-4.2): the eye
-// direction falls into a triangle of three views of the (azimuth, elevation) grid; their
-// barycentric weights, clamped to the grid (at the pole, below the rim), optionally biased by a
-// smoothstep, replace snapping to the nearest view.
+// numbered ring by ring: view = ring * azimuths + azimuth. Blending (seed 003 §4.1-4.2): each cell of
+// the (azimuth, elevation) grid splits into two triangles of three views (a simplex on the
+// hemisphere); the eye's barycentric coordinates in the triangle nearest it, clamped to that
+// triangle (SimplexClamp: against its sides and corners, not weight by weight), optionally
+// modulated by a quintic smoothstep and renormalised, replace snapping to the nearest view.
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -41,16 +43,20 @@ public:
     glm::vec3 direction(std::uint32_t view) const;
     /// The view whose direction is nearest `toEye` (actor frame; need not be normalised).
     std::uint32_t nearest(const glm::vec3& toEye) const;
-    /// The three views around `toEye` (actor frame; need not be normalised) with barycentric weights
-    /// in (azimuth, elevation) space, the elevation clamped to the rings (the pole and below the rim
-    /// use the nearest ring). With `smoothstep`, each weight goes through 6x^5 - 15x^4 + 10x^3 and
-    /// the weights are renormalised (sharper, seed 003). A zero or non-finite direction gives view 0.
+    /// The three views of the triangle holding `toEye` (actor frame; need not be normalised) with the
+    /// barycentric weights of the eye's ray through the triangle's plane. An eye outside every
+    /// triangle (above the top ring, below the horizon) takes the triangle whose nearest point is
+    /// nearest it, and that point's weights (clamped to the triangle, seed 003 §4.1.2): only the
+    /// views of a side or a corner, never an extrapolation. With `smoothstep`, each weight goes
+    /// through 6x^5 - 15x^4 + 10x^3 and the weights are renormalised (sharper, seed 003). A zero or
+    /// non-finite direction gives view 0.
     ViewBlend blend(const glm::vec3& toEye, bool smoothstep = false) const;
 
 private:
     int azimuths_;
     int elevations_;
     float top_;
+    std::vector<glm::vec3> directions_;  // each view's, computed once
 };
 
 }  // namespace throng
