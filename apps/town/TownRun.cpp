@@ -73,6 +73,8 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     rendererOptions.impostors.gridStep = o.morph == "grid" || o.morph == "background" ? 4 : 1;
     rendererOptions.impostors.backgroundMorph = o.morph == "background";
     rendererOptions.impostors.warp = o.cellWarp == "lines" ? CellWarp::FeatureLines : CellWarp::SurfaceProxy;
+    rendererOptions.views.nearest = world.description().representation.impostorViews == sim::ImpostorViews::Nearest;
+    rendererOptions.views.smoothstep = world.description().representation.impostorSmoothstep;
     renderer_ = std::make_unique<CrowdRenderer>(context_, rendererOptions);
     if (impostors_) {  // the atlases on the GPU before the first frame, not during it
         std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;

@@ -86,9 +86,9 @@ void CrowdRenderer::draw(const DrawList& list) {
         if (options_.morphing == ImpostorMorphing::FrameCache) {
             if (options_.gpuMorph) gpu_ = std::make_unique<GpuMorpher>(context_);
             cache_ = std::make_unique<MorphCache>(options_.morph, gpu_.get());
-            batcher_ = std::make_unique<ImpostorBatcher>(*cache_, options_.smoothstepViews);
+            batcher_ = std::make_unique<ImpostorBatcher>(*cache_, options_.views);
         } else {
-            batcher_ = std::make_unique<ImpostorBatcher>(options_.smoothstepViews);
+            batcher_ = std::make_unique<ImpostorBatcher>(options_.views);
         }
         makeQuads();
     }

@@ -9,9 +9,9 @@
 
 namespace throng {
 
-ImpostorBatcher::ImpostorBatcher(MorphCache& cache, bool smoothstep) : cache_(&cache), smoothstep_(smoothstep) {}
+ImpostorBatcher::ImpostorBatcher(MorphCache& cache, ImpostorViewChoice views) : cache_(&cache), views_(views) {}
 
-ImpostorBatcher::ImpostorBatcher(bool smoothstep) : cache_(nullptr), smoothstep_(smoothstep) {}
+ImpostorBatcher::ImpostorBatcher(ImpostorViewChoice views) : cache_(nullptr), views_(views) {}
 
 void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
     Stopwatch watch;
@@ -34,7 +34,9 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
         const glm::dmat3 r(world);
         const glm::vec3 local(glm::dot(r[0], toEye), glm::dot(r[1], toEye), glm::dot(r[2], toEye));
         inst.halfSize = atlas.worldRadius() * static_cast<float>(glm::length(r[0]));
-        const ViewBlend blend = atlas.views().blend(local, smoothstep_);
+        ViewBlend blend;
+        if (views_.nearest) blend.views[0] = atlas.views().nearest(local);  // weights (1, 0, 0)
+        else blend = atlas.views().blend(local, views_.smoothstep);
         inst.views = blend.views;
         inst.weights = blend.weights;
         double phase = std::fmod(item.clipTime / atlas.duration(), 1.0);

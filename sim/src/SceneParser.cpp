@@ -327,8 +327,19 @@ void readEffects(const Reader& root, SceneDescription& s) {
 // "representation": LOD scale, impostors, key-pose caches, occlusion.
 void readRepresentation(const Reader& root, SceneDescription& s, const std::string& file) {
     const Reader r = root.at("representation");
-    r.object({"impostorDistance", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
+    r.object({"impostorDistance", "impostorViews", "impostorSmoothstep", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
     if (r.has("impostorDistance")) s.representation.impostorDistance = r.at("impostorDistance").within("representation", "impostorDistance");
+    if (r.has("impostorViews")) {
+        const std::string views = r.at("impostorViews").string();
+        if (views == "blend") s.representation.impostorViews = ImpostorViews::Blend;
+        else if (views == "nearest") s.representation.impostorViews = ImpostorViews::Nearest;
+        else r.at("impostorViews").fail("must be \"blend\" or \"nearest\", got \"" + views + "\"");
+    }
+    if (r.has("impostorSmoothstep")) {
+        s.representation.impostorSmoothstep = r.at("impostorSmoothstep").boolean();
+        if (s.representation.impostorSmoothstep && s.representation.impostorViews == ImpostorViews::Nearest)
+            r.at("impostorSmoothstep").fail("applies to \"blend\" only: impostorViews is \"nearest\"");
+    }
     if (r.has("hysteresis")) s.representation.hysteresis = r.at("hysteresis").within("representation", "hysteresis");
     if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").within("representation", "lodScale");
     if (r.has("occlusion")) {

@@ -261,6 +261,28 @@ TEST(Impostor, HybridSceneDrawsFarActorsAsQuads) {
     test::writeOutput(geometry, "impostor-geometry");
 }
 
+// The view choice (the scene's representation.impostorViews and impostorSmoothstep): far actors seen
+// between baked views look different snapped to the nearest view, blended, and blended with the
+// smoothstep; the impostors cover the same place whichever.
+TEST(Impostor, TheViewChoiceChangesWhatImpostorsShow) {
+    HybridScene scene({Vec3(-5, 0, -22), Vec3(-1.5, 0, -24), Vec3(2, 0, -23), Vec3(5.5, 0, -25)});
+    CrowdRendererOptions nearest = cpuMorphing(), blend = cpuMorphing(), smooth = cpuMorphing();
+    nearest.views.nearest = true;
+    smooth.views.smoothstep = true;
+    const Image a = scene.render(20.0, nullptr, nearest, 0.0), b = scene.render(20.0, nullptr, blend, 0.0),
+                c = scene.render(20.0, nullptr, smooth, 0.0);
+    const testkit::ImageDifference snapped = testkit::compareImages(a, b, 2), sharpened = testkit::compareImages(b, c, 2);
+    std::printf("view choice: nearest against blend %zu pixels (max %d), smoothstep against blend %zu (max %d)\n",
+                snapped.pixelsOverThreshold, snapped.maxChannelDifference, sharpened.pixelsOverThreshold, sharpened.maxChannelDifference);
+    EXPECT_GE(snapped.pixelsOverThreshold, 20u) << "snapping and blending show the same";
+    EXPECT_GE(sharpened.pixelsOverThreshold, 15u) << "the smoothstep changes nothing";
+    const double pa = double(differentFromClear(a)), pb = double(differentFromClear(b));
+    EXPECT_NEAR(pa / pb, 1.0, 0.15) << pa << " pixels snapped, " << pb << " blended";
+    test::writeOutput(a, "impostor-views-nearest");
+    test::writeOutput(b, "impostor-views-blend");
+    test::writeOutput(c, "impostor-views-smoothstep");
+}
+
 // Where impostors are drawn: each actor alone, as an impostor, from several places in the view;
 // every pixel its quad covers must lie inside the screen rectangle of its actor's Sklsroot
 // Bsphere (the sphere holds every pose the actor takes), and it must cover some.

@@ -321,6 +321,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"key-pose cache mode unknown",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"mode": "lazy", "rows": {"x": 8}}}})",
                  "/representation/keyPoseCache/mode", "intermittent"},
+        BadScene{"impostor views unknown",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "warped"}})",
+                 "/representation/impostorViews", "must be \"blend\" or \"nearest\", got \"warped\""},
+        BadScene{"impostor smoothstep not a boolean",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorSmoothstep": 1}})",
+                 "/representation/impostorSmoothstep", "must be true or false"},
+        BadScene{"impostor smoothstep of the nearest view",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "nearest", "impostorSmoothstep": true}})",
+                 "/representation/impostorSmoothstep", "applies to \"blend\" only"},
         BadScene{"key-pose band beyond the impostors",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorDistance": 30, "keyPoseCache": {"distance": 40, "rows": {"x": 8}}}})",
                  "/representation/keyPoseCache/distance", "below impostorDistance"},
@@ -492,6 +501,17 @@ TEST(SceneParser, KeyPoseCachesAreReadOnlyWhenDeclared) {
     EXPECT_EQ(s.representation.keyPoseCache->mode, throng::KeyPoseMode::Interpolative);
     EXPECT_EQ(s.representation.keyPoseCache->keyPosesPerSecond, 10.0);
     EXPECT_EQ(s.representation.keyPoseCache->rows.at("cesium"), 48u);
+}
+
+TEST(SceneParser, ImpostorViewChoiceDefaultsToTheSmoothlessBlend) {
+    const SceneDescription plain = parseScene(scene(kActors), kAssets);
+    EXPECT_EQ(plain.representation.impostorViews, ImpostorViews::Blend);
+    EXPECT_FALSE(plain.representation.impostorSmoothstep);
+    const SceneDescription sharp = parseScene(scene(kActors, R"(, "representation": {"impostorSmoothstep": true})"), kAssets);
+    EXPECT_EQ(sharp.representation.impostorViews, ImpostorViews::Blend);
+    EXPECT_TRUE(sharp.representation.impostorSmoothstep);
+    const SceneDescription snap = parseScene(scene(kActors, R"(, "representation": {"impostorViews": "nearest"})"), kAssets);
+    EXPECT_EQ(snap.representation.impostorViews, ImpostorViews::Nearest);
 }
 
 TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }

@@ -50,7 +50,7 @@ struct CrowdRendererOptions {
         return o;
     }();
     bool gpuMorph = true;            ///< FrameCache only: morph with the GL and read back (else on the CPU)
-    bool smoothstepViews = false;    ///< bias view blending towards the dominant view (seed 003)
+    ImpostorViewChoice views;        ///< how impostors pick their views for the eye (seed 003 §4.1)
     /// Waits for the GL after each pass, so each pass's time includes its rasterisation (for
     /// benchmarks: a software GL otherwise rasterises when the frame ends). Slightly slower.
     bool finishPasses = false;

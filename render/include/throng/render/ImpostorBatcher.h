@@ -41,16 +41,21 @@ struct ImpostorBatchStatistics {
     double ms = 0;                     ///< time of build(), morphing included
 };
 
+/// How an impostor's views are picked for the eye direction (seed 003 §4.1).
+struct ImpostorViewChoice {
+    bool nearest = false;     ///< the nearest view alone (snapping), else the blend of the three around the eye
+    bool smoothstep = false;  ///< the blend's clamped weights through the quintic smoothstep, renormalised (sharper)
+};
+
 /// Turns impostor draw items into quad instances, morphing through a MorphCache.
 class ImpostorBatcher {
 public:
     /// A batcher requesting dropped cells from `cache` (which must outlive it) on the CPU side:
-    /// every instance showing a dropped key-frame carries its morphed images. `smoothstep`
-    /// biases view weights towards the dominant view (seed 003).
-    explicit ImpostorBatcher(MorphCache& cache, bool smoothstep = false);
+    /// every instance showing a dropped key-frame carries its morphed images; views as `views` says.
+    explicit ImpostorBatcher(MorphCache& cache, ImpostorViewChoice views = {});
     /// A batcher that morphs nothing: instances of dropped key-frames carry no image, and the
     /// renderer's pool of morphed cells provides them (ImpostorRenderer).
-    explicit ImpostorBatcher(bool smoothstep = false);
+    explicit ImpostorBatcher(ImpostorViewChoice views = {});
     /// Starts the cache's frame and builds the instances of `list`'s impostor items (an
     /// ImpostorDrawable, Representation::Impostor) seen by `camera`; each shows the key-frame of
     /// the clip time its item records. Other items are ignored.
@@ -62,7 +67,7 @@ public:
 
 private:
     MorphCache* cache_;
-    bool smoothstep_;
+    ImpostorViewChoice views_;
     std::vector<ImpostorInstance> instances_;
     ImpostorBatchStatistics stats_;
 };

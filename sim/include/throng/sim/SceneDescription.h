@@ -134,9 +134,17 @@ struct KeyPoseCacheDescription {
     std::map<std::string, std::uint32_t> rows;  ///< rows per template name (only these get a cache)
 };
 
+/// How an impostor shows an eye between its baked views (seed 003 §4.1).
+enum class ImpostorViews : std::uint8_t {
+    Blend,    ///< the three views around the eye, by its barycentric weights clamped to their cell
+    Nearest,  ///< the nearest view alone (snapping: cheaper, pops as the eye moves)
+};
+
 /// Distances choosing how actors are drawn.
 struct RepresentationDescription {
     double impostorDistance = 0.0;         ///< beyond it, impostors (0: never)
+    ImpostorViews impostorViews = ImpostorViews::Blend;  ///< how impostors show eyes between views
+    bool impostorSmoothstep = false;       ///< Blend: weights through the quintic smoothstep, renormalised (sharper)
     double hysteresis = 0.1;               ///< fraction of the distance kept before switching back
     double lodScale = 1.0;                 ///< multiplies every LOD distance
     /// Occlusion culling against the scene's occluders with this buffer; none: off, nothing built.
