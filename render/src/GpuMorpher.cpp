@@ -10,6 +10,7 @@
 
 #include "throng/render/GlContext.h"
 #include "throng/render/ShaderProgram.h"
+#include "GlslSampling.h"
 
 namespace throng {
 namespace {
@@ -104,16 +105,7 @@ vec4 texel(int image, ivec2 p) {
 #endif
 }
 
-vec4 samplePremultiplied(int image, vec2 position) {
-    vec2 f = position - 0.5;
-    vec2 f0 = floor(f);
-    vec2 w = f - f0;
-    if (!(abs(f0.x) < 1e6 && abs(f0.y) < 1e6)) return vec4(0.0);
-    ivec2 i = ivec2(f0);
-    vec4 top = texel(image, i) * (1.0 - w.x) + texel(image, i + ivec2(1, 0)) * w.x;
-    vec4 bottom = texel(image, i + ivec2(0, 1)) * (1.0 - w.x) + texel(image, i + ivec2(1, 1)) * w.x;
-    return top * (1.0 - w.y) + bottom * w.y;
-}
+#include_sample
 
 void main() {
 #ifdef THRONG_ARRAY_SOURCES
@@ -202,9 +194,11 @@ GpuMorpher::GpuMorpher(std::shared_ptr<GlContext> context) {
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
     const std::string version = "#version 330 core\n";
-    s.program = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher shader", kVertexShader, version + kFragmentShader);
+    std::string fragment = kFragmentShader;
+    fragment.replace(fragment.find("#include_sample"), std::string("#include_sample").size(), detail::kGlslSamplePremultiplied);
+    s.program = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher shader", kVertexShader, version + fragment);
     s.arrayProgram = std::make_unique<ShaderProgram>(*s.context, "GpuMorpher array shader", kVertexShader,
-                                                     version + "#define THRONG_ARRAY_SOURCES\n" + kFragmentShader);
+                                                     version + "#define THRONG_ARRAY_SOURCES\n" + fragment);
     gl.GenVertexArrays(1, &s.vao);
     gl.GenFramebuffers(1, &s.fbo);
     gl.GenFramebuffers(1, &s.layerFbo);

@@ -89,25 +89,33 @@ std::vector<float> depthBuffer(const ProxyMesh& mesh, const std::vector<glm::vec
 
 }  // namespace
 
-Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
-                const ProxyWarpOptions& options) {
+float checkProxyWarp(const ProxyMesh& mesh, std::span<const ProxySource> sources, double keyframe, const ProxyWarpOptions& options,
+                     const char* who) {
     const int s = mesh.cellSize();
-    if (sources.empty()) throw std::invalid_argument("warpProxy: no source");
+    const std::string w(who);
+    if (sources.empty()) throw std::invalid_argument(w + ": no source");
     float weightSum = 0.0f;
     for (std::size_t i = 0; i < sources.size(); ++i) {
         const ProxySource& src = sources[i];
         if (!src.image || !src.image->valid() || src.image->width != s || src.image->height != s)
-            throw std::invalid_argument("warpProxy: source " + std::to_string(i) + " is missing or not " + std::to_string(s) + " pixels square");
+            throw std::invalid_argument(w + ": source " + std::to_string(i) + " is missing or not " + std::to_string(s) + " pixels square");
         if (src.keyframe < 0 || src.keyframe >= mesh.keyframeCount())
-            throw std::invalid_argument("warpProxy: source " + std::to_string(i) + " key-frame out of range");
+            throw std::invalid_argument(w + ": source " + std::to_string(i) + " key-frame out of range");
         if (!(src.weight >= 0.0f) || !std::isfinite(src.weight))
-            throw std::invalid_argument("warpProxy: source " + std::to_string(i) + " has a negative or non-finite weight");
+            throw std::invalid_argument(w + ": source " + std::to_string(i) + " has a negative or non-finite weight");
         weightSum += src.weight;
     }
-    if (!(weightSum > 0.0f)) throw std::invalid_argument("warpProxy: the source weights sum to zero");
-    if (!std::isfinite(keyframe)) throw std::invalid_argument("warpProxy: the target key-frame is not finite");
+    if (!(weightSum > 0.0f)) throw std::invalid_argument(w + ": the source weights sum to zero");
+    if (!std::isfinite(keyframe)) throw std::invalid_argument(w + ": the target key-frame is not finite");
     if (!(options.depthTolerance >= 0.0f) || !(options.distrust >= 0.0f && options.distrust <= 1.0f) || options.rim < 0)
-        throw std::invalid_argument("warpProxy: depth tolerance and rim must be >= 0, distrust in [0, 1]");
+        throw std::invalid_argument(w + ": depth tolerance and rim must be >= 0, distrust in [0, 1]");
+    return weightSum;
+}
+
+Image warpProxy(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
+                const ProxyWarpOptions& options) {
+    const int s = mesh.cellSize();
+    const float weightSum = checkProxyWarp(mesh, sources, keyframe, options, "warpProxy");
 
     const std::size_t pixels = static_cast<std::size_t>(s) * s, n = sources.size();
     const std::vector<glm::vec3> target = mesh.project(keyframe, toEye);

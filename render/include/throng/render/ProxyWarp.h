@@ -48,6 +48,11 @@ struct ProxyWarpOptions {
     bool opaqueInside = false;
 };
 
+/// Checks a proxy warp's arguments as warpProxy() does (its std::invalid_argument messages, which
+/// start with `who`); returns the sum of the sources' weights.
+float checkProxyWarp(const ProxyMesh& mesh, std::span<const ProxySource> sources, double keyframe, const ProxyWarpOptions& options,
+                     const char* who);
+
 /// The cell at key-frame `keyframe` (fractional: any time of the looping clip, the proxy between
 /// its key-frames) seen from `toEye`, warped from `sources` through `mesh` and blended by their
 /// weights (renormalised where visibility removes some). Pixels neither covered by the proxy nor
