@@ -72,8 +72,8 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->check(oneOf({"background", "grid", "cpu", "gl"}))
         ->capture_default_str();
     app.add_option("--cell-warp", o.cellWarp,
-                   "how the CPU makes a dropped impostor key-frame: proxy (warped through the figure's surface), "
-                   "lines (Beier-Neely along the bones); gl always uses the lines")
+                   "how a dropped impostor key-frame is made, on the CPU or (--morph gl) the GL: proxy (warped through "
+                   "the figure's surface), lines (Beier-Neely along the bones)")
         ->type_name("proxy|lines")
         ->check(oneOf({"proxy", "lines"}))
         ->capture_default_str();

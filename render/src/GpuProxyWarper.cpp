@@ -67,7 +67,8 @@ void main() {
 
 // Mirrors warpProxy()'s per-pixel loop (ProxyWarp.cpp) without the rim and normal weighting.
 const char* const kWarpFragment = R"(
-uniform sampler2DArray uCells;   // source k's image in layer k, rows top first
+uniform sampler2DArray uCells;   // source k's image in layer uLayers[k], rows top first
+uniform ivec4 uLayers;
 uniform sampler2DArray uDepths;  // source k's nearest depth in layer k
 uniform int uCount;
 uniform float uWeights[4];
@@ -84,7 +85,7 @@ out vec4 colour;
 vec4 texel(int image, ivec2 p) {
     int size = int(uSize);
     if (p.x < 0 || p.y < 0 || p.x >= size || p.y >= size) return vec4(0.0);
-    return texelFetch(uCells, ivec3(p, image), 0);
+    return texelFetch(uCells, ivec3(p, uLayers[image]), 0);
 }
 
 #include_sample
@@ -159,6 +160,10 @@ struct GpuProxyWarper::Impl {
         size = s;
     }
 
+    // Draws the warp of `sources` (layers of `cellsTexture`) into `target` through warpFbo.
+    void draw(const ProxyMesh& mesh, GLuint cellsTexture, std::span<const LayerSource> sources, const glm::vec3& toEye, double keyframe,
+              float weightSum, const ProxyWarpOptions& options);
+
     // Points attribute `location` at the projection of slot `slot` (0 the target, 1 + k source k).
     void attribute(GLuint location, int slot) const {
         const GladGLContext& gl = context->gl();
@@ -220,23 +225,113 @@ GpuProxyWarper::~GpuProxyWarper() {
     s.warpProgram.reset();
 }
 
+namespace {
+
+// The options the GPU does not draw, refused by name; the source count.
+void checkGpuOptions(std::size_t sources, const ProxyWarpOptions& options, const char* who) {
+    const std::string w(who);
+    if (sources > GpuProxyWarper::kMaxSources)
+        throw std::invalid_argument(w + ": " + std::to_string(sources) + " sources, at most " + std::to_string(GpuProxyWarper::kMaxSources));
+    if (options.rim > 0) throw std::invalid_argument(w + ": a rim is not drawn on the GPU (rim must be 0)");
+    if (options.normalSharpness > 0.0f)
+        throw std::invalid_argument(w + ": normal weighting is not drawn on the GPU (normalSharpness must be 0)");
+    if (options.bicubic) throw std::invalid_argument(w + ": bicubic sampling is not drawn on the GPU");
+}
+
+}  // namespace
+
 Image GpuProxyWarper::warp(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
                            const ProxyWarpOptions& options) {
     const float weightSum = checkProxyWarp(mesh, sources, keyframe, options, "GpuProxyWarper::warp");
-    if (sources.size() > kMaxSources)
-        throw std::invalid_argument("GpuProxyWarper::warp: " + std::to_string(sources.size()) + " sources, at most " +
-                                    std::to_string(kMaxSources));
-    if (options.rim > 0) throw std::invalid_argument("GpuProxyWarper::warp: a rim is not drawn on the GPU (rim must be 0)");
-    if (options.normalSharpness > 0.0f)
-        throw std::invalid_argument("GpuProxyWarper::warp: normal weighting is not drawn on the GPU (normalSharpness must be 0)");
-    if (options.bicubic) throw std::invalid_argument("GpuProxyWarper::warp: bicubic sampling is not drawn on the GPU");
-
+    checkGpuOptions(sources.size(), options, "GpuProxyWarper::warp");
     Impl& s = *impl_;
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
     const int size = mesh.cellSize();
     s.resize(size);
+    // The sources' images, layer by layer.
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, s.cells);
+    std::vector<LayerSource> layers;
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, static_cast<GLint>(k), size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                         sources[k].image->rgba.data());
+        layers.push_back({static_cast<int>(k), sources[k].toEye, sources[k].keyframe, sources[k].weight});
+    }
+    s.draw(mesh, s.cells, layers, toEye, keyframe, weightSum, options);
+    Image out;
+    out.name = "proxy warp (GL)";
+    out.width = out.height = size;
+    out.rgba.resize(static_cast<std::size_t>(size) * size * 4);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.ReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());  // GL rows are image rows
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->drawTarget().framebuffer);
+    return out;
+}
 
+void GpuProxyWarper::warpInto(const ProxyMesh& mesh, unsigned cells, std::span<const LayerSource> sources, const glm::vec3& toEye,
+                              double keyframe, unsigned target, int targetLayer, const ProxyWarpOptions& options) {
+    const char* who = "GpuProxyWarper::warpInto";
+    if (cells == 0 || target == 0) throw std::invalid_argument(std::string(who) + ": a texture name is 0");
+    if (sources.empty()) throw std::invalid_argument(std::string(who) + ": no source");
+    checkGpuOptions(sources.size(), options, who);
+    float weightSum = 0.0f;
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const LayerSource& src = sources[k];
+        if (src.layer < 0) throw std::invalid_argument(std::string(who) + ": source " + std::to_string(k) + " has a negative layer");
+        if (src.keyframe < 0 || src.keyframe >= mesh.keyframeCount())
+            throw std::invalid_argument(std::string(who) + ": source " + std::to_string(k) + " key-frame out of range");
+        if (!(src.weight >= 0.0f) || !std::isfinite(src.weight))
+            throw std::invalid_argument(std::string(who) + ": source " + std::to_string(k) + " has a negative or non-finite weight");
+        weightSum += src.weight;
+    }
+    if (!(weightSum > 0.0f)) throw std::invalid_argument(std::string(who) + ": the source weights sum to zero");
+    if (!std::isfinite(keyframe)) throw std::invalid_argument(std::string(who) + ": the target key-frame is not finite");
+    if (!(options.depthTolerance >= 0.0f) || !(options.distrust >= 0.0f && options.distrust <= 1.0f))
+        throw std::invalid_argument(std::string(who) + ": depth tolerance must be >= 0, distrust in [0, 1]");
+    Impl& s = *impl_;
+    s.context->makeCurrent();
+    const GladGLContext& gl = s.context->gl();
+    const int size = mesh.cellSize();
+    GLint width = 0, height = 0, layers = 0;
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &width);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_HEIGHT, &height);
+    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
+    if (targetLayer < 0 || targetLayer >= layers || size > width || size > height)
+        throw std::invalid_argument(std::string(who) + ": layer " + std::to_string(targetLayer) + " of " + std::to_string(size) +
+                                    " pixels does not fit the target (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
+                                    std::to_string(layers) + " layers)");
+    s.resize(size);
+    // Drawn into the warper's own texture, then copied into the layer by the GL: the target may be
+    // the very array the sources are read from.
+    s.draw(mesh, cells, sources, toEye, keyframe, weightSum, options);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.CopyTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, targetLayer, 0, 0, size, size);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->drawTarget().framebuffer);
+}
+
+void GpuProxyWarper::Impl::draw(const ProxyMesh& mesh, GLuint cellsTexture, std::span<const LayerSource> sources, const glm::vec3& toEye,
+                                 double keyframe, float weightSum, const ProxyWarpOptions& options) {
+    Impl& s = *this;
+    const GladGLContext& gl = s.context->gl();
+    const int cellSize = mesh.cellSize();
+    // The state the drawing changes, given back at the end: the renderer that calls this between its
+    // passes clears and draws with its own.
+    GLfloat clearColour[4], clearDepth = 1.0f;
+    GLint viewport[4], depthFunc = GL_LESS, depthMask = GL_TRUE, boundArrays[2] = {0, 0};
+    gl.GetFloatv(GL_COLOR_CLEAR_VALUE, clearColour);
+    gl.GetFloatv(GL_DEPTH_CLEAR_VALUE, &clearDepth);
+    gl.GetIntegerv(GL_VIEWPORT, viewport);
+    gl.GetIntegerv(GL_DEPTH_FUNC, &depthFunc);
+    gl.GetIntegerv(GL_DEPTH_WRITEMASK, &depthMask);
+    const bool depthTest = gl.IsEnabled(GL_DEPTH_TEST), blend = gl.IsEnabled(GL_BLEND), cull = gl.IsEnabled(GL_CULL_FACE);
+    for (int unit = 0; unit < 2; ++unit) {
+        gl.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+        gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &boundArrays[unit]);
+    }
     // Every vertex: where the target pose puts it, then where each source's pose does.
     const std::size_t n = mesh.vertexCount();
     std::vector<float> packed(n * kFloatsPerVertex, 0.0f);
@@ -257,30 +352,23 @@ Image GpuProxyWarper::warp(const ProxyMesh& mesh, std::span<const ProxySource> s
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.indices);
     gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(std::uint32_t)), triangles.data(),
                   GL_STREAM_DRAW);
-    // The sources' images, layer by layer.
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, s.cells);
-    for (std::size_t k = 0; k < sources.size(); ++k)
-        gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, static_cast<GLint>(k), size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE,
-                         sources[k].image->rgba.data());
-
-    gl.Viewport(0, 0, size, size);
+    gl.Viewport(0, 0, cellSize, cellSize);
     gl.Disable(GL_BLEND);
     gl.Disable(GL_CULL_FACE);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.DepthMask(GL_TRUE);
-    const float depthRange = 8.0f * static_cast<float>(size);  // beyond any depth of a proxy inside its cell
+    const float depthRange = 8.0f * static_cast<float>(cellSize);  // beyond any depth of a proxy inside its cell
     // Depth of the nearest surface in every source.
     gl.UseProgram(s.depthProgram->id());
-    gl.Uniform1f(s.depthProgram->uniformLocation("uSize"), static_cast<float>(size));
+    gl.Uniform1f(s.depthProgram->uniformLocation("uSize"), static_cast<float>(cellSize));
     gl.Uniform1f(s.depthProgram->uniformLocation("uDepthRange"), depthRange);
     gl.BindFramebuffer(GL_FRAMEBUFFER, s.depthFbo);
     for (std::size_t k = 0; k < sources.size(); ++k) {
         gl.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s.depths, 0, static_cast<GLint>(k));
         gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s.depthBuffer);
         if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw std::runtime_error("GpuProxyWarper::warp: the depth framebuffer is incomplete");
+            throw std::runtime_error("GpuProxyWarper: the depth framebuffer is incomplete");
         gl.ClearColor(kEmptyDepth, 0.0f, 0.0f, 1.0f);
         gl.ClearDepth(1.0);
         gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -290,12 +378,14 @@ Image GpuProxyWarper::warp(const ProxyMesh& mesh, std::span<const ProxySource> s
     // The warp at the target pose.
     gl.UseProgram(s.warpProgram->id());
     const ShaderProgram& p = *s.warpProgram;
-    gl.Uniform1f(p.uniformLocation("uSize"), static_cast<float>(size));
+    gl.Uniform1f(p.uniformLocation("uSize"), static_cast<float>(cellSize));
     gl.Uniform1f(p.uniformLocation("uDepthRange"), depthRange);
     gl.Uniform1i(p.uniformLocation("uCount"), static_cast<GLint>(sources.size()));
     float weights[kSources] = {};
-    for (std::size_t k = 0; k < sources.size(); ++k) weights[k] = sources[k].weight;
+    GLint layers[kSources] = {};
+    for (std::size_t k = 0; k < sources.size(); ++k) weights[k] = sources[k].weight, layers[k] = sources[k].layer;
     gl.Uniform1fv(p.uniformLocation("uWeights"), kSources, weights);
+    gl.Uniform4iv(p.uniformLocation("uLayers"), 1, layers);
     gl.Uniform1f(p.uniformLocation("uWeightSum"), weightSum);
     gl.Uniform1f(p.uniformLocation("uTolerance"), options.depthTolerance);
     gl.Uniform1f(p.uniformLocation("uDistrust"), options.distrust);
@@ -305,25 +395,27 @@ Image GpuProxyWarper::warp(const ProxyMesh& mesh, std::span<const ProxySource> s
     gl.ClearDepth(1.0);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl.ActiveTexture(GL_TEXTURE0);
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, s.cells);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, cellsTexture);
     gl.ActiveTexture(GL_TEXTURE1);
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, s.depths);
     gl.ActiveTexture(GL_TEXTURE0);
     for (int slot = 0; slot <= kSources; ++slot) s.attribute(static_cast<GLuint>(slot), slot);
     gl.DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-
-    Image out;
-    out.name = "proxy warp (GL)";
-    out.width = out.height = size;
-    out.rgba.resize(static_cast<std::size_t>(size) * size * 4);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl.ReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());  // GL rows are image rows
     gl.BindVertexArray(0);
     gl.UseProgram(0);
-    gl.Disable(GL_DEPTH_TEST);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, s.context->drawTarget().framebuffer);
-    return out;
+    gl.ClearColor(clearColour[0], clearColour[1], clearColour[2], clearColour[3]);
+    gl.ClearDepth(clearDepth);
+    gl.Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    gl.DepthFunc(static_cast<GLenum>(depthFunc));
+    gl.DepthMask(depthMask ? GL_TRUE : GL_FALSE);
+    const auto restore = [&](GLenum what, bool on) { on ? gl.Enable(what) : gl.Disable(what); };
+    restore(GL_DEPTH_TEST, depthTest);
+    restore(GL_BLEND, blend);
+    restore(GL_CULL_FACE, cull);
+    for (int unit = 1; unit >= 0; --unit) {
+        gl.ActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+        gl.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(boundArrays[unit]));
+    }
 }
 
 }  // namespace throng

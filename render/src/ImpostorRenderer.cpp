@@ -13,6 +13,7 @@
 
 #include "throng/render/GlContext.h"
 #include "throng/render/GpuMorpher.h"
+#include "throng/render/GpuProxyWarper.h"
 #include "throng/render/GridMorph.h"
 #include "throng/render/MorphPool.h"
 #include "throng/render/ProxyWarp.h"
@@ -188,6 +189,7 @@ struct ImpostorRenderer::Impl {
     std::future<double> worker;              // returns its time (ms)
     std::unique_ptr<ShaderProgram> program;
     std::unique_ptr<GpuMorpher> morpher;  // made on the first GL morph
+    std::unique_ptr<GpuProxyWarper> proxyWarper;  // made on the first GL warp through a surface proxy
     unsigned vao = 0, buffer = 0;
     std::unordered_map<const ImpostorAtlas*, GpuAtlas> atlases;
     ImpostorRenderStatistics stats;
@@ -267,6 +269,16 @@ struct ImpostorRenderer::Impl {
                 gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                                  cell.rgba.data());
                 ++stats.morphedUploads;
+            } else if (options.warp == CellWarp::SurfaceProxy && atlas.proxy()) {
+                // Through the figure's surface, as the CPU path does (warpProxy), in the GL.
+                if (!proxyWarper) proxyWarper = std::make_unique<GpuProxyWarper>(context);
+                const glm::vec3 eye = atlas.views().direction(f.view);
+                const GpuProxyWarper::LayerSource sources[2] = {
+                    {g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view], eye, c.before, 1.0f - c.t},
+                    {g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], eye, c.after, c.t}};
+                ProxyWarpOptions warp;
+                warp.opaqueInside = true;  // as the CPU path
+                proxyWarper->warpInto(*atlas.proxy(), g.texture, sources, eye, f.keyframe, g.texture, g.stored + f.slot, warp);
             } else {
                 if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
                 morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
@@ -333,6 +345,7 @@ ImpostorRenderer::~ImpostorRenderer() {
     gl.DeleteBuffers(1, &r.buffer);
     gl.DeleteVertexArrays(1, &r.vao);
     r.morpher.reset();
+    r.proxyWarper.reset();
     r.program.reset();
 }
 

@@ -397,6 +397,31 @@ TEST(Impostor, ZeroBudgetShowsTheNearestStoredKeyframe) {
 // A dropped key-frame warped through the figure's surface proxy is nearer the truly baked cell
 // than one morphed along the bone lines, on the drawing thread and on the other thread alike; an
 // atlas without a proxy is morphed along the lines whatever the option says.
+// The pool's dropped key-frames warped through the surface proxy by the GL (GpuProxyWarper, into
+// the pool's layers) show what the CPU's warp shows, and nearer the truth than the GL's line morph.
+TEST(Impostor, GpuSurfaceProxyWarpShowsWhatTheCpuShows) {
+    HybridScene scene({Vec3(-2, 0, -12), Vec3(1, 0, -14), Vec3(3, 0, -11)});
+    BakedHumanoid& b = BakedHumanoid::get();
+    auto all = std::make_shared<ImpostorAtlas>(*b.full);
+    auto withProxy = std::make_shared<ImpostorAtlas>(*b.full);
+    withProxy->setProxy(std::make_shared<const ProxyMesh>(b.baker->proxyMesh()));
+    withProxy->dropOddKeyframes();
+    CrowdRendererOptions cpu = cpuMorphing(), gl = cpuMorphing(), glLines = cpuMorphing();
+    gl.impostors.source = MorphSource::Gpu;
+    glLines.impostors.source = MorphSource::Gpu;
+    glLines.impostors.warp = CellWarp::FeatureLines;
+    for (double t : {0.25, 0.75}) {
+        const Image truth = scene.render(1.0, nullptr, cpu, t, 1, nullptr, all);
+        const Image onCpu = scene.render(1.0, nullptr, cpu, t, 1, nullptr, withProxy);
+        const Image onGl = scene.render(1.0, nullptr, gl, t, 1, nullptr, withProxy);
+        const Image byLines = scene.render(1.0, nullptr, glLines, t, 1, nullptr, withProxy);
+        const testkit::ImageDifference d = testkit::compareImages(onCpu, onGl, 2);
+        EXPECT_LE(d.fractionOverThreshold, 0.001) << "clip time " << t << ": " << d.pixelsOverThreshold << " pixels differ";
+        const double glPsnr = testkit::compareImages(onGl, truth, 8).psnr, linesPsnr = testkit::compareImages(byLines, truth, 8).psnr;
+        EXPECT_GT(glPsnr, linesPsnr + 2.0) << "clip time " << t << ": " << linesPsnr << " dB by lines, " << glPsnr << " through the proxy";
+    }
+}
+
 TEST(Impostor, SurfaceProxyWarpIsNearerTheBakedKeyframe) {
     HybridScene scene({Vec3(-2, 0, -12), Vec3(1, 0, -14), Vec3(3, 0, -11)});
     BakedHumanoid& b = BakedHumanoid::get();

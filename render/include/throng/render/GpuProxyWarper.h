@@ -39,6 +39,23 @@ public:
     Image warp(const ProxyMesh& mesh, std::span<const ProxySource> sources, const glm::vec3& toEye, double keyframe,
                const ProxyWarpOptions& options = {});
 
+    /// A source of warpInto(): a layer of a texture array, and what it shows.
+    struct LayerSource {
+        int layer = 0;                      ///< its layer
+        glm::vec3 toEye{0.0f, 0.0f, 1.0f};  ///< the direction it was baked from
+        int keyframe = 0;                   ///< the key-frame it shows
+        float weight = 1.0f;                ///< its share of the blend
+    };
+
+    /// The same warp without leaving the GL: the sources are layers of the RGBA8 2-D array texture
+    /// `cells` (cells of mesh.cellSize() pixels, rows top first, as atlases store them), and the
+    /// result is drawn and copied by the GL into layer `targetLayer` of the RGBA8 2-D array
+    /// `target` (which may be `cells`); nothing is uploaded or read back. Texture names belong to
+    /// this warper's context. Throws std::invalid_argument as warp() does, and for a zero name or
+    /// a layer that does not fit; std::runtime_error if the GL cannot draw.
+    void warpInto(const ProxyMesh& mesh, unsigned cells, std::span<const LayerSource> sources, const glm::vec3& toEye, double keyframe,
+                  unsigned target, int targetLayer, const ProxyWarpOptions& options = {});
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -26,7 +26,7 @@ enum class MorphSource {
     Cpu,  ///< on the CPU (morphImages), then uploaded into the pool layer
 };
 
-/// How the CPU makes a dropped key-frame's cell from its stored neighbours.
+/// How a dropped key-frame's cell is made from its stored neighbours (on the CPU or the GL).
 enum class CellWarp {
     FeatureLines,  ///< Beier-Neely field morphing along the bones' lines (MorphCache's features)
     /// Through the figure's surface (warpProxy) when the atlas carries a proxy (ImpostorSet bakes
@@ -47,7 +47,7 @@ struct ImpostorRendererOptions {
     /// Cpu: the warp evaluated every gridStep pixels and interpolated between (morphImagesOnGrid;
     /// 1: at every pixel, as the GL does).
     int gridStep = 4;
-    /// Cpu: how cells are made (the GL always morphs along the feature lines).
+    /// How cells are made, on either side (the GL warps through the proxy with GpuProxyWarper).
     CellWarp warp = CellWarp::SurfaceProxy;
     /// Cpu: new cells are morphed on another thread while the frame goes on, and shown from the
     /// next frame (until then, the nearest stored key-frame). Deterministic: the next draw() waits
