@@ -12,8 +12,9 @@
 //   - impostors as before: the frame's morphed cells made through a MorphCache and read back, then
 //     uploaded every frame (ImpostorMorphing::FrameCache);
 //   - impostors, pool: morphed cells kept on the GPU across frames, at most `--budget` new ones per
-//     atlas and frame, made by the GL into the pool or on the CPU and uploaded; and the same with
-//     no budget (the budget's image error is measured against it).
+//     atlas and frame, made by the GL into the pool (along the bone lines, or through the surface
+//     proxy) or on the CPU and uploaded; and the same with no budget (the budget's image error is
+//     measured against it).
 // Reports per method: APP+CULL, DRAW, the impostor pass (selection, batching, morphing, quads),
 // cells morphed and deferred per frame, impostor texture bytes, and the image error of the frame
 // against all skinned (PSNR, SSIM, share of pixels off by more than 8/255) and, for budgets,
@@ -148,6 +149,9 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
     add("impostors as before (frame cache, read back)", Kind::Impostors, before, "impostor morphing", "frame cache, GL, read back");
     add("impostors, pool, GL, budget " + std::to_string(o.budget), Kind::Impostors, poolOptions(o, MorphSource::Gpu, o.budget),
         "impostor morphing", "pool, GL, budget " + std::to_string(o.budget));
+    add("impostors, pool, GL through the surface proxy, budget " + std::to_string(o.budget), Kind::Impostors,
+        poolOptions(o, MorphSource::Gpu, o.budget, 1, false, CellWarp::SurfaceProxy), "impostor morphing",
+        "pool, GL, surface proxy, budget " + std::to_string(o.budget));
     add("impostors, pool, CPU, budget " + std::to_string(o.budget), Kind::Impostors, poolOptions(o, MorphSource::Cpu, o.budget),
         "impostor morphing", "pool, CPU, budget " + std::to_string(o.budget));
     for (int budget : o.gridBudgets)
