@@ -103,7 +103,7 @@ struct ImpostorPipeline {
     ImpostorBatcher batcher;
 
     ImpostorPipeline(const Scene& s, double distance, double hysteresis)
-        : processor(*s.crowd), cache(options(), Baked::get().gpu.get()), batcher(cache, false) {
+        : processor(*s.crowd), cache(options(), Baked::get().gpu.get()), batcher(cache) {
         processor.setImpostorDistance(distance, hysteresis);
         processor.setImpostor(*Baked::get().tmpl, Baked::get().drawable);
     }

@@ -11,6 +11,7 @@
 #include "throng/render/GlContext.h"
 #include "throng/render/ShaderProgram.h"
 #include "GlslSampling.h"
+#include "TextureLayerFit.h"
 
 namespace throng {
 namespace {
@@ -299,15 +300,7 @@ void GpuMorpher::morphInto(unsigned cells, int fromLayer, int toLayer, unsigned 
     Impl& s = *impl_;
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
-    GLint width = 0, height = 0, layers = 0;
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &width);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_HEIGHT, &height);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
-    if (targetLayer >= layers || size > width || size > height)
-        throw std::invalid_argument("GpuMorpher::morphInto: layer " + std::to_string(targetLayer) + " of " + std::to_string(size) +
-                                    " pixels does not fit the target (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
-                                    std::to_string(layers) + " layers)");
+    detail::checkLayerFits(gl, target, targetLayer, size, "GpuMorpher::morphInto");
     // Drawn into a scratch texture, then copied into the layer by the GL: the target may be the
     // very array the neighbours are read from (no rendering into a texture being sampled).
     gl.BindFramebuffer(GL_FRAMEBUFFER, s.layerFbo);

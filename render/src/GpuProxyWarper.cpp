@@ -9,6 +9,7 @@
 #include <glad/gl.h>
 
 #include "GlslSampling.h"
+#include "TextureLayerFit.h"
 #include "throng/render/GlContext.h"
 #include "throng/render/ShaderProgram.h"
 
@@ -294,15 +295,7 @@ void GpuProxyWarper::warpInto(const ProxyMesh& mesh, unsigned cells, std::span<c
     s.context->makeCurrent();
     const GladGLContext& gl = s.context->gl();
     const int size = mesh.cellSize();
-    GLint width = 0, height = 0, layers = 0;
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, target);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &width);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_HEIGHT, &height);
-    gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_DEPTH, &layers);
-    if (targetLayer < 0 || targetLayer >= layers || size > width || size > height)
-        throw std::invalid_argument(std::string(who) + ": layer " + std::to_string(targetLayer) + " of " + std::to_string(size) +
-                                    " pixels does not fit the target (" + std::to_string(width) + "x" + std::to_string(height) + ", " +
-                                    std::to_string(layers) + " layers)");
+    detail::checkLayerFits(gl, target, targetLayer, size, who);
     s.resize(size);
     // Drawn into the warper's own texture, then copied into the layer by the GL: the target may be
     // the very array the sources are read from.

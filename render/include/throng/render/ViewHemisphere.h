@@ -39,7 +39,8 @@ public:
     float azimuth(int a) const;
     /// Elevation of ring `e` (radians above the horizon).
     float elevation(int e) const;
-    /// Unit direction from the actor towards the eye of view `view`.
+    /// Unit direction from the actor towards the eye of view `view`. Throws std::out_of_range for a
+    /// view beyond viewCount().
     glm::vec3 direction(std::uint32_t view) const;
     /// The view whose direction is nearest `toEye` (actor frame; need not be normalised).
     std::uint32_t nearest(const glm::vec3& toEye) const;
