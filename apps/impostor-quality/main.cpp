@@ -15,6 +15,8 @@
 //   table2    seed 000 Table 2 on our characters: consecutive key-frames and view-points, and
 //             in-between key-frames and view-points regenerated with 8 and 12 features and ours
 //   memory    the equal-memory comparison (seed 000 §6.2, models M1-M4)
+//   half      the half atlas (every other key-frame and view ring dropped, seed 000 §5) against
+//             the full atlas, and at twice the cell size: memory, quality shown, quality regenerated
 //   sweep     knobs (cell size, views, key-frames kept, features) against accuracy, morph time
 //             and texture memory, in the common accuracy CSV
 // Writes impostor-quality.md, impostor-quality.csv (one row per method and asset),
@@ -27,6 +29,7 @@
 // Exit codes: 0 done, 1 a measurement failed (the message says why), 2 a bad command line.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -92,7 +95,7 @@ CLI::Validator assetValidator() {
         "");
 }
 
-const std::vector<std::string> kSections = {"morph", "features", "abp", "views", "table2", "memory", "sweep"};
+const std::vector<std::string> kSections = {"morph", "features", "abp", "views", "table2", "memory", "half", "sweep"};
 
 double ms(std::chrono::steady_clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
@@ -710,6 +713,78 @@ void sectionMemory(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTe
     }
 }
 
+// Cell (`v`, `k`) of `half` (an atlas with cells dropped) as the run time shows it: stored, or
+// warped through `proxy` from the stored cells around it (ImpostorAtlas::sources, up to four);
+// the regeneration time goes into `s`.
+Image shownFromHalf(const ImpostorAtlas& half, const ProxyMesh& proxy, std::uint32_t v, int k, Scores& s) {
+    if (half.cellStored(v, k)) return half.cell(v, k);
+    const auto t0 = std::chrono::steady_clock::now();
+    const CellSources from = half.sources(v, k);
+    std::array<Image, 4> images;
+    std::array<ProxySource, 4> sources{};
+    for (int i = 0; i < from.count; ++i) {
+        const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+        images[static_cast<std::size_t>(i)] = half.cell(c.view, c.keyframe);
+        sources[static_cast<std::size_t>(i)] = {&images[static_cast<std::size_t>(i)], half.views().direction(c.view), c.keyframe, c.weight};
+    }
+    Image out = warpProxy(proxy, std::span<const ProxySource>(sources.data(), static_cast<std::size_t>(from.count)), half.views().direction(v), k,
+                          ourProxyOptions());
+    s.morphMs += ms(std::chrono::steady_clock::now() - t0);
+    ++s.morphs;
+    return out;
+}
+
+// Issue 37 item 3, seed 000 §5's memory result in our terms: (a) the full atlas, (b) the half atlas
+// (every other key-frame and view ring dropped, regenerated through the surface proxy), (c) the
+// half atlas at twice the cell size. Every cell of every view and key-frame as shown against the
+// truth rendered at twice the size (smaller cells enlarged bilinearly): what a viewer sees; and
+// the dropped cells alone against the truth at their own size: how good regeneration is.
+void sectionHalf(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTemplate> tmpl, int clip, std::vector<Row>& rows) {
+    const ImpostorAtlas& full = *bake.full;
+    const int size = full.cellSize();
+    ImpostorBakeOptions o = bake.options;
+    o.cellSize = 2 * size;
+    std::fprintf(stderr, "%s: [half] baking at %d px...\n", asset.name.c_str(), o.cellSize);
+    std::unique_ptr<Bake> big = makeBake(std::move(tmpl), clip, o);
+    const ImpostorAtlas& truth = *big->full;
+    ImpostorAtlas half = full, halfBig = truth;
+    half.drop(AtlasStorage::Half);
+    halfBig.drop(AtlasStorage::Half);
+    struct Model {
+        std::string name;
+        const ImpostorAtlas* atlas;
+        const ImpostorAtlas* ownTruth;
+        const ProxyMesh* proxy;
+    };
+    const std::vector<Model> models = {
+        {"(a) full atlas, " + std::to_string(size) + " px", &full, &full, nullptr},
+        {"(b) half atlas, " + std::to_string(size) + " px, regenerated through the surface proxy", &half, &full, &bake.proxy(0)},
+        {"(c) half atlas, " + std::to_string(2 * size) + " px, regenerated through the surface proxy", &halfBig, &truth, &big->proxy(0)},
+    };
+    for (const Model& m : models) {
+        Scores every, dropped;
+        for (int k = 0; k < full.keyframeCount(); ++k)
+            for (std::uint32_t v = 0; v < full.views().viewCount(); ++v) {
+                const Image shown = m.proxy ? shownFromHalf(*m.atlas, *m.proxy, v, k, dropped) : m.atlas->cell(v, k);
+                every.add(resample(shown, 2 * size), truth.cell(v, k));
+                if (!half.cellStored(v, k)) dropped.add(shown, m.ownTruth->cell(v, k));  // the cells the half atlases drop
+            }
+        Row r = makeRow("half", asset.name, full.clipName(), m.name, every);
+        r.psnr = every.pooledPsnr();
+        r.extra = mean(dropped.ncc);
+        r.msPerCell = dropped.msPerMorph();
+        r.bytes = m.atlas->textureBytes() + (m.proxy ? m.proxy->bytes() : 0);
+        char note[160];
+        std::snprintf(note, sizeof note, "%.4f|%.2f|%.4f|%d", mean(dropped.ncc), dropped.pooledPsnr(), mean(dropped.ssim),
+                      static_cast<int>(dropped.ncc.size()));
+        r.note = note;
+        r.path = m.proxy ? "CPU, 1 thread" : "-";
+        rows.push_back(r);
+        std::fprintf(stderr, "%s: [half] %s: %.2f MiB, shown NCC %.4f PSNR %.2f, dropped NCC %.4f\n", asset.name.c_str(), m.name.c_str(),
+                     static_cast<double>(r.bytes) / 1048576.0, r.ncc, r.psnr, r.extra);
+    }
+}
+
 // The knob sweep: each configuration baked, every dropped cell regenerated ("dropped": against the
 // truth at that configuration), and random eye directions and clip times shown as the run time
 // shows them ("shown": the key-frame at or before the time, morphed if dropped, in the colour
@@ -894,7 +969,9 @@ void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& s
     }
     for (const Row& r : rows) {
         const char* knob = r.section == "views" ? "impostor view blending" : r.section == "table2" ? "impostor seed 000 table 2"
-                         : r.section == "memory" ? "impostor equal memory model" : nullptr;
+                         : r.section == "memory" ? "impostor equal memory model"
+                         : r.section == "half"   ? "impostor atlas storage"
+                                                 : nullptr;
         if (!knob) continue;
         record(knob, r.method, r.asset + "/" + r.clip, r.section == "views" ? "random eyes" : "baked views", r.ncc, r.nccWhole, r.psnr, r.ssim,
                r.msPerCell, static_cast<double>(r.bytes));
@@ -965,7 +1042,7 @@ int main(int argc, char** argv) {
         ->type_name("LIST")
         ->delimiter(',')
         ->check(support::oneOf(kSections))
-        ->default_str("morph,features,abp,views,table2,memory,sweep");
+        ->default_str("morph,features,abp,views,table2,memory,half,sweep");
     const std::vector<std::string> kSweepKnobs = {"cell_size", "views", "keyframes_kept", "features"};
     std::vector<std::string> sweepKnobTexts;
     app.add_option("--sweep-knobs", sweepKnobTexts, "knobs the sweep section measures, comma-separated (fewer: a shorter run)")
@@ -1015,6 +1092,7 @@ int main(int argc, char** argv) {
             if (wants("views")) sectionViews(a, *bake, parameters, rows);
             if (wants("table2")) sectionTable2(a, *bake, parameters, rows);
             if (wants("memory")) sectionMemory(a, *bake, tmpl, clip, parameters, rows);
+            if (wants("half")) sectionHalf(a, *bake, tmpl, clip, rows);
             if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, sweepKnobs, accuracy);
         }
         const double minutes = ms(std::chrono::steady_clock::now() - started) / 60000.0;
@@ -1092,6 +1170,31 @@ int main(int argc, char** argv) {
                 if (r.section == "memory") {
                     std::snprintf(line, sizeof line, "| %s | %s | %.2f MiB | %.4f | %.4f | %.4f | %.2f | %.4f | %s |\n", r.asset.c_str(), r.method.c_str(),
                                   static_cast<double>(r.bytes) / 1048576.0, r.ncc, r.extra, r.nccWhole, r.psnr, r.ssim, fmtMs(r).c_str());
+                    md << line;
+                }
+        }
+        if (wants("half")) {
+            md << "\n## Half the atlas (seed 000 §5)\n\nThe half atlas keeps every other key-frame and every other view ring (of "
+               << options.elevations << ": the horizon's and every second one up) and regenerates the rest when drawn, each cell through "
+                  "the surface proxy from the stored cells around it (the key-frames before and after, the rings below and above, up to "
+                  "four). Shown: every cell of every view and key-frame as drawn, against the truth rendered at "
+               << 2 * options.cellSize << " px (smaller cells enlarged bilinearly). Dropped: the cells the half atlas drops, against "
+                  "the truth at their own size. Memory: texture plus the surface proxy.\n\n"
+                  "| asset | atlas | memory | of (a) | shown NCC | shown PSNR dB | shown SSIM | dropped NCC | dropped PSNR dB | dropped SSIM "
+                  "| dropped cells | ms/cell |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+            std::size_t fullBytes = 1;
+            for (const Row& r : rows)
+                if (r.section == "half") {
+                    if (r.method.rfind("(a)", 0) == 0) fullBytes = r.bytes;
+                    std::string cells[4] = {"-", "-", "-", "-"};
+                    std::istringstream parts(r.note);
+                    for (std::string& c : cells) std::getline(parts, c, '|');
+                    const bool none = r.path == "-";  // the full atlas shows stored cells only
+                    std::snprintf(line, sizeof line, "| %s | %s | %.2f MiB | %.0f%% | %.4f | %.2f | %.4f | %s | %s | %s | %s | %s |\n", r.asset.c_str(),
+                                  r.method.c_str(), static_cast<double>(r.bytes) / 1048576.0,
+                                  100.0 * static_cast<double>(r.bytes) / static_cast<double>(fullBytes), r.ncc, r.psnr, r.ssim,
+                                  none ? "exact" : cells[0].c_str(), none ? "exact" : cells[1].c_str(), none ? "exact" : cells[2].c_str(),
+                                  cells[3].c_str(), none ? "-" : fmtMs(r).c_str());
                     md << line;
                 }
         }

@@ -14,7 +14,10 @@
 //   - impostors, pool: morphed cells kept on the GPU across frames, at most `--budget` new ones per
 //     atlas and frame, made by the GL into the pool (along the bone lines, or through the surface
 //     proxy) or on the CPU and uploaded; and the same with no budget (the budget's image error is
-//     measured against it).
+//     measured against it);
+//   - with --storages, the atlas storages (issue 37 item 3): full, half the key-frames (today's
+//     default), half (every other key-frame and view ring), and half at twice the cell size, each
+//     drawn as throng-town draws them (surface proxy on another thread, budget 2).
 // Reports per method: APP+CULL, DRAW, the impostor pass (selection, batching, morphing, quads),
 // cells morphed and deferred per frame, impostor texture bytes, and the image error of the frame
 // against all skinned (PSNR, SSIM, share of pixels off by more than 8/255) and, for budgets,
@@ -66,6 +69,7 @@ struct Options {
     std::vector<std::int64_t> crowdFeatures{0, 4, 8, 12, 1000};  // 1000: every bone
     int crowdFrames = 12;
     std::vector<std::string> sections{"methods"};
+    bool storages = false;       // also the atlas-storage rows (full, half; half at twice the cells)
     bool has(const char* s) const { return std::find(sections.begin(), sections.end(), s) != sections.end(); }
 };
 
@@ -77,6 +81,7 @@ struct Method {
     CrowdRendererOptions renderer;
     std::string knob, value;  // its row in the accuracy CSV
     double distance = 0;      // impostor distance (0: the scene's)
+    const ImpostorSet* atlases = nullptr;  // its impostors (null: the scene's default bake)
     std::unique_ptr<ActorProcessor> processor;
     std::unique_ptr<CrowdRenderer> draw;
 };
@@ -141,7 +146,7 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
     CrowdRendererOptions before = finished;
     before.morphing = ImpostorMorphing::FrameCache;
     const auto add = [&](std::string name, Kind kind, const CrowdRendererOptions& r, std::string knob, std::string value, double d = 0) {
-        methods.push_back({std::move(name), kind, r, std::move(knob), std::move(value), d, nullptr, nullptr});
+        methods.push_back({std::move(name), kind, r, std::move(knob), std::move(value), d, nullptr, nullptr, nullptr});
     };
     const std::string grid = std::to_string(o.gridStep) + " px grid";
     add("all skinned", Kind::AllSkinned, finished, "", "");
@@ -170,17 +175,36 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
     for (double d : o.distances)
         add("impostors from " + std::to_string(int(d)) + " m, pool, surface proxy on another thread, budget 2", Kind::Impostors,
             poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy), "impostor distance", std::to_string(int(d)), d);
+    // The atlas storages (issue 37 item 3), each drawn as throng-town draws by default (surface
+    // proxy, CPU on another thread, budget 2): the same crowd, only what the atlases keep differs.
+    struct Storage {
+        AtlasStorage storage;
+        int cellSize;
+        const char* name;
+    };
+    std::vector<std::unique_ptr<ImpostorSet>> storageSets;
+    if (o.storages)
+        for (const Storage& st : {Storage{AtlasStorage::Full, 64, "full atlas, 64 px"}, Storage{AtlasStorage::HalfKeyframes, 64, "half the key-frames, 64 px"},
+                                  Storage{AtlasStorage::Half, 64, "half atlas, 64 px"}, Storage{AtlasStorage::Half, 128, "half atlas, 128 px"}}) {
+            std::fprintf(stderr, "bench_impostor_frame: baking the %s\n", st.name);
+            storageSets.push_back(bench::bakeImpostors(context, *world, st.storage, st.cellSize));
+            add(std::string("impostors, ") + st.name + ", pool, surface proxy on another thread, budget 2", Kind::Impostors,
+                poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy), "impostor atlas storage", st.name);
+            methods.back().atlases = storageSets.back().get();
+        }
+    context->resize(o.e.width, o.e.height);
     add("impostors, pool, GL, no budget", Kind::Impostors, poolOptions(o, MorphSource::Gpu, -1), "morph budget", "unlimited");
     const std::size_t unlimited = methods.size() - 1;
     const auto& declared = world->description().representation;
-    std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
-    for (std::size_t i = 0; i < impostors->size(); ++i) drawables.push_back(impostors->drawable(i));
     for (Method& m : methods) {
+        const ImpostorSet& set = m.atlases ? *m.atlases : *impostors;
+        std::vector<std::shared_ptr<const ImpostorDrawable>> drawables;
+        for (std::size_t i = 0; i < set.size(); ++i) drawables.push_back(set.drawable(i));
         m.processor = std::make_unique<ActorProcessor>(world->crowd());
         if (declared.occlusion) m.processor->setOcclusion(declared.occlusion);
         if (m.kind != Kind::AllSkinned) world->attachKeyPoseCaches(*m.processor);
         if (m.kind == Kind::Impostors)
-            impostors->attach(*m.processor, m.distance > 0 ? m.distance : distance, m.distance > 0 ? hysteresis / distance * m.distance : hysteresis);
+            set.attach(*m.processor, m.distance > 0 ? m.distance : distance, m.distance > 0 ? hysteresis / distance * m.distance : hysteresis);
         m.draw = std::make_unique<CrowdRenderer>(context, m.renderer);
         if (m.kind == Kind::Impostors) m.draw->preloadImpostors(drawables);
     }
@@ -357,6 +381,9 @@ int main(int argc, char** argv) {
     app.add_option("--crowd-features", o.crowdFeatures, "feature lines of the crowd section (1000: every bone)")->delimiter(',')
         ->type_name("N,N,...")->check(CLI::Range(0, 1000));
     app.add_option("--crowd-frames", o.crowdFrames, "measured frames of the crowd section")->type_name("N")->check(CLI::Range(1, 100000));
+    app.add_flag("--storages", o.storages,
+                 "also draw with the atlas storages side by side: full, half the key-frames (the default), half (every other key-frame "
+                 "and view ring), half at 128 px cells (bakes four more sets)");
     app.add_option("--sections", o.sections, "what to run: methods (the scene along its camera path), crowd (seed 000's 16,384 impostors)")
         ->delimiter(',')->type_name("NAME,...")->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)->check(CLI::IsMember({"methods", "crowd"}));
     if (const auto code = experiment.parse(argc, argv)) return *code;

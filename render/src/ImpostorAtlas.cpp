@@ -16,11 +16,11 @@ namespace {
 
 std::string pageFile(int keyframe) { return "keyframe-" + std::to_string(keyframe) + ".png"; }
 
-Image blankPage(const ViewHemisphere& views, int cellSize, const std::string& name) {
+Image blankPage(const ViewHemisphere& views, int rows, int cellSize, const std::string& name) {
     Image page;
     page.name = name;
     page.width = views.azimuths() * cellSize;
-    page.height = views.elevations() * cellSize;
+    page.height = rows * cellSize;
     page.rgba.assign(static_cast<std::size_t>(page.width) * page.height * 4, 0);
     return page;
 }
@@ -35,7 +35,10 @@ ImpostorAtlas::ImpostorAtlas(std::string templateName, std::string clipName, con
     if (cellSize < 8 || cellSize > 4096) throw std::invalid_argument("ImpostorAtlas: cell size out of range");
     if (!(duration > 0.0) || !std::isfinite(duration)) throw std::invalid_argument("ImpostorAtlas: duration must be positive");
     importance_.assign(boneNames_.size(), 1.0f);
-    for (int k = 0; k < keyframes; ++k) pages_.push_back(blankPage(views_, cellSize_, templateName_ + "/" + pageFile(k)));
+    ringRow_.resize(static_cast<std::size_t>(views_.elevations()));
+    std::iota(ringRow_.begin(), ringRow_.end(), 0);
+    for (int k = 0; k < keyframes; ++k)
+        pages_.push_back(blankPage(views_, views_.elevations(), cellSize_, templateName_ + "/" + pageFile(k)));
     lines_.resize(static_cast<std::size_t>(keyframes) * views_.viewCount() * boneNames_.size());
 }
 
@@ -53,13 +56,24 @@ std::vector<std::uint32_t> ImpostorAtlas::strongestBones(std::size_t count) cons
     return order;
 }
 
+std::pair<int, int> ImpostorAtlas::cellOrigin(const char* who, std::uint32_t view, int keyframe) const {
+    if (view >= views_.viewCount() || keyframe < 0 || keyframe >= keyframes_)
+        throw std::invalid_argument(std::string("ImpostorAtlas::") + who + ": view " + std::to_string(view) + " key-frame " +
+                                    std::to_string(keyframe) + " out of range");
+    if (!stored(keyframe)) throw std::invalid_argument(std::string("ImpostorAtlas::") + who + ": key-frame " + std::to_string(keyframe) + " is dropped");
+    const auto azimuths = static_cast<std::uint32_t>(views_.azimuths());
+    const int row = ringRow_[view / azimuths];
+    if (row < 0)
+        throw std::invalid_argument(std::string("ImpostorAtlas::") + who + ": view " + std::to_string(view) + " is on dropped ring " +
+                                    std::to_string(view / azimuths));
+    return {static_cast<int>(view % azimuths) * cellSize_, row * cellSize_};
+}
+
 void ImpostorAtlas::setCell(std::uint32_t view, int keyframe, const Image& cell) {
-    if (!stored(keyframe)) throw std::invalid_argument("ImpostorAtlas::setCell: key-frame " + std::to_string(keyframe) + " is dropped");
+    const auto [x0, y0] = cellOrigin("setCell", view, keyframe);
     if (cell.width != cellSize_ || cell.height != cellSize_ || !cell.valid())
         throw std::invalid_argument("ImpostorAtlas::setCell: the cell is not " + std::to_string(cellSize_) + " pixels square");
     Image& page = pages_[static_cast<std::size_t>(keyframe)];
-    const int x0 = static_cast<int>(view % static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
-    const int y0 = static_cast<int>(view / static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
     const std::size_t row = static_cast<std::size_t>(cellSize_) * 4;
     for (int y = 0; y < cellSize_; ++y)
         std::copy_n(cell.rgba.data() + y * row, row,
@@ -67,14 +81,12 @@ void ImpostorAtlas::setCell(std::uint32_t view, int keyframe, const Image& cell)
 }
 
 Image ImpostorAtlas::cell(std::uint32_t view, int keyframe) const {
-    if (!stored(keyframe)) throw std::invalid_argument("ImpostorAtlas::cell: key-frame " + std::to_string(keyframe) + " is dropped");
+    const auto [x0, y0] = cellOrigin("cell", view, keyframe);
     const Image& page = pages_[static_cast<std::size_t>(keyframe)];
     Image out;
     out.name = templateName_ + " view " + std::to_string(view) + " key-frame " + std::to_string(keyframe);
     out.width = out.height = cellSize_;
     out.rgba.resize(static_cast<std::size_t>(cellSize_) * cellSize_ * 4);
-    const int x0 = static_cast<int>(view % static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
-    const int y0 = static_cast<int>(view / static_cast<std::uint32_t>(views_.azimuths())) * cellSize_;
     const std::size_t row = static_cast<std::size_t>(cellSize_) * 4;
     for (int y = 0; y < cellSize_; ++y)
         std::copy_n(page.rgba.data() + (static_cast<std::size_t>(y0 + y) * page.width + x0) * 4, row,
@@ -95,6 +107,73 @@ std::span<FeatureLine> ImpostorAtlas::lines(std::uint32_t view, int keyframe) {
 void ImpostorAtlas::dropOddKeyframes() {
     for (int k = 1; k < keyframes_; k += 2)
         if (!(keyframes_ % 2 == 1 && k == keyframes_ - 1)) pages_[static_cast<std::size_t>(k)] = Image{};
+}
+
+void ImpostorAtlas::dropOddRings() {
+    const int rings = views_.elevations();
+    if (rings < 2) throw std::invalid_argument("ImpostorAtlas::dropOddRings: '" + templateName_ + "' has a single view ring");
+    std::vector<int> rows(static_cast<std::size_t>(rings), -1);
+    int kept = 0;
+    for (int e = 0; e < rings; ++e)
+        if (e % 2 == 0 && ringStored(e)) rows[static_cast<std::size_t>(e)] = kept++;
+    // Each stored page is rebuilt with the kept rings' rows only: the memory really goes.
+    const std::size_t rowBytes = static_cast<std::size_t>(views_.azimuths()) * cellSize_ * cellSize_ * 4;
+    for (Image& page : pages_) {
+        if (page.rgba.empty()) continue;
+        Image compact = blankPage(views_, kept, cellSize_, page.name);
+        for (int e = 0; e < rings; ++e)
+            if (rows[static_cast<std::size_t>(e)] >= 0)
+                std::copy_n(page.rgba.data() + static_cast<std::size_t>(ringRow_[static_cast<std::size_t>(e)]) * rowBytes, rowBytes,
+                            compact.rgba.data() + static_cast<std::size_t>(rows[static_cast<std::size_t>(e)]) * rowBytes);
+        page = std::move(compact);
+    }
+    ringRow_ = std::move(rows);
+}
+
+void ImpostorAtlas::drop(AtlasStorage storage) {
+    if (storage != AtlasStorage::Full) dropOddKeyframes();
+    if (storage == AtlasStorage::Half) dropOddRings();
+}
+
+void ImpostorAtlas::ringNeighbours(int ring, int& below, int& above, float& t) const {
+    if (ring < 0 || ring >= views_.elevations())
+        throw std::invalid_argument("ImpostorAtlas::ringNeighbours: ring " + std::to_string(ring) + " out of range");
+    if (ringStored(ring)) throw std::invalid_argument("ImpostorAtlas::ringNeighbours: ring " + std::to_string(ring) + " is stored");
+    int b = ring - 1, a = ring + 1;
+    while (b >= 0 && !ringStored(b)) --b;
+    while (a < views_.elevations() && !ringStored(a)) ++a;
+    if (b < 0 && a >= views_.elevations()) throw std::invalid_argument("ImpostorAtlas::ringNeighbours: no stored ring");
+    if (b < 0) b = a;
+    if (a >= views_.elevations()) a = b;
+    below = b, above = a;
+    t = a == b ? 0.0f : static_cast<float>(ring - b) / static_cast<float>(a - b);
+}
+
+CellSources ImpostorAtlas::sources(std::uint32_t view, int keyframe) const {
+    if (view >= views_.viewCount() || keyframe < 0 || keyframe >= keyframes_)
+        throw std::invalid_argument("ImpostorAtlas::sources: view " + std::to_string(view) + " key-frame " + std::to_string(keyframe) +
+                                    " out of range");
+    const auto azimuths = static_cast<std::uint32_t>(views_.azimuths());
+    const int ring = static_cast<int>(view / azimuths);
+    int k0 = keyframe, k1 = keyframe, r0 = ring, r1 = ring;
+    float tk = 0.0f, tr = 0.0f;
+    if (!stored(keyframe)) neighbours(keyframe, k0, k1, tk);
+    if (!ringStored(ring)) ringNeighbours(ring, r0, r1, tr);
+    CellSources out;
+    const auto add = [&](int r, int k, float w) {
+        const std::uint32_t v = static_cast<std::uint32_t>(r) * azimuths + view % azimuths;
+        for (int i = 0; i < out.count; ++i)
+            if (out.cells[static_cast<std::size_t>(i)].view == v && out.cells[static_cast<std::size_t>(i)].keyframe == k) {
+                out.cells[static_cast<std::size_t>(i)].weight += w;
+                return;
+            }
+        if (w > 0.0f) out.cells[static_cast<std::size_t>(out.count++)] = {v, k, w};
+    };
+    add(r0, k0, (1.0f - tr) * (1.0f - tk));
+    add(r0, k1, (1.0f - tr) * tk);
+    add(r1, k0, tr * (1.0f - tk));
+    add(r1, k1, tr * tk);
+    return out;
 }
 
 void ImpostorAtlas::neighbours(int keyframe, int& before, int& after, float& t) const {
@@ -142,6 +221,9 @@ void ImpostorAtlas::save(const std::filesystem::path& directory) const {
                             {"direction", {d.x, d.y, d.z}}});
     }
     j["views"]["list"] = viewList;
+    nlohmann::json rings = nlohmann::json::array();
+    for (int e = 0; e < views_.elevations(); ++e) rings.push_back(ringStored(e));
+    j["views"]["ringsStored"] = rings;
     j["bounds"] = {{"centre", {centre_.x, centre_.y, centre_.z}}, {"radius", radius_}};
     j["bones"] = boneNames_;
     j["boneImportance"] = importance_;
@@ -187,6 +269,17 @@ ImpostorAtlas ImpostorAtlas::load(const std::filesystem::path& directory) {
                             static_cast<int>(frames.size()), j.at("duration").get<double>(), j.at("cellSize").get<int>(),
                             j.at("bones").get<std::vector<std::string>>());
         atlas.setBoneImportance(j.at("boneImportance").get<std::vector<float>>());
+        if (jv.contains("ringsStored")) {  // absent in atlases saved before rings could be dropped: all stored
+            const auto flags = jv.at("ringsStored").get<std::vector<bool>>();
+            if (flags.size() != static_cast<std::size_t>(views.elevations()))
+                throw std::runtime_error("views.ringsStored has " + std::to_string(flags.size()) + " entries for " +
+                                         std::to_string(views.elevations()) + " rings");
+            int kept = 0;
+            for (std::size_t e = 0; e < flags.size(); ++e) atlas.ringRow_[e] = flags[e] ? kept++ : -1;
+            if (kept == 0) throw std::runtime_error("views.ringsStored keeps no ring");
+            for (int k = 0; k < atlas.keyframes_; ++k)
+                atlas.pages_[static_cast<std::size_t>(k)] = blankPage(views, kept, atlas.cellSize_, atlas.pages_[static_cast<std::size_t>(k)].name);
+        }
         const auto& c = j.at("bounds").at("centre");
         atlas.setWorldBounds({c.at(0).get<float>(), c.at(1).get<float>(), c.at(2).get<float>()},
                              j.at("bounds").at("radius").get<float>());

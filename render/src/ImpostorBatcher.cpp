@@ -42,13 +42,12 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
         double phase = std::fmod(item.clipTime / atlas.duration(), 1.0);
         if (!(phase >= 0.0)) phase = phase < 0.0 ? phase + 1.0 : 0.0;
         inst.keyframe = std::min(static_cast<int>(phase * atlas.keyframeCount()), atlas.keyframeCount() - 1);
-        if (!atlas.stored(inst.keyframe))
-            for (int i = 0; i < 3; ++i)
-                if (inst.weights[static_cast<std::size_t>(i)] > 0.0f) {
-                    if (cache_)
-                        inst.morphed[static_cast<std::size_t>(i)] = &cache_->request(atlas, inst.views[static_cast<std::size_t>(i)], inst.keyframe);
-                    ++stats_.droppedCells;
-                }
+        for (int i = 0; i < 3; ++i)
+            if (inst.weights[static_cast<std::size_t>(i)] > 0.0f && !atlas.cellStored(inst.views[static_cast<std::size_t>(i)], inst.keyframe)) {
+                if (cache_)
+                    inst.morphed[static_cast<std::size_t>(i)] = &cache_->request(atlas, inst.views[static_cast<std::size_t>(i)], inst.keyframe);
+                ++stats_.droppedCells;
+            }
         instances_.push_back(inst);
     }
     stats_.impostors = instances_.size();

@@ -1,6 +1,7 @@
 #include "throng/render/ImpostorRenderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <future>
 #include <stdexcept>
@@ -105,18 +106,20 @@ std::vector<glm::vec4> coveredRects(const ImpostorAtlas& atlas, bool tight) {
     const int size = atlas.cellSize();
     for (std::uint32_t v = 0; v < views; ++v) {
         int x0 = size, y0 = size, x1 = -1, y1 = -1;
+        // A view on a dropped ring is covered as the stored cells it is regenerated from are.
         for (int k = 0; k < atlas.keyframeCount(); ++k) {
             if (!atlas.stored(k)) continue;
-            const Image& page = atlas.page(k);
-            const int cols = page.width / size;
-            const int ox = static_cast<int>(v % static_cast<std::uint32_t>(cols)) * size, oy = static_cast<int>(v / static_cast<std::uint32_t>(cols)) * size;
-            for (int y = 0; y < size; ++y)
-                for (int x = 0; x < size; ++x)
-                    if (page.rgba[(static_cast<std::size_t>(oy + y) * static_cast<std::size_t>(page.width) + static_cast<std::size_t>(ox + x)) * 4 + 3] > 0)
-                        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+            const CellSources from = atlas.sources(v, k);
+            for (int i = 0; i < from.count; ++i) {
+                const Image cell = atlas.cell(from.cells[static_cast<std::size_t>(i)].view, k);
+                for (int y = 0; y < size; ++y)
+                    for (int x = 0; x < size; ++x)
+                        if (cell.rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)) * 4 + 3] > 0)
+                            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+            }
         }
         if (x1 < 0) continue;
-        // Dropped key-frames keep only their bones' lines: their ends count too, so an in-between
+        // Dropped cells keep only their bones' lines: their ends count too, so an in-between
         // reaching beyond every stored pose is still covered.
         const auto include = [&](float x, float y) {
             x0 = std::min(x0, static_cast<int>(std::floor(x))), y0 = std::min(y0, static_cast<int>(std::floor(y)));
@@ -148,27 +151,57 @@ void setArrayParameters(const GladGLContext& gl) {
 
 // What making one dropped cell on the CPU needs (copies: the atlas may go meanwhile).
 struct CpuCell {
-    Image from, to;          // the stored key-frames around it, same view
-    DroppedCellLines lines;  // their lines, the target's, and the fraction between
+    // Through the surface proxy: the stored cells around it (ImpostorAtlas::sources), their eye
+    // directions, key-frames and shares.
     std::shared_ptr<const ProxyMesh> proxy;  // the atlas's surface proxy, if it is to be used
+    std::array<Image, 4> images;
+    std::array<ProxySource, 4> sources{};
+    int sourceCount = 0;
+    // Along the feature lines: the two stored cells it lies between (images 0 and 1), their
+    // lines, the target's, and the fraction between.
+    DroppedCellLines lines;
     glm::vec3 toEye{0.0f, 0.0f, 1.0f};       // the view's direction
-    int keyframe = 0;                        // the dropped key-frame
+    int keyframe = 0;                        // the dropped cell's key-frame
 };
+
+// The CPU job for cell (`view`, `keyframe`) of `atlas`: the proxy's sources when `proxy` is given,
+// else the feature lines' two cells.
+CpuCell cpuCellJob(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, std::shared_ptr<const ProxyMesh> proxy,
+                   const MorphCacheOptions& morph) {
+    CpuCell job;
+    job.toEye = atlas.views().direction(view);
+    job.keyframe = keyframe;
+    if (proxy) {
+        const CellSources from = atlas.sources(view, keyframe);
+        for (int i = 0; i < from.count; ++i) {
+            const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+            job.images[static_cast<std::size_t>(i)] = atlas.cell(c.view, c.keyframe);
+            job.sources[static_cast<std::size_t>(i)] = {nullptr, atlas.views().direction(c.view), c.keyframe, c.weight};
+        }
+        job.sourceCount = from.count;
+        job.proxy = std::move(proxy);
+        return job;
+    }
+    job.lines = droppedCellLines(atlas, view, keyframe, morph);
+    job.images[0] = atlas.cell(job.lines.fromView, job.lines.before);
+    job.images[1] = atlas.cell(job.lines.toView, job.lines.after);
+    return job;
+}
 
 // A dropped cell made on the CPU: warped through the surface proxy when there is one, otherwise
 // morphed along the feature lines (on the warp grid, or per pixel).
-Image makeCpuCell(const CpuCell& c, const ImpostorRendererOptions& options) {
+Image makeCpuCell(CpuCell& c, const ImpostorRendererOptions& options) {
     if (c.proxy) {
         ProxyWarpOptions warp;
         warp.opaqueInside = true;  // as measured best (throng-impostor-quality)
-        const ProxySource sources[2] = {{&c.from, c.toEye, c.lines.before, 1.0f - c.lines.t},
-                                        {&c.to, c.toEye, c.lines.after, c.lines.t}};
-        return warpProxy(*c.proxy, sources, c.toEye, c.keyframe, warp);
+        for (int i = 0; i < c.sourceCount; ++i) c.sources[static_cast<std::size_t>(i)].image = &c.images[static_cast<std::size_t>(i)];
+        return warpProxy(*c.proxy, std::span<const ProxySource>(c.sources.data(), static_cast<std::size_t>(c.sourceCount)), c.toEye,
+                         c.keyframe, warp);
     }
     if (options.gridStep > 1)
-        return morphImagesOnGrid(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
+        return morphImagesOnGrid(c.images[0], c.lines.from, c.images[1], c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
                                  options.gridStep);
-    return morphImages(c.from, c.lines.from, c.to, c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
+    return morphImages(c.images[0], c.lines.from, c.images[1], c.lines.to, c.lines.target, c.lines.t, options.morph.parameters,
                        options.morph.threads);
 }
 
@@ -207,8 +240,8 @@ struct ImpostorRenderer::Impl {
         const std::uint32_t views = atlas.views().viewCount();
         g.storedLayer.assign(static_cast<std::size_t>(atlas.keyframeCount()) * views, -1);
         for (int k = 0; k < atlas.keyframeCount(); ++k)
-            if (atlas.stored(k))
-                for (std::uint32_t v = 0; v < views; ++v) g.storedLayer[static_cast<std::size_t>(k) * views + v] = g.stored++;
+            for (std::uint32_t v = 0; v < views; ++v)
+                if (atlas.cellStored(v, k)) g.storedLayer[static_cast<std::size_t>(k) * views + v] = g.stored++;
         g.poolLayers = options.poolSlots;
         if (g.stored + g.poolLayers > maxLayers)
             throw std::runtime_error("ImpostorRenderer: atlas '" + atlas.templateName() + "' needs " +
@@ -222,8 +255,8 @@ struct ImpostorRenderer::Impl {
         gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
         g.viewRect = coveredRects(atlas, options.tightQuads);
         for (int k = 0; k < atlas.keyframeCount(); ++k)
-            if (atlas.stored(k))
-                for (std::uint32_t v = 0; v < views; ++v) {
+            for (std::uint32_t v = 0; v < views; ++v)
+                if (atlas.cellStored(v, k)) {
                     const Image cell = atlas.cell(v, k);
                     gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.storedLayer[static_cast<std::size_t>(k) * views + v], s, s,
                                      1, GL_RGBA, GL_UNSIGNED_BYTE, cell.rgba.data());
@@ -236,14 +269,14 @@ struct ImpostorRenderer::Impl {
         return atlases.emplace(&atlas, std::move(g)).first->second;
     }
 
-    // The stored layer shown for a cell of `keyframe` that is not ready: the nearest stored
-    // key-frame (the earlier on a tie).
+    // The stored layer shown for a cell that is not ready: the stored cell of the largest share
+    // among those it is regenerated from (the nearest key-frame and ring; the first on a tie).
     int fallbackLayer(const GpuAtlas& g, const ImpostorAtlas& atlas, int keyframe, std::uint32_t view) const {
-        int before = keyframe, after = keyframe;
-        float t = 0.0f;
-        if (!atlas.stored(keyframe)) atlas.neighbours(keyframe, before, after, t);
-        const int k = t <= 0.5f ? before : after;
-        return std::max(g.storedLayer[static_cast<std::size_t>(k) * atlas.views().viewCount() + view], 0);
+        const CellSources from = atlas.sources(view, keyframe);
+        const CellSource* best = &from.cells[0];
+        for (int i = 1; i < from.count; ++i)
+            if (from.cells[static_cast<std::size_t>(i)].weight > best->weight) best = &from.cells[static_cast<std::size_t>(i)];
+        return std::max(g.storedLayer[static_cast<std::size_t>(best->keyframe) * atlas.views().viewCount() + best->view], 0);
     }
 
     // Makes this frame's chosen cells of `g` in its pool: on the GL straight into the layer, or on
@@ -253,11 +286,9 @@ struct ImpostorRenderer::Impl {
         const GladGLContext& gl = context->gl();
         const std::uint32_t views = atlas.views().viewCount();
         for (const MorphFill& f : fills) {
-            DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
             if (options.source == MorphSource::Cpu) {
-                CpuCell job{atlas.cell(f.view, c.before), atlas.cell(f.view, c.after), std::move(c),
-                            options.warp == CellWarp::SurfaceProxy ? atlas.proxy() : nullptr, atlas.views().direction(f.view),
-                            f.keyframe};
+                CpuCell job = cpuCellJob(atlas, f.view, f.keyframe, options.warp == CellWarp::SurfaceProxy ? atlas.proxy() : nullptr,
+                                         options.morph);
                 if (options.backgroundMorph) {
                     g.cells->setPending(f.slot);
                     background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, std::move(job), {}});
@@ -272,17 +303,23 @@ struct ImpostorRenderer::Impl {
             } else if (options.warp == CellWarp::SurfaceProxy && atlas.proxy()) {
                 // Through the figure's surface, as the CPU path does (warpProxy), in the GL.
                 if (!proxyWarper) proxyWarper = std::make_unique<GpuProxyWarper>(context);
-                const glm::vec3 eye = atlas.views().direction(f.view);
-                const GpuProxyWarper::LayerSource sources[2] = {
-                    {g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view], eye, c.before, 1.0f - c.t},
-                    {g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], eye, c.after, c.t}};
+                const CellSources from = atlas.sources(f.view, f.keyframe);
+                std::array<GpuProxyWarper::LayerSource, 4> sources{};
+                for (int i = 0; i < from.count; ++i) {
+                    const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+                    sources[static_cast<std::size_t>(i)] = {g.storedLayer[static_cast<std::size_t>(c.keyframe) * views + c.view],
+                                                            atlas.views().direction(c.view), c.keyframe, c.weight};
+                }
                 ProxyWarpOptions warp;
                 warp.opaqueInside = true;  // as the CPU path
-                proxyWarper->warpInto(*atlas.proxy(), g.texture, sources, eye, f.keyframe, g.texture, g.stored + f.slot, warp);
+                proxyWarper->warpInto(*atlas.proxy(), g.texture,
+                                      std::span<const GpuProxyWarper::LayerSource>(sources.data(), static_cast<std::size_t>(from.count)),
+                                      atlas.views().direction(f.view), f.keyframe, g.texture, g.stored + f.slot, warp);
             } else {
+                const DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
                 if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
-                morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + f.view],
-                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + f.view], g.texture, g.stored + f.slot, g.cellSize,
+                morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + c.fromView],
+                                   g.storedLayer[static_cast<std::size_t>(c.after) * views + c.toView], g.texture, g.stored + f.slot, g.cellSize,
                                    c.from, c.to, c.target, c.t, options.morph.parameters);
             }
         }
@@ -406,9 +443,10 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         if (!inst.drawable) continue;
         GpuAtlas& g = r.upload(*inst.drawable);
         g.used = true;
-        if (inst.drawable->atlas().stored(inst.keyframe)) continue;
+        const ImpostorAtlas& atlas = inst.drawable->atlas();
         for (std::size_t i = 0; i < 3; ++i)
-            if (inst.weights[i] > 0.0f && !inst.morphed[i]) g.cells->want(inst.keyframe, inst.views[i]);
+            if (inst.weights[i] > 0.0f && !inst.morphed[i] && !atlas.cellStored(inst.views[i], inst.keyframe))
+                g.cells->want(inst.keyframe, inst.views[i]);
     }
     // The most wanted new cells, within the budget, made now.
     Stopwatch watch;
@@ -448,7 +486,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             int layer = 0;
             if (inst.weights[i] <= 0.0f) {
                 layer = 0;
-            } else if (atlas.stored(inst.keyframe)) {
+            } else if (atlas.cellStored(inst.views[i], inst.keyframe)) {
                 layer = std::max(g.storedLayer[static_cast<std::size_t>(inst.keyframe) * views + inst.views[i]], 0);
             } else if (inst.morphed[i]) {
                 // An image the batcher's MorphCache made: uploaded into a pool layer for this frame.

@@ -23,7 +23,7 @@ ImpostorSet::ImpostorSet(std::shared_ptr<GlContext> context, std::span<const Sou
             ImpostorBaker baker(context, source.tmpl, source.clip, options);
             auto atlas = std::make_shared<ImpostorAtlas>(baker.bake());
             if (options.surfaceProxy) atlas->setProxy(std::make_shared<const ProxyMesh>(baker.proxyMesh()));
-            atlas->dropOddKeyframes();  // the in-betweens are morphed at draw time
+            atlas->drop(options.storage);  // what is dropped is regenerated at draw time
             baked_.push_back({source.tmpl.get(), std::make_shared<ImpostorDrawable>(atlas), atlas});
         } catch (const std::invalid_argument& e) {
             throw std::invalid_argument("ImpostorSet: source " + std::to_string(done) + ": " + e.what());

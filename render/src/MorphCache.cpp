@@ -12,13 +12,33 @@ DroppedCellLines droppedCellLines(const ImpostorAtlas& atlas, std::uint32_t view
     if (keyframe < 0 || keyframe >= atlas.keyframeCount() || view >= atlas.views().viewCount())
         throw std::invalid_argument("droppedCellLines: view " + std::to_string(view) + " key-frame " +
                                     std::to_string(keyframe) + " out of range");
+    if (atlas.cellStored(view, keyframe))
+        throw std::invalid_argument("droppedCellLines: view " + std::to_string(view) + " key-frame " + std::to_string(keyframe) +
+                                    " is stored");
     DroppedCellLines c;
-    atlas.neighbours(keyframe, c.before, c.after, c.t);
+    const auto azimuths = static_cast<std::uint32_t>(atlas.views().azimuths());
+    const int ring = static_cast<int>(view / azimuths);
+    std::uint32_t targetView = view;
+    c.fromView = c.toView = view;
+    if (!atlas.ringStored(ring)) {
+        int below = ring, above = ring;
+        float tr = 0.0f;
+        atlas.ringNeighbours(ring, below, above, tr);
+        const std::uint32_t vb = static_cast<std::uint32_t>(below) * azimuths + view % azimuths;
+        const std::uint32_t va = static_cast<std::uint32_t>(above) * azimuths + view % azimuths;
+        if (atlas.stored(keyframe)) {  // a view morph within the key-frame
+            c.before = c.after = keyframe;
+            c.fromView = vb, c.toView = va, c.t = tr;
+        } else {  // the nearer stored ring's view stands in for the dropped one
+            c.fromView = c.toView = targetView = tr <= 0.5f ? vb : va;
+        }
+    }
+    if (!atlas.stored(keyframe)) atlas.neighbours(keyframe, c.before, c.after, c.t);
     const std::vector<std::uint32_t> bones = atlas.strongestBones(options.features);
     for (std::uint32_t b : bones) {
-        c.from.push_back(atlas.lines(view, c.before)[b]);
-        c.to.push_back(atlas.lines(view, c.after)[b]);
-        c.target.push_back(atlas.lines(view, keyframe)[b]);
+        c.from.push_back(atlas.lines(c.fromView, c.before)[b]);
+        c.to.push_back(atlas.lines(c.toView, c.after)[b]);
+        c.target.push_back(atlas.lines(targetView, keyframe)[b]);
     }
     if (!options.skeletonTargets) interpolateLines(c.from, c.to, c.t, c.target);
     return c;
@@ -27,7 +47,7 @@ DroppedCellLines droppedCellLines(const ImpostorAtlas& atlas, std::uint32_t view
 Image morphDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options,
                        GpuMorpher* gpu) {
     const DroppedCellLines c = droppedCellLines(atlas, view, keyframe, options);
-    const Image a = atlas.cell(view, c.before), b = atlas.cell(view, c.after);
+    const Image a = atlas.cell(c.fromView, c.before), b = atlas.cell(c.toView, c.after);
     return gpu ? gpu->morph(a, c.from, b, c.to, c.target, c.t, options.parameters)
                : morphImages(a, c.from, b, c.to, c.target, c.t, options.parameters, options.threads);
 }
@@ -53,8 +73,9 @@ const Image& MorphCache::request(const ImpostorAtlas& atlas, std::uint32_t view,
         lru_.splice(lru_.begin(), lru_, it->second.lru);
         return it->second.image;
     }
-    if (keyframe < 0 || keyframe >= atlas.keyframeCount() || atlas.stored(keyframe))
-        throw std::invalid_argument("MorphCache::request: key-frame " + std::to_string(keyframe) + " is not a dropped one");
+    if (keyframe < 0 || keyframe >= atlas.keyframeCount() || view >= atlas.views().viewCount() || atlas.cellStored(view, keyframe))
+        throw std::invalid_argument("MorphCache::request: view " + std::to_string(view) + " key-frame " + std::to_string(keyframe) +
+                                    " is not a dropped cell");
     Stopwatch watch;
     Image image = morphDroppedCell(atlas, view, keyframe, options_, gpu_);
     stats_.morphMs += watch.elapsedMs();

@@ -327,13 +327,20 @@ void readEffects(const Reader& root, SceneDescription& s) {
 // "representation": LOD scale, impostors, key-pose caches, occlusion.
 void readRepresentation(const Reader& root, SceneDescription& s, const std::string& file) {
     const Reader r = root.at("representation");
-    r.object({"impostorDistance", "impostorViews", "impostorSmoothstep", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
+    r.object({"impostorDistance", "impostorViews", "impostorSmoothstep", "impostorAtlas", "hysteresis", "lodScale", "occlusion", "keyPoseCache"});
     if (r.has("impostorDistance")) s.representation.impostorDistance = r.at("impostorDistance").within("representation", "impostorDistance");
     if (r.has("impostorViews")) {
         const std::string views = r.at("impostorViews").string();
         if (views == "blend") s.representation.impostorViews = ImpostorViews::Blend;
         else if (views == "nearest") s.representation.impostorViews = ImpostorViews::Nearest;
         else r.at("impostorViews").fail("must be \"blend\" or \"nearest\", got \"" + views + "\"");
+    }
+    if (r.has("impostorAtlas")) {
+        const std::string atlas = r.at("impostorAtlas").string();
+        if (atlas == "full") s.representation.impostorAtlas = ImpostorAtlasStorage::Full;
+        else if (atlas == "half-keyframes") s.representation.impostorAtlas = ImpostorAtlasStorage::HalfKeyframes;
+        else if (atlas == "half") s.representation.impostorAtlas = ImpostorAtlasStorage::Half;
+        else r.at("impostorAtlas").fail("must be \"full\", \"half-keyframes\" or \"half\", got \"" + atlas + "\"");
     }
     if (r.has("impostorSmoothstep")) {
         s.representation.impostorSmoothstep = r.at("impostorSmoothstep").boolean();

@@ -1,5 +1,5 @@
 // Impostors of a procedural figure: baking covers every cell, halving the key-frames halves the
-// texture, the CPU and GPU morphs agree (|difference| <= 2/255 on >= 99.9% of pixels), morphed
+// texture (and the view rings too quarters it), the CPU and GPU morphs agree (|difference| <= 2/255 on >= 99.9% of pixels), morphed
 // in-betweens beat showing the previous key-frame, the description round-trips through files, and
 // the morph cache makes each cell once per frame.
 
@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "ImpostorTestSupport.h"
 #include "RenderTestSupport.h"
@@ -70,6 +72,98 @@ TEST(Impostor, HalfTheKeyframesHalveTheTexture) {
     EXPECT_EQ(before, 6);
     EXPECT_EQ(after, 0);
     EXPECT_FLOAT_EQ(t, 0.5f);
+}
+
+// The half atlas (seed 000 §5): every other key-frame and every other view ring dropped, the
+// pages compacted so the memory really goes; stored cells unchanged, dropped ones refused, and
+// each dropped cell's sources the stored cells around it with bilinear shares.
+TEST(Impostor, HalfAtlasDropsEveryOtherRingAndKeyframe) {
+    const ImpostorAtlas& full = *BakedHumanoid::fourRings().full;
+    ImpostorAtlas half = full;
+    half.drop(AtlasStorage::Half);
+    EXPECT_EQ(half.textureBytes() * 4, full.textureBytes());  // 4 of 8 key-frames, 2 of 4 rings
+    EXPECT_LE(static_cast<double>(half.textureBytes()), 0.55 * static_cast<double>(half.fullTextureBytes()));
+    const std::uint32_t around = static_cast<std::uint32_t>(full.views().azimuths());
+    for (int ring = 0; ring < 4; ++ring) EXPECT_EQ(half.ringStored(ring), ring % 2 == 0) << "ring " << ring;
+    for (std::uint32_t v = 0; v < full.views().viewCount(); ++v)
+        for (int k = 0; k < full.keyframeCount(); ++k) {
+            const bool stored = k % 2 == 0 && (v / around) % 2 == 0;
+            ASSERT_EQ(half.cellStored(v, k), stored) << "view " << v << " key-frame " << k;
+            if (stored) {
+                EXPECT_EQ(half.cell(v, k).rgba, full.cell(v, k).rgba) << "view " << v << " key-frame " << k;
+            } else {
+                EXPECT_THROW(static_cast<void>(half.cell(v, k)), std::invalid_argument);
+            }
+            const CellSources from = half.sources(v, k);
+            float sum = 0.0f;
+            for (int i = 0; i < from.count; ++i) {
+                const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+                EXPECT_TRUE(half.cellStored(c.view, c.keyframe));
+                EXPECT_EQ(c.view % around, v % around) << "a source keeps the azimuth";
+                sum += c.weight;
+            }
+            EXPECT_NEAR(sum, 1.0f, 1e-6f);
+            if (stored) {
+                EXPECT_EQ(from.count, 1);
+            }
+        }
+    int below = 0, above = 0;
+    float t = 0;
+    half.ringNeighbours(1, below, above, t);
+    EXPECT_EQ(below, 0);
+    EXPECT_EQ(above, 2);
+    EXPECT_FLOAT_EQ(t, 0.5f);
+    half.ringNeighbours(3, below, above, t);  // the top ring: nothing stored above it
+    EXPECT_EQ(below, 2);
+    EXPECT_EQ(above, 2);
+    EXPECT_FLOAT_EQ(t, 0.0f);
+    EXPECT_THROW(half.ringNeighbours(2, below, above, t), std::invalid_argument);
+    const CellSources both = half.sources(around + 3, 1);  // ring 1, key-frame 1: four cells
+    EXPECT_EQ(both.count, 4);
+    for (int i = 0; i < both.count; ++i) EXPECT_FLOAT_EQ(both.cells[static_cast<std::size_t>(i)].weight, 0.25f);
+    EXPECT_THROW(static_cast<void>(half.sources(full.views().viewCount(), 0)), std::invalid_argument);
+    ImpostorAtlas oneRing = *BakedHumanoid::get().full;
+    oneRing.dropOddRings();  // two rings: the top one goes
+    EXPECT_FALSE(oneRing.ringStored(1));
+    const std::size_t bytes = oneRing.textureBytes();
+    oneRing.dropOddRings();  // again: nothing more to drop
+    EXPECT_EQ(oneRing.textureBytes(), bytes);
+    ImpostorAtlas flat("flat", "clip", ViewHemisphere(8, 1), 2, 1.0, 8, {});
+    EXPECT_THROW(flat.dropOddRings(), std::invalid_argument) << "a single ring";
+}
+
+// A half atlas saved and loaded keeps its rings; an impostor.json whose ring list does not match
+// its views is refused, naming the file.
+TEST(Impostor, HalfAtlasSavesAndLoads) {
+    ImpostorAtlas half = *BakedHumanoid::fourRings().full;
+    half.drop(AtlasStorage::Half);
+    const auto dir = std::filesystem::temp_directory_path() / "throng-impostor-half-test";
+    std::filesystem::remove_all(dir);
+    half.save(dir);
+    const ImpostorAtlas back = ImpostorAtlas::load(dir);
+    EXPECT_EQ(back.textureBytes(), half.textureBytes());
+    for (int ring = 0; ring < 4; ++ring) EXPECT_EQ(back.ringStored(ring), half.ringStored(ring));
+    for (int k = 0; k < half.keyframeCount(); k += 2) EXPECT_EQ(back.page(k).rgba, half.page(k).rgba);
+    std::string json;
+    {
+        std::ifstream in(dir / "impostor.json");
+        json.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::size_t at = json.find("\"ringsStored\"");
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t open = json.find('[', at), close = json.find(']', at);
+    {
+        std::ofstream out(dir / "impostor.json");
+        out << json.substr(0, open) << "[true, false]" << json.substr(close + 1);
+    }
+    try {
+        static_cast<void>(ImpostorAtlas::load(dir));
+        ADD_FAILURE() << "a ring list of the wrong length loaded";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("ringsStored"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("impostor.json"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Impostor, MorphIntoRefusesBadArguments) {
@@ -440,6 +534,44 @@ TEST(Impostor, SurfaceProxyWarpIsNearerTheBakedKeyframe) {
         EXPECT_GT(proxyPsnr, linesPsnr + 2.0) << "clip time " << t << ": " << linesPsnr << " dB by lines, " << proxyPsnr << " by the proxy";
         EXPECT_EQ(byLines.rgba, scene.render(1.0, nullptr, proxy, t).rgba) << "an atlas without a proxy: lines";
         EXPECT_EQ(byProxy.rgba, scene.render(1.0, nullptr, background, t, 2, nullptr, withProxy).rgba) << "on the other thread";
+    }
+}
+
+// The half atlas drawn (seed 000 §5): seen from above, where the eye lies between view rings,
+// the dropped rings' and key-frames' cells regenerated through the surface proxy (up to four
+// stored cells each) are nearer the full atlas's picture than the nearest stored cells a zero
+// budget shows, and the GL's warp shows what the CPU's shows. Feature lines (no proxy) regenerate
+// dropped rings too, by morphing between the rings in a stored key-frame.
+TEST(Impostor, HalfAtlasRegeneratesDroppedRingsWhenDrawn) {
+    HybridScene scene({Vec3(-4, 0, -14), Vec3(0, 0, -17), Vec3(4, 0, -15), Vec3(-1, 0, -21)});
+    scene.camera.setLookAt(Vec3(0, 11, 2), Vec3(0, 0, -16));  // about 31 degrees down: rings 1 and 2
+    const BakedHumanoid& b = BakedHumanoid::fourRings();
+    auto full = std::make_shared<ImpostorAtlas>(*b.full);
+    auto half = std::make_shared<ImpostorAtlas>(*b.full);
+    half->setProxy(std::make_shared<const ProxyMesh>(b.baker->proxyMesh()));
+    half->drop(AtlasStorage::Half);
+    auto lines = std::make_shared<ImpostorAtlas>(*b.full);
+    lines->drop(AtlasStorage::Half);
+    CrowdRendererOptions cpu = cpuMorphing(), gl = cpuMorphing(), none = cpuMorphing();
+    gl.impostors.source = MorphSource::Gpu;
+    none.impostors.morphBudget = 0;
+    for (double t : {0.0, 0.25}) {  // key-frame 0 (stored: only rings regenerated) and 1 (dropped)
+        CrowdRenderStatistics stats;
+        const Image truth = scene.render(1.0, nullptr, cpu, t, 1, nullptr, full);
+        const Image onCpu = scene.render(1.0, nullptr, cpu, t, 1, &stats, half);
+        EXPECT_GT(stats.cellsMorphed, 0u) << "clip time " << t;
+        const Image onGl = scene.render(1.0, nullptr, gl, t, 1, nullptr, half);
+        const Image nearest = scene.render(1.0, nullptr, none, t, 1, nullptr, half);
+        const Image byLines = scene.render(1.0, nullptr, cpu, t, 1, nullptr, lines);
+        const testkit::ImageDifference d = testkit::compareImages(onCpu, onGl, 2);
+        EXPECT_LE(d.fractionOverThreshold, 0.001) << "clip time " << t << ": " << d.pixelsOverThreshold << " pixels differ";
+        const double warped = testkit::compareImages(onCpu, truth, 8).psnr, shown = testkit::compareImages(nearest, truth, 8).psnr;
+        const double morphed = testkit::compareImages(byLines, truth, 8).psnr;
+        EXPECT_GT(warped, shown + 2.0) << "clip time " << t << ": " << shown << " dB nearest stored, " << warped << " regenerated";
+        EXPECT_GT(morphed, shown) << "clip time " << t << ": " << shown << " dB nearest stored, " << morphed << " by lines";
+        std::printf("clip time %.2f: PSNR against the full atlas: regenerated %.2f dB, by lines %.2f dB, nearest stored %.2f dB\n", t,
+                    warped, morphed, shown);
+        if (t == 0.25) test::writeOutput(onCpu, "impostor-half-atlas"), test::writeOutput(truth, "impostor-full-atlas");
     }
 }
 

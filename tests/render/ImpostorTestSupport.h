@@ -18,12 +18,13 @@ struct BakedHumanoid {
     std::unique_ptr<ImpostorBaker> baker;
     std::unique_ptr<ImpostorAtlas> full;
 
-    BakedHumanoid() {
+    /// Bakes `elevations` view rings (8 views around, 8 key-frames, 64 px cells).
+    explicit BakedHumanoid(int elevations = 2) {
         context = createContext(ContextOptions{64, 64, false});
         tmpl = makeSeedHumanoid();
         ImpostorBakeOptions options;
         options.azimuths = 8;
-        options.elevations = 2;
+        options.elevations = elevations;
         options.keyframes = 8;
         options.cellSize = 64;
         baker = std::make_unique<ImpostorBaker>(context, tmpl, tmpl->findClip("walk"), options);
@@ -33,6 +34,11 @@ struct BakedHumanoid {
     /// The process-wide instance (baked on first use).
     static BakedHumanoid& get() {
         static BakedHumanoid baked;
+        return baked;
+    }
+    /// A process-wide instance with four view rings, for dropping every other one.
+    static BakedHumanoid& fourRings() {
+        static BakedHumanoid baked(4);
         return baked;
     }
 };

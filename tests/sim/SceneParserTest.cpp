@@ -324,6 +324,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"impostor views unknown",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "warped"}})",
                  "/representation/impostorViews", "must be \"blend\" or \"nearest\", got \"warped\""},
+        BadScene{"impostor atlas unknown",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorAtlas": "quarter"}})",
+                 "/representation/impostorAtlas", "must be \"full\", \"half-keyframes\" or \"half\", got \"quarter\""},
+        BadScene{"impostor atlas not a string",
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorAtlas": 2}})",
+                 "/representation/impostorAtlas", "must be a string"},
         BadScene{"impostor smoothstep not a boolean",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorSmoothstep": 1}})",
                  "/representation/impostorSmoothstep", "must be true or false"},
@@ -512,6 +518,11 @@ TEST(SceneParser, ImpostorViewChoiceDefaultsToTheSmoothlessBlend) {
     EXPECT_TRUE(sharp.representation.impostorSmoothstep);
     const SceneDescription snap = parseScene(scene(kActors, R"(, "representation": {"impostorViews": "nearest"})"), kAssets);
     EXPECT_EQ(snap.representation.impostorViews, ImpostorViews::Nearest);
+    EXPECT_EQ(plain.representation.impostorAtlas, ImpostorAtlasStorage::HalfKeyframes);
+    EXPECT_EQ(parseScene(scene(kActors, R"(, "representation": {"impostorAtlas": "half"})"), kAssets).representation.impostorAtlas,
+              ImpostorAtlasStorage::Half);
+    EXPECT_EQ(parseScene(scene(kActors, R"(, "representation": {"impostorAtlas": "full"})"), kAssets).representation.impostorAtlas,
+              ImpostorAtlasStorage::Full);
 }
 
 TEST(SceneParser, AMissingFileIsAnError) { EXPECT_THROW(parseSceneFile("/nonexistent/scene.json"), SceneError); }

@@ -17,6 +17,11 @@ std::unique_ptr<ImpostorSet> bakeSceneImpostors(const std::shared_ptr<GlContext>
     for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
     ImpostorBakeOptions bake;
     bake.cellSize = 64;
+    switch (world.description().representation.impostorAtlas) {
+        case sim::ImpostorAtlasStorage::Full: bake.storage = AtlasStorage::Full; break;
+        case sim::ImpostorAtlasStorage::HalfKeyframes: bake.storage = AtlasStorage::HalfKeyframes; break;
+        case sim::ImpostorAtlasStorage::Half: bake.storage = AtlasStorage::Half; break;
+    }
     std::optional<ProgressBar> bar;
     if (progress) {
         bar.emplace("baking impostors", 1000);

@@ -18,12 +18,14 @@ std::unique_ptr<sim::Simulation> buildWorld(const std::string& scene, std::int64
     return sim::Simulation::build(std::move(description));
 }
 
-std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world) {
+std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world, AtlasStorage storage,
+                                           int cellSize) {
     // As throng-town bakes them (apps/support's bakeSceneImpostors), without its progress bar.
     std::vector<ImpostorSet::Source> sources;
     for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
     ImpostorBakeOptions bake;
-    bake.cellSize = 64;
+    bake.cellSize = cellSize;
+    bake.storage = storage;
     return std::make_unique<ImpostorSet>(context, sources, bake);
 }
 

@@ -32,6 +32,9 @@ struct ImpostorBakeOptions {
     /// ImpostorSet: also give each atlas the figure's surface proxy (ImpostorBaker::proxyMesh), so
     /// its in-betweens are warped through the surface rather than morphed along bone lines.
     bool surfaceProxy = true;
+    /// ImpostorSet: how much of each atlas is kept; the rest is regenerated at draw time (today's
+    /// default: every other key-frame; Half also drops every other view ring, seed 000 §5).
+    AtlasStorage storage = AtlasStorage::HalfKeyframes;
     /// Called after each key-frame with (done, total), for a progress bar.
     std::function<void(int, int)> progress;
 };

@@ -38,12 +38,19 @@ struct MorphCacheStatistics {
     double morphMs = 0;             ///< time spent morphing the synthesized cells
 };
 
-/// What morphing one dropped cell takes: its stored neighbours, the fraction between them, and
-/// the three line sets (the strongest `options.features` bones).
+/// What morphing one dropped cell takes: the two stored cells it lies between, the fraction
+/// between them, and the three line sets (the strongest `options.features` bones). A dropped
+/// key-frame lies between its stored key-frames in the same view; a view on a dropped ring of a
+/// stored key-frame between the views of the rings below and above (same azimuth); a cell whose
+/// key-frame and ring are both dropped between the key-frames around it, in the view of the
+/// nearer stored ring (lines morph two images only: the surface proxy blends all four).
 struct DroppedCellLines {
-    /// Stored key-frame before the dropped one (wrapping: clips loop).
-    int before = 0, after = 0;                  ///< stored key-frame after it
-    float t = 0.5f;                             ///< fraction from `before` to `after`
+    /// Stored key-frame of the first cell (wrapping: clips loop).
+    int before = 0, after = 0;                  ///< stored key-frame of the second cell
+    /// \var fromView
+    /// View of the first cell.
+    std::uint32_t fromView = 0, toView = 0;     ///< view of the second cell
+    float t = 0.5f;                             ///< fraction from the first cell to the second
     /// \var from
     /// Lines in `before`, one per bone.
     /// \var to
@@ -51,12 +58,12 @@ struct DroppedCellLines {
     std::vector<FeatureLine> from, to, target;  ///< lines of the in-between, one per bone
 };
 
-/// The neighbours and lines of dropped key-frame `keyframe` of `atlas` seen from `view`. Throws
-/// std::invalid_argument if the cell is out of range or the key-frame is stored.
+/// The neighbours and lines of dropped cell (`view`, `keyframe`) of `atlas`. Throws
+/// std::invalid_argument if the cell is out of range or stored.
 DroppedCellLines droppedCellLines(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options);
 
-/// The in-between cell of dropped key-frame `keyframe` of `atlas` seen from `view`: its stored
-/// neighbours morphed with the strongest `options.features` bones. With `gpu`, morphed there.
+/// The dropped cell (`view`, `keyframe`) of `atlas`: its stored neighbours (droppedCellLines)
+/// morphed with the strongest `options.features` bones. With `gpu`, morphed there.
 Image morphDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const MorphCacheOptions& options,
                        GpuMorpher* gpu = nullptr);
 
@@ -70,9 +77,9 @@ public:
     /// Starts a frame: resets the statistics; without capacity, forgets every cell; else evicts
     /// the least recently used cells beyond the capacity.
     void beginFrame();
-    /// The cell of dropped key-frame `keyframe` of `atlas` seen from `view`, morphed now if this
-    /// frame (or a retained one) has not made it. The reference stays valid until beginFrame().
-    /// Throws std::invalid_argument if the key-frame is stored or out of range.
+    /// The dropped cell (`view`, `keyframe`) of `atlas`, morphed now if this frame (or a retained
+    /// one) has not made it. The reference stays valid until beginFrame(). Throws
+    /// std::invalid_argument if the cell is stored or out of range.
     const Image& request(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe);
     /// Statistics of the current frame.
     const MorphCacheStatistics& statistics() const { return stats_; }

@@ -140,11 +140,19 @@ enum class ImpostorViews : std::uint8_t {
     Nearest,  ///< the nearest view alone (snapping: cheaper, pops as the eye moves)
 };
 
+/// How much of each impostor atlas is kept; the rest is regenerated when drawn (seed 000 §5).
+enum class ImpostorAtlasStorage : std::uint8_t {
+    Full,           ///< every key-frame of every view
+    HalfKeyframes,  ///< every other key-frame
+    Half,           ///< every other key-frame and every other view ring (a quarter of the texture)
+};
+
 /// Distances choosing how actors are drawn.
 struct RepresentationDescription {
     double impostorDistance = 0.0;         ///< beyond it, impostors (0: never)
     ImpostorViews impostorViews = ImpostorViews::Blend;  ///< how impostors show eyes between views
     bool impostorSmoothstep = false;       ///< Blend: weights through the quintic smoothstep, renormalised (sharper)
+    ImpostorAtlasStorage impostorAtlas = ImpostorAtlasStorage::HalfKeyframes;  ///< what the atlases keep
     double hysteresis = 0.1;               ///< fraction of the distance kept before switching back
     double lodScale = 1.0;                 ///< multiplies every LOD distance
     /// Occlusion culling against the scene's occluders with this buffer; none: off, nothing built.
