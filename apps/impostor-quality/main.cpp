@@ -15,10 +15,13 @@
 //   table2    seed 000 Table 2 on our characters: consecutive key-frames and view-points, and
 //             in-between key-frames and view-points regenerated with 8 and 12 features and ours
 //   memory    the equal-memory comparison (seed 000 §6.2, models M1-M4)
+//   runtime   a scene's templates (--scene, throng-town's default) baked and regenerated exactly
+//             as throng-town does it, every dropped cell against the truth, GL against CPU
 //   half      the half atlas (every other key-frame and view ring dropped, seed 000 §5) against
 //             the full atlas, and at twice the cell size: memory, quality shown, quality regenerated
 //   sweep     knobs (cell size, views, key-frames kept, features) against accuracy, morph time
 //             and texture memory, in the common accuracy CSV
+//   throng-impostor-quality ... [--scene FILE]   the scene of the runtime section
 // Writes impostor-quality.md, impostor-quality.csv (one row per method and asset),
 // impostor-accuracy.csv (the common accuracy CSV, with the view blends timed) and a plot (impostor-quality.png, through VTK: run
 // under xvfb-run -a without a display).
@@ -43,6 +46,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "throng/scenegraph/WholeFile.h"
@@ -60,6 +64,11 @@
 #include "throng/render/ProxyWarp.h"
 #include "throng/render/ViewWarp.h"
 #include "throng/sim/AccuracyCsv.h"
+#include "throng/support/SceneImpostors.h"
+#include "throng/sim/Simulation.h"
+#include "throng/sim/SceneParser.h"
+#include "throng/render/ImpostorRenderer.h"
+#include "throng/render/GpuProxyWarper.h"
 #include "throng/support/CharacterSource.h"
 #include "throng/support/CommandLine.h"
 #include "throng/support/GlOption.h"
@@ -95,7 +104,7 @@ CLI::Validator assetValidator() {
         "");
 }
 
-const std::vector<std::string> kSections = {"morph", "features", "abp", "views", "table2", "memory", "half", "sweep"};
+const std::vector<std::string> kSections = {"morph", "features", "abp", "views", "table2", "memory", "half", "sweep", "runtime"};
 
 double ms(std::chrono::steady_clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
@@ -785,6 +794,82 @@ void sectionHalf(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTemp
     }
 }
 
+// Issue 37's acceptance in throng-town's terms: the scene's templates baked exactly as throng-town
+// bakes them (apps/support's sceneBakeOptions: 64 px cells, the scene's atlas storage, the main
+// clip of each), every view of every dropped cell made as the run time makes it (makeDroppedCell:
+// the renderer's own CPU path; GpuProxyWarper: the GL's) against the truly rendered cell, and the
+// GL's cells against the CPU's, pixel by pixel. The feature-line morph (--cell-warp lines, the run
+// time before the surface proxy) beside them.
+void sectionRuntime(const std::string& sceneFile, std::vector<Row>& rows) {
+    sim::SceneDescription description = sim::parseSceneFile(sceneFile);
+    std::fprintf(stderr, "[runtime] building the world of %s...\n", sceneFile.c_str());
+    const std::unique_ptr<sim::Simulation> world = sim::Simulation::build(std::move(description));
+    const ImpostorBakeOptions options = support::sceneBakeOptions(*world);
+    for (const sim::Simulation::TemplateInUse& t : world->templates()) {
+        std::fprintf(stderr, "[runtime] %s: baking as throng-town does (%d px)...\n", t.name.c_str(), options.cellSize);
+        auto context = createContext({.width = options.cellSize, .height = options.cellSize, .api = bakeGl});
+        ImpostorBaker baker(context, t.tmpl, t.clip, options);
+        const ImpostorAtlas full = baker.bake();
+        ImpostorAtlas stored = full;
+        stored.setProxy(std::make_shared<const ProxyMesh>(baker.proxyMesh()));
+        stored.drop(options.storage);
+        GpuProxyWarper gl(context);
+        ImpostorRendererOptions proxy, lines;  // throng-town's defaults: --morph background, --cell-warp proxy or lines
+        lines.warp = CellWarp::FeatureLines;
+        Scores onCpu, onGl, byLines;
+        std::size_t differing = 0, pixels = 0;
+        int largest = 0;
+        for (int k = 0; k < full.keyframeCount(); ++k)
+            for (std::uint32_t v = 0; v < full.views().viewCount(); ++v) {
+                if (stored.cellStored(v, k)) continue;
+                const Image truth = full.cell(v, k);
+                auto t0 = std::chrono::steady_clock::now();
+                const Image cpu = makeDroppedCell(stored, v, k, proxy);
+                onCpu.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onCpu.morphs;
+                const CellSources from = stored.sources(v, k);
+                std::array<Image, 4> images;
+                std::array<ProxySource, 4> sources{};
+                for (int i = 0; i < from.count; ++i) {
+                    const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+                    images[static_cast<std::size_t>(i)] = stored.cell(c.view, c.keyframe);
+                    sources[static_cast<std::size_t>(i)] = {&images[static_cast<std::size_t>(i)], stored.views().direction(c.view), c.keyframe, c.weight};
+                }
+                ProxyWarpOptions warp;
+                warp.opaqueInside = true;  // as the renderer warps
+                t0 = std::chrono::steady_clock::now();
+                const Image fromGl = gl.warp(*stored.proxy(), std::span<const ProxySource>(sources.data(), static_cast<std::size_t>(from.count)),
+                                             stored.views().direction(v), k, warp);
+                onGl.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onGl.morphs;
+                t0 = std::chrono::steady_clock::now();
+                const Image byLine = makeDroppedCell(stored, v, k, lines);
+                byLines.morphMs += ms(std::chrono::steady_clock::now() - t0), ++byLines.morphs;
+                onCpu.add(cpu, truth);
+                onGl.add(fromGl, truth);
+                byLines.add(byLine, truth);
+                const testkit::ImageDifference d = testkit::compareImages(cpu, fromGl, 2);
+                differing += d.pixelsOverThreshold;
+                pixels += static_cast<std::size_t>(cpu.width) * static_cast<std::size_t>(cpu.height);
+                largest = std::max(largest, d.maxChannelDifference);
+            }
+        const std::string clip = full.clipName();
+        char note[160];
+        std::snprintf(note, sizeof note, "GL against CPU: %zu of %zu pixels differ by more than 2/255 (%.4f %%), largest difference %d/255",
+                      differing, pixels, pixels ? 100.0 * static_cast<double>(differing) / static_cast<double>(pixels) : 0.0, largest);
+        for (auto [name, scores, path] : {std::tuple{"surface proxy, CPU (throng-town's default)", &onCpu, "CPU, 1 thread"},
+                                          std::tuple{"surface proxy, GL (--morph gl)", &onGl, "GL, read back"},
+                                          std::tuple{"feature lines (--cell-warp lines)", &byLines, "CPU, 4 px grid"}}) {
+            Row r = makeRow("runtime", t.name, clip, name, *scores);
+            r.path = path;
+            r.bytes = stored.textureBytes();
+            r.extra = scores->ncc.empty() ? 0.0 : *std::min_element(scores->ncc.begin(), scores->ncc.end());
+            if (scores == &onGl) r.note = note;
+            rows.push_back(r);
+        }
+        std::fprintf(stderr, "[runtime] %s: %zu dropped cells, NCC proxy CPU %.4f GL %.4f lines %.4f; %s\n", t.name.c_str(), onCpu.ncc.size(),
+                     mean(onCpu.ncc), mean(onGl.ncc), mean(byLines.ncc), note);
+    }
+}
+
 // The knob sweep: each configuration baked, every dropped cell regenerated ("dropped": against the
 // truth at that configuration), and random eye directions and clip times shown as the run time
 // shows them ("shown": the key-frame at or before the time, morphed if dropped, in the colour
@@ -971,6 +1056,7 @@ void writeAccuracyCsv(const std::string& path, const std::vector<AccuracyRow>& s
         const char* knob = r.section == "views" ? "impostor view blending" : r.section == "table2" ? "impostor seed 000 table 2"
                          : r.section == "memory" ? "impostor equal memory model"
                          : r.section == "half"   ? "impostor atlas storage"
+                         : r.section == "runtime" ? "impostor run-time regeneration"
                                                  : nullptr;
         if (!knob) continue;
         record(knob, r.method, r.asset + "/" + r.clip, r.section == "views" ? "random eyes" : "baked views", r.ncc, r.nccWhole, r.psnr, r.ssim,
@@ -1042,7 +1128,12 @@ int main(int argc, char** argv) {
         ->type_name("LIST")
         ->delimiter(',')
         ->check(support::oneOf(kSections))
-        ->default_str("morph,features,abp,views,table2,memory,half,sweep");
+        ->default_str("morph,features,abp,views,table2,memory,half,sweep,runtime");
+    std::string sceneFile = testkit::townDefaultScene();
+    app.add_option("--scene", sceneFile, "the scene the runtime section bakes and measures as throng-town does")
+        ->type_name("FILE")
+        ->check(CLI::ExistingFile)
+        ->default_str("throng-town's default scene");
     const std::vector<std::string> kSweepKnobs = {"cell_size", "views", "keyframes_kept", "features"};
     std::vector<std::string> sweepKnobTexts;
     app.add_option("--sweep-knobs", sweepKnobTexts, "knobs the sweep section measures, comma-separated (fewer: a shorter run)")
@@ -1079,7 +1170,8 @@ int main(int argc, char** argv) {
             int proxyVertices = 0;
         };
         std::vector<Memory> memory;
-        for (const Asset& a : assets) {
+        const bool perAsset = std::any_of(sections.begin(), sections.end(), [](const std::string& s) { return s != "runtime"; });
+        for (const Asset& a : (perAsset ? assets : std::vector<Asset>{})) {
             const auto tmpl = support::loadTemplate(a.source);
             const int clip = support::findClipOrThrow(*tmpl, a.clip);
             std::fprintf(stderr, "%s: baking...\n", a.name.c_str());
@@ -1095,6 +1187,7 @@ int main(int argc, char** argv) {
             if (wants("half")) sectionHalf(a, *bake, tmpl, clip, rows);
             if (wants("sweep")) sectionSweep(a, tmpl, clip, options, *bake, parameters, sweepKnobs, accuracy);
         }
+        if (wants("runtime")) sectionRuntime(sceneFile, rows);
         const double minutes = ms(std::chrono::steady_clock::now() - started) / 60000.0;
 
         std::ostringstream csv;
@@ -1170,6 +1263,19 @@ int main(int argc, char** argv) {
                 if (r.section == "memory") {
                     std::snprintf(line, sizeof line, "| %s | %s | %.2f MiB | %.4f | %.4f | %.4f | %.2f | %.4f | %s |\n", r.asset.c_str(), r.method.c_str(),
                                   static_cast<double>(r.bytes) / 1048576.0, r.ncc, r.extra, r.nccWhole, r.psnr, r.ssim, fmtMs(r).c_str());
+                    md << line;
+                }
+        }
+        if (wants("runtime")) {
+            md << "\n## At run time, in a scene (" << std::filesystem::path(sceneFile).filename().string()
+               << ")\n\nEach template baked as throng-town bakes it (64 px cells, its main clip, the scene's atlas storage), "
+                  "every view of every dropped cell made as the run time makes it, against the truly rendered cell. NCC min: the "
+                  "worst cell.\n\n| template | clip | method | NCC | NCC min | NCC whole cell | PSNR dB | SSIM | cells | ms/cell | note |\n"
+                  "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+            for (const Row& r : rows)
+                if (r.section == "runtime") {
+                    std::snprintf(line, sizeof line, "| %s | %s | %s | %.4f | %.4f | %.4f | %.2f | %.4f | %d | %s | %s |\n", r.asset.c_str(), r.clip.c_str(),
+                                  r.method.c_str(), r.ncc, r.extra, r.nccWhole, r.psnr, r.ssim, r.cells, fmtMs(r).c_str(), r.note.c_str());
                     md << line;
                 }
         }

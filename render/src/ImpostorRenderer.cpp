@@ -205,6 +205,14 @@ Image makeCpuCell(CpuCell& c, const ImpostorRendererOptions& options) {
                        options.morph.threads);
 }
 
+Image makeDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const ImpostorRendererOptions& options) {
+    if (view >= atlas.views().viewCount() || keyframe < 0 || keyframe >= atlas.keyframeCount() || atlas.cellStored(view, keyframe))
+        throw std::invalid_argument("makeDroppedCell: view " + std::to_string(view) + " key-frame " + std::to_string(keyframe) +
+                                    " of '" + atlas.templateName() + "' is not a dropped cell");
+    CpuCell job = cpuCellJob(atlas, view, keyframe, options.warp == CellWarp::SurfaceProxy ? atlas.proxy() : nullptr, options.morph);
+    return makeCpuCell(job, options);
+}
+
 // A cell made on the background thread, and where it goes.
 struct BackgroundCell {
     const ImpostorAtlas* atlas = nullptr;

@@ -575,6 +575,37 @@ TEST(Impostor, HalfAtlasRegeneratesDroppedRingsWhenDrawn) {
     }
 }
 
+// makeDroppedCell (what throng-impostor-quality's runtime section measures) makes a dropped cell
+// as the renderer's CPU path does, through the proxy or along the lines, near the truly baked
+// cell; a stored cell is refused, naming the template.
+TEST(Impostor, MakeDroppedCellIsTheRunTimesCell) {
+    const BakedHumanoid& b = BakedHumanoid::fourRings();
+    ImpostorAtlas half = *b.full;
+    half.setProxy(std::make_shared<const ProxyMesh>(b.baker->proxyMesh()));
+    half.drop(AtlasStorage::Half);
+    ImpostorRendererOptions proxy, lines;
+    lines.warp = CellWarp::FeatureLines;
+    double warped = 0, morphed = 0;
+    int n = 0;
+    for (std::uint32_t v = 0; v < half.views().viewCount(); v += 3)
+        for (int k = 0; k < half.keyframeCount(); ++k) {
+            if (half.cellStored(v, k)) continue;
+            warped += testkit::normalizedCrossCorrelation(makeDroppedCell(half, v, k, proxy), b.full->cell(v, k));
+            morphed += testkit::normalizedCrossCorrelation(makeDroppedCell(half, v, k, lines), b.full->cell(v, k));
+            ++n;
+        }
+    ASSERT_GT(n, 0);
+    EXPECT_GT(warped / n, 0.9) << "through the proxy";
+    EXPECT_GT(warped / n, morphed / n) << "the proxy beats the lines";
+    std::printf("dropped cells of the half atlas, NCC: proxy %.4f, lines %.4f over %d cells\n", warped / n, morphed / n, n);
+    try {
+        static_cast<void>(makeDroppedCell(half, 0, 0, proxy));
+        ADD_FAILURE() << "a stored cell was made";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(half.templateName()), std::string::npos) << e.what();
+    }
+}
+
 // A proxy for other cells or key-frames than the atlas's is refused.
 TEST(Impostor, AtlasRefusesAProxyOfOtherCells) {
     const BakedHumanoid& b = BakedHumanoid::get();

@@ -12,9 +12,7 @@
 
 namespace throng::support {
 
-std::unique_ptr<ImpostorSet> bakeSceneImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world, bool progress) {
-    std::vector<ImpostorSet::Source> sources;
-    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
+ImpostorBakeOptions sceneBakeOptions(const sim::Simulation& world) {
     ImpostorBakeOptions bake;
     bake.cellSize = 64;
     switch (world.description().representation.impostorAtlas) {
@@ -22,6 +20,13 @@ std::unique_ptr<ImpostorSet> bakeSceneImpostors(const std::shared_ptr<GlContext>
         case sim::ImpostorAtlasStorage::HalfKeyframes: bake.storage = AtlasStorage::HalfKeyframes; break;
         case sim::ImpostorAtlasStorage::Half: bake.storage = AtlasStorage::Half; break;
     }
+    return bake;
+}
+
+std::unique_ptr<ImpostorSet> bakeSceneImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world, bool progress) {
+    std::vector<ImpostorSet::Source> sources;
+    for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
+    ImpostorBakeOptions bake = sceneBakeOptions(world);
     std::optional<ProgressBar> bar;
     if (progress) {
         bar.emplace("baking impostors", 1000);

@@ -75,6 +75,12 @@ struct ImpostorRenderStatistics {
     double backgroundWaitMs = 0;         ///< backgroundMorph: time this draw() waited for that thread
 };
 
+/// Dropped cell (`view`, `keyframe`) of `atlas` made on the CPU exactly as an ImpostorRenderer with
+/// `options` makes it (MorphSource::Cpu; the GL's GpuProxyWarper agrees with it): for measuring
+/// what the run time shows against truly rendered cells. Throws std::invalid_argument if the cell
+/// is out of range or stored.
+Image makeDroppedCell(const ImpostorAtlas& atlas, std::uint32_t view, int keyframe, const ImpostorRendererOptions& options);
+
 /// Camera-facing impostor quads drawn into a context's current framebuffer.
 class ImpostorRenderer {
 public:

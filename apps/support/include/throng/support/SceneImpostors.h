@@ -4,6 +4,8 @@
 
 #include <memory>
 
+#include "throng/render/ImpostorBaker.h"
+
 namespace throng {
 class GlContext;
 class ImpostorSet;
@@ -13,6 +15,9 @@ class Simulation;
 }  // namespace throng
 
 namespace throng::support {
+
+/// The options every template of `world` is baked with: 64 px cells, the scene's atlas storage.
+ImpostorBakeOptions sceneBakeOptions(const sim::Simulation& world);
 
 /// Bakes the impostors of `world`'s templates in `context` (any context: the atlases are CPU
 /// images a renderer uploads into its own). With `progress`, a terminal progress bar counts the
