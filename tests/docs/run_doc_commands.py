@@ -191,7 +191,8 @@ def main():
     os.symlink(os.path.join(os.path.dirname(SOURCE), "shared"), os.path.join(WORK, "shared"))
     for name in ("benchmarks", "apps", "tests", "docs"):
         # Read-only parts of the tree a command reads (scripts, scenes); apps/ is a real folder
-        # whose subfolders link back, so a screenshot written under apps/vtk lands here.
+        # whose subfolders link back file by file, images left out: a screenshot written under
+        # apps/vtk lands here, not through a link onto the committed picture.
         if name == "apps":
             for sub in os.listdir(os.path.join(SOURCE, "apps")):
                 if not os.path.isdir(os.path.join(SOURCE, "apps", sub)):
@@ -200,6 +201,8 @@ def main():
                     continue
                 os.makedirs(os.path.join(root, "apps", sub))
                 for f in os.listdir(os.path.join(SOURCE, "apps", sub)):
+                    if f.endswith(".png"):
+                        continue
                     os.symlink(os.path.join(SOURCE, "apps", sub, f), os.path.join(root, "apps", sub, f))
         else:
             os.symlink(os.path.join(SOURCE, name), os.path.join(root, name))
