@@ -74,6 +74,7 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     rendererOptions.impostors.backgroundMorph = o.morph == "background";
     rendererOptions.impostors.warp = o.cellWarp == "lines" ? CellWarp::FeatureLines : CellWarp::SurfaceProxy;
     rendererOptions.views.nearest = world.description().representation.impostorViews == sim::ImpostorViews::Nearest;
+    rendererOptions.views.warped = world.description().representation.impostorViews == sim::ImpostorViews::Warped;
     rendererOptions.views.smoothstep = world.description().representation.impostorSmoothstep;
     renderer_ = std::make_unique<CrowdRenderer>(context_, rendererOptions);
     if (impostors_) {  // the atlases on the GPU before the first frame, not during it

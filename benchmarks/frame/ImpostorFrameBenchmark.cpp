@@ -15,6 +15,8 @@
 //     atlas and frame, made by the GL into the pool (along the bone lines, or through the surface
 //     proxy) or on the CPU and uploaded; and the same with no budget (the budget's image error is
 //     measured against it);
+//   - impostors warped: each drawn as the figure's surface proxy at its own clip time from the
+//     real eye, textured from the cells the quad would blend (ImpostorViewChoice::warped);
 //   - with --storages, the atlas storages (issue 37 item 3): full, half the key-frames (today's
 //     default), half (every other key-frame and view ring), and half at twice the cell size, each
 //     drawn as throng-town draws them (surface proxy on another thread, budget 2).
@@ -172,6 +174,14 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
             add("impostors, pool, surface proxy on another thread, budget " + std::to_string(budget), Kind::Impostors,
                 poolOptions(o, MorphSource::Cpu, budget, o.gridStep, true, CellWarp::SurfaceProxy), "morph budget",
                 std::to_string(budget) + " on another thread, surface proxy");
+    {
+        // Each impostor drawn as its surface proxy at its clip time from the real eye (seed 003
+        // §4.1), its cells made as throng-town makes them: against the quad row above.
+        CrowdRendererOptions warped = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy);
+        warped.views.warped = true;
+        add("impostors warped (the proxy per impostor), pool, surface proxy on another thread, budget 2", Kind::Impostors, warped,
+            "impostor views", "warped");
+    }
     for (double d : o.distances)
         add("impostors from " + std::to_string(int(d)) + " m, pool, surface proxy on another thread, budget 2", Kind::Impostors,
             poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy), "impostor distance", std::to_string(int(d)), d);

@@ -120,6 +120,7 @@ void CrowdRenderer::draw(const DrawList& list) {
 void CrowdRenderer::makeQuads() {
     if (quads_) return;
     ImpostorRendererOptions o = options_.impostors;
+    o.warped = options_.views.warped;
     // FrameCache: a layer per morphed cell of the frame, as the frame cache always had.
     if (options_.morphing == ImpostorMorphing::FrameCache) o.poolSlots = std::max(o.poolSlots, 256);
     quads_ = std::make_unique<ImpostorRenderer>(context_, o);

@@ -192,12 +192,21 @@ std::size_t ImpostorAtlas::textureBytes() const {
     return bytes;
 }
 
-void ImpostorAtlas::setProxy(std::shared_ptr<const ProxyMesh> proxy) {
+void ImpostorAtlas::checkProxy(const ProxyMesh* proxy, const char* who) const {
     if (proxy && (proxy->keyframeCount() != keyframes_ || proxy->cellSize() != cellSize_))
-        throw std::invalid_argument("ImpostorAtlas::setProxy: the proxy has " + std::to_string(proxy->keyframeCount()) +
+        throw std::invalid_argument(std::string("ImpostorAtlas::") + who + ": the proxy has " + std::to_string(proxy->keyframeCount()) +
                                     " key-frames of " + std::to_string(proxy->cellSize()) + " px cells, the atlas " +
                                     std::to_string(keyframes_) + " of " + std::to_string(cellSize_) + " px");
+}
+
+void ImpostorAtlas::setProxy(std::shared_ptr<const ProxyMesh> proxy) {
+    checkProxy(proxy.get(), "setProxy");
     proxy_ = std::move(proxy);
+}
+
+void ImpostorAtlas::setDrawProxy(std::shared_ptr<const ProxyMesh> proxy) {
+    checkProxy(proxy.get(), "setDrawProxy");
+    drawProxy_ = std::move(proxy);
 }
 
 std::size_t ImpostorAtlas::fullTextureBytes() const {

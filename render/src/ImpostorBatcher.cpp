@@ -42,6 +42,9 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
         double phase = std::fmod(item.clipTime / atlas.duration(), 1.0);
         if (!(phase >= 0.0)) phase = phase < 0.0 ? phase + 1.0 : 0.0;
         inst.keyframe = std::min(static_cast<int>(phase * atlas.keyframeCount()), atlas.keyframeCount() - 1);
+        inst.phase = std::min(static_cast<float>(phase * atlas.keyframeCount()), std::nextafter(static_cast<float>(atlas.keyframeCount()), 0.0f));
+        inst.origin = Vec3(world[3]);
+        inst.axes = glm::mat3(glm::dmat3(world));
         for (int i = 0; i < 3; ++i)
             if (inst.weights[static_cast<std::size_t>(i)] > 0.0f && !atlas.cellStored(inst.views[static_cast<std::size_t>(i)], inst.keyframe)) {
                 if (cache_)

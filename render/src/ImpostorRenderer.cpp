@@ -22,6 +22,7 @@
 #include "throng/render/ShaderProgram.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "WarpedImpostors.h"
 
 namespace throng {
 namespace {
@@ -89,6 +90,9 @@ struct GpuAtlas {
     std::unique_ptr<MorphPool> cells;  // which morphed cells the pool holds
     std::unordered_map<const Image*, int> morphedLayer;  // this frame's images carried by instances
     std::vector<Instance> instances;
+    bool warped = false;                        // drawn as its warped proxy (options.warped and a proxy)
+    WarpedAtlasGpu warpGpu;                     // then: the proxy and the depth of every layer
+    std::vector<WarpedInstance> warpedInstances;
     std::weak_ptr<const ImpostorAtlas> owner;
     const ImpostorAtlas* atlas = nullptr;
     bool used = false;  // wanted by this frame
@@ -219,6 +223,7 @@ struct BackgroundCell {
     unsigned texture = 0;  // the texture it was meant for (an atlas uploaded again gets another)
     int layer = 0;
     int slot = 0;
+    std::uint32_t view = 0;  // the cell's view (its key-frame is job.keyframe)
     CpuCell job;
     Image result;
 };
@@ -231,6 +236,7 @@ struct ImpostorRenderer::Impl {
     std::unique_ptr<ShaderProgram> program;
     std::unique_ptr<GpuMorpher> morpher;  // made on the first GL morph
     std::unique_ptr<GpuProxyWarper> proxyWarper;  // made on the first GL warp through a surface proxy
+    std::unique_ptr<WarpedImpostorPass> warpedPass;  // made on the first atlas drawn warped
     unsigned vao = 0, buffer = 0;
     std::unordered_map<const ImpostorAtlas*, GpuAtlas> atlases;
     ImpostorRenderStatistics stats;
@@ -269,22 +275,45 @@ struct ImpostorRenderer::Impl {
                     gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.storedLayer[static_cast<std::size_t>(k) * views + v], s, s,
                                      1, GL_RGBA, GL_UNSIGNED_BYTE, cell.rgba.data());
                 }
+        if (options.warped && atlas.proxy()) {
+            // The proxy on the GPU and the depth of every stored cell, for drawing it warped.
+            if (!warpedPass) warpedPass = std::make_unique<WarpedImpostorPass>(*context);
+            g.warped = true;
+            g.warpGpu = warpedPass->upload(atlas, g.stored + g.poolLayers);
+            for (int k = 0; k < atlas.keyframeCount(); ++k)
+                for (std::uint32_t v = 0; v < views; ++v)
+                    if (atlas.cellStored(v, k)) warpedPass->depthInto(atlas, g.warpGpu, g.storedLayer[static_cast<std::size_t>(k) * views + v], v, k);
+        }
         ++stats.atlasUploads;
         if (it != atlases.end()) {
-            gl.DeleteTextures(1, &it->second.texture);
+            forget(it->second);
             atlases.erase(it);
         }
         return atlases.emplace(&atlas, std::move(g)).first->second;
     }
 
-    // The stored layer shown for a cell that is not ready: the stored cell of the largest share
+    // Frees an atlas's GL objects.
+    void forget(GpuAtlas& g) {
+        context->gl().DeleteTextures(1, &g.texture);
+        if (g.warped) warpedPass->release(g.warpGpu);
+    }
+
+    // The stored cell shown for a cell that is not ready: the stored cell of the largest share
     // among those it is regenerated from (the nearest key-frame and ring; the first on a tie).
-    int fallbackLayer(const GpuAtlas& g, const ImpostorAtlas& atlas, int keyframe, std::uint32_t view) const {
+    static CellSource fallbackCell(const ImpostorAtlas& atlas, int keyframe, std::uint32_t view) {
         const CellSources from = atlas.sources(view, keyframe);
         const CellSource* best = &from.cells[0];
         for (int i = 1; i < from.count; ++i)
             if (from.cells[static_cast<std::size_t>(i)].weight > best->weight) best = &from.cells[static_cast<std::size_t>(i)];
-        return std::max(g.storedLayer[static_cast<std::size_t>(best->keyframe) * atlas.views().viewCount() + best->view], 0);
+        return *best;
+    }
+    // Its layer.
+    static int layerOf(const GpuAtlas& g, const ImpostorAtlas& atlas, const CellSource& c) {
+        return std::max(g.storedLayer[static_cast<std::size_t>(c.keyframe) * atlas.views().viewCount() + c.view], 0);
+    }
+    // A pool layer now holds cell (view, keyframe): its depth too, when the atlas is drawn warped.
+    void filled(GpuAtlas& g, int layer, std::uint32_t view, int keyframe) {
+        if (g.warped) warpedPass->depthInto(*g.atlas, g.warpGpu, layer, view, keyframe);
     }
 
     // Makes this frame's chosen cells of `g` in its pool: on the GL straight into the layer, or on
@@ -299,7 +328,7 @@ struct ImpostorRenderer::Impl {
                                          options.morph);
                 if (options.backgroundMorph) {
                     g.cells->setPending(f.slot);
-                    background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, std::move(job), {}});
+                    background.push_back({&atlas, g.texture, g.stored + f.slot, f.slot, f.view, std::move(job), {}});
                     continue;
                 }
                 const Image cell = makeCpuCell(job, options);
@@ -308,6 +337,7 @@ struct ImpostorRenderer::Impl {
                 gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + f.slot, g.cellSize, g.cellSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                                  cell.rgba.data());
                 ++stats.morphedUploads;
+                filled(g, g.stored + f.slot, f.view, f.keyframe);
             } else if (options.warp == CellWarp::SurfaceProxy && atlas.proxy()) {
                 // Through the figure's surface, as the CPU path does (warpProxy), in the GL.
                 if (!proxyWarper) proxyWarper = std::make_unique<GpuProxyWarper>(context);
@@ -323,12 +353,14 @@ struct ImpostorRenderer::Impl {
                 proxyWarper->warpInto(*atlas.proxy(), g.texture,
                                       std::span<const GpuProxyWarper::LayerSource>(sources.data(), static_cast<std::size_t>(from.count)),
                                       atlas.views().direction(f.view), f.keyframe, g.texture, g.stored + f.slot, warp);
+                filled(g, g.stored + f.slot, f.view, f.keyframe);
             } else {
                 const DroppedCellLines c = droppedCellLines(atlas, f.view, f.keyframe, options.morph);
                 if (!morpher) morpher = std::make_unique<GpuMorpher>(context);
                 morpher->morphInto(g.texture, g.storedLayer[static_cast<std::size_t>(c.before) * views + c.fromView],
                                    g.storedLayer[static_cast<std::size_t>(c.after) * views + c.toView], g.texture, g.stored + f.slot, g.cellSize,
                                    c.from, c.to, c.target, c.t, options.morph.parameters);
+                filled(g, g.stored + f.slot, f.view, f.keyframe);
             }
         }
     }
@@ -384,9 +416,8 @@ ImpostorRenderer::~ImpostorRenderer() {
     }
     if (r.worker.valid()) r.worker.wait();
     const GladGLContext& gl = r.context->gl();
-    for (auto& [atlas, g] : r.atlases) {
-        gl.DeleteTextures(1, &g.texture);
-    }
+    for (auto& [atlas, g] : r.atlases) r.forget(g);
+    r.warpedPass.reset();
     gl.DeleteBuffers(1, &r.buffer);
     gl.DeleteVertexArrays(1, &r.vao);
     r.morpher.reset();
@@ -435,6 +466,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
             gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, c.layer, c.result.width, c.result.height, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                              c.result.rgba.data());
+            r.filled(it->second, c.layer, c.view, c.job.keyframe);
             it->second.cells->setReady(c.slot);
             ++r.stats.morphedUploads;
         }
@@ -442,6 +474,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     }
     for (auto& [atlas, g] : r.atlases) {
         g.instances.clear();
+        g.warpedInstances.clear();
         g.morphedLayer.clear();
         g.cells->beginFrame();
         g.used = false;
@@ -485,6 +518,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         out.centreSize[3] = inst.halfSize;
         for (int c = 0; c < 4; ++c) out.tint[c] = inst.tint[c];
         glm::vec4 rect(1.0f, 1.0f, 0.0f, 0.0f);  // the union of the blended views' rectangles
+        std::array<float, 3> sourceViews{}, sourceKeyframes{};
         for (std::size_t i = 0; i < 3; ++i) {
             if (inst.weights[i] > 0.0f && inst.views[i] < views) {
                 const glm::vec4& v = g.viewRect[inst.views[i]];
@@ -492,6 +526,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             }
             out.weights[i] = inst.weights[i];
             int layer = 0;
+            CellSource shown{inst.views[i], inst.keyframe, inst.weights[i]};  // the cell the layer holds
             if (inst.weights[i] <= 0.0f) {
                 layer = 0;
             } else if (atlas.cellStored(inst.views[i], inst.keyframe)) {
@@ -501,7 +536,8 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
                 auto found = g.morphedLayer.find(inst.morphed[i]);
                 if (found == g.morphedLayer.end() && static_cast<int>(g.morphedLayer.size()) >= g.poolLayers) {
                     ++r.stats.poolOverflows;
-                    layer = r.fallbackLayer(g, atlas, inst.keyframe, inst.views[i]);
+                    shown = Impl::fallbackCell(atlas, inst.keyframe, inst.views[i]);
+                    layer = Impl::layerOf(g, atlas, shown);
                 } else {
                     if (found == g.morphedLayer.end()) {
                         if (g.morphedLayer.empty()) g.cells->clear();  // the pool's layers hold this frame's images
@@ -511,6 +547,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
                         gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.stored + found->second, atlas.cellSize(), atlas.cellSize(), 1, GL_RGBA,
                                          GL_UNSIGNED_BYTE, inst.morphed[i]->rgba.data());
                         ++r.stats.morphedUploads;
+                        r.filled(g, g.stored + found->second, inst.views[i], inst.keyframe);
                     }
                     layer = g.stored + found->second;
                 }
@@ -518,9 +555,27 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
                 layer = g.stored + slot;
             } else {
                 ++r.stats.poolOverflows;
-                layer = r.fallbackLayer(g, atlas, inst.keyframe, inst.views[i]);
+                shown = Impl::fallbackCell(atlas, inst.keyframe, inst.views[i]);
+                layer = Impl::layerOf(g, atlas, shown);
             }
             out.layers[i] = static_cast<float>(layer);
+            sourceViews[i] = static_cast<float>(shown.view);
+            sourceKeyframes[i] = static_cast<float>(shown.keyframe);
+        }
+        if (g.warped) {
+            WarpedInstance w{};
+            const glm::dvec3 origin = inst.origin - camera.eye();
+            w.originPhase[0] = static_cast<float>(origin.x), w.originPhase[1] = static_cast<float>(origin.y);
+            w.originPhase[2] = static_cast<float>(origin.z), w.originPhase[3] = inst.phase;
+            for (int c = 0; c < 3; ++c) {
+                w.axisX[c] = inst.axes[0][c], w.axisY[c] = inst.axes[1][c], w.axisZ[c] = inst.axes[2][c];
+                w.layers[c] = out.layers[c];
+                w.keyframes[c] = sourceKeyframes[static_cast<std::size_t>(c)], w.weights[c] = out.weights[c];
+            }
+            WarpedImpostorPass::setViews(atlas, w, sourceViews.data());
+            for (int c = 0; c < 4; ++c) w.tint[c] = out.tint[c];
+            g.warpedInstances.push_back(w);
+            continue;
         }
         if (rect.x >= rect.z) rect = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
         for (int c = 0; c < 4; ++c) out.rect[c] = rect[c];
@@ -554,6 +609,13 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(g.instances.size()));
         ++r.stats.drawCalls;
         r.stats.instances += g.instances.size();
+    }
+    // Atlases drawn warped: the proxy per impostor, one instanced call each.
+    for (auto& [atlas, g] : r.atlases) {
+        if (g.warpedInstances.empty()) continue;
+        r.warpedPass->draw(*g.atlas, g.warpGpu, g.texture, g.warpedInstances, vrp);
+        ++r.stats.drawCalls;
+        r.stats.instances += g.warpedInstances.size();
     }
     gl.BindVertexArray(0);
     gl.UseProgram(0);

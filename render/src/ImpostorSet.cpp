@@ -22,7 +22,11 @@ ImpostorSet::ImpostorSet(std::shared_ptr<GlContext> context, std::span<const Sou
         try {
             ImpostorBaker baker(context, source.tmpl, source.clip, options);
             auto atlas = std::make_shared<ImpostorAtlas>(baker.bake());
-            if (options.surfaceProxy) atlas->setProxy(std::make_shared<const ProxyMesh>(baker.proxyMesh()));
+            if (options.surfaceProxy) {
+                atlas->setProxy(std::make_shared<const ProxyMesh>(baker.proxyMesh()));
+                if (options.drawProxyVertices > 0)
+                    atlas->setDrawProxy(std::make_shared<const ProxyMesh>(baker.proxyMesh(options.drawProxyVertices)));
+            }
             atlas->drop(options.storage);  // what is dropped is regenerated at draw time
             baked_.push_back({source.tmpl.get(), std::make_shared<ImpostorDrawable>(atlas), atlas});
         } catch (const std::invalid_argument& e) {

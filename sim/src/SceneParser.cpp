@@ -333,7 +333,8 @@ void readRepresentation(const Reader& root, SceneDescription& s, const std::stri
         const std::string views = r.at("impostorViews").string();
         if (views == "blend") s.representation.impostorViews = ImpostorViews::Blend;
         else if (views == "nearest") s.representation.impostorViews = ImpostorViews::Nearest;
-        else r.at("impostorViews").fail("must be \"blend\" or \"nearest\", got \"" + views + "\"");
+        else if (views == "warped") s.representation.impostorViews = ImpostorViews::Warped;
+        else r.at("impostorViews").fail("must be \"blend\", \"nearest\" or \"warped\", got \"" + views + "\"");
     }
     if (r.has("impostorAtlas")) {
         const std::string atlas = r.at("impostorAtlas").string();
@@ -345,7 +346,7 @@ void readRepresentation(const Reader& root, SceneDescription& s, const std::stri
     if (r.has("impostorSmoothstep")) {
         s.representation.impostorSmoothstep = r.at("impostorSmoothstep").boolean();
         if (s.representation.impostorSmoothstep && s.representation.impostorViews == ImpostorViews::Nearest)
-            r.at("impostorSmoothstep").fail("applies to \"blend\" only: impostorViews is \"nearest\"");
+            r.at("impostorSmoothstep").fail("applies to \"blend\" and \"warped\" only: impostorViews is \"nearest\"");
     }
     if (r.has("hysteresis")) s.representation.hysteresis = r.at("hysteresis").within("representation", "hysteresis");
     if (r.has("lodScale")) s.representation.lodScale = r.at("lodScale").within("representation", "lodScale");

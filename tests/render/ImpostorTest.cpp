@@ -606,6 +606,59 @@ TEST(Impostor, MakeDroppedCellIsTheRunTimesCell) {
     }
 }
 
+// Warped impostors (ImpostorViewChoice::warped, seed 003 §4.1's warp in the vertex stage): each
+// impostor drawn as the figure's surface proxy at its own clip time, seen from the real eye and
+// textured from the cells the quad would blend, is nearer the skinned figures than the quads, at a
+// stored key-frame and between key-frames, seen from above where the eye lies between rings; an
+// atlas without a proxy is still drawn as quads.
+TEST(Impostor, WarpedImpostorsAreNearerTheFiguresThanQuads) {
+    HybridScene scene({Vec3(-3, 0, -12), Vec3(0.5, 0, -14), Vec3(3.5, 0, -11), Vec3(-1, 0, -17)});
+    scene.camera.setLookAt(Vec3(0, 6, 2), Vec3(0, 0.8, -14));
+    const BakedHumanoid& b = BakedHumanoid::get();
+    auto withProxy = std::make_shared<ImpostorAtlas>(*b.full);  // every cell stored: the warp alone is measured
+    withProxy->setProxy(std::make_shared<const ProxyMesh>(b.baker->proxyMesh()));
+    CrowdRendererOptions quads = cpuMorphing(), warped = cpuMorphing();
+    warped.views.warped = true;
+    for (double t : {0.0, 0.3, 0.8}) {  // key-frame 0 exactly, then between key-frames 1-2 and 3-4
+        const Image truth = scene.render(0.0, nullptr, quads, t);
+        CrowdRenderStatistics stats;
+        const Image byWarp = scene.render(1.0, nullptr, warped, t, 1, &stats, withProxy);
+        EXPECT_EQ(stats.quads.instances, 4u);
+        const Image byQuads = scene.render(1.0, nullptr, quads, t, 1, nullptr, withProxy);
+        const double w = testkit::compareImages(byWarp, truth, 8).psnr, q = testkit::compareImages(byQuads, truth, 8).psnr;
+        EXPECT_GT(w, q) << "clip time " << t << ": quads " << q << " dB, warped " << w << " dB";
+        std::printf("clip time %.2f: PSNR against the skinned figures: warped %.2f dB, quads %.2f dB\n", t, w, q);
+        if (t == 0.3) test::writeOutput(byWarp, "impostor-warped"), test::writeOutput(byQuads, "impostor-quads"), test::writeOutput(truth, "impostor-skinned");
+    }
+    auto noProxy = std::make_shared<ImpostorAtlas>(*b.full);
+    EXPECT_EQ(scene.render(1.0, nullptr, warped, 0.3, 1, nullptr, noProxy).rgba, scene.render(1.0, nullptr, quads, 0.3, 1, nullptr, noProxy).rgba);
+}
+
+// Warped impostors of the half atlas (cells regenerated in the pool, their depth layers made with
+// them) show nearly what warped impostors of the full atlas show.
+TEST(Impostor, WarpedImpostorsReadRegeneratedCells) {
+    HybridScene scene({Vec3(-3, 0, -12), Vec3(0.5, 0, -14), Vec3(3.5, 0, -11)});
+    scene.camera.setLookAt(Vec3(0, 9, 2), Vec3(0, 0.8, -13));
+    const BakedHumanoid& b = BakedHumanoid::fourRings();
+    const auto proxy = std::make_shared<const ProxyMesh>(b.baker->proxyMesh());
+    auto full = std::make_shared<ImpostorAtlas>(*b.full), half = std::make_shared<ImpostorAtlas>(*b.full);
+    full->setProxy(proxy), half->setProxy(proxy);
+    half->drop(AtlasStorage::Half);
+    CrowdRendererOptions warped = cpuMorphing(), glWarped = cpuMorphing();
+    warped.views.warped = true;
+    glWarped.views.warped = true;
+    glWarped.impostors.source = MorphSource::Gpu;
+    for (double t : {0.25, 0.55}) {
+        const Image reference = scene.render(1.0, nullptr, warped, t, 1, nullptr, full);
+        const Image regenerated = scene.render(1.0, nullptr, warped, t, 1, nullptr, half);
+        const Image onGl = scene.render(1.0, nullptr, glWarped, t, 1, nullptr, half);
+        const double cpu = testkit::compareImages(regenerated, reference, 8).psnr, gl = testkit::compareImages(onGl, reference, 8).psnr;
+        EXPECT_GT(cpu, 35.0) << "clip time " << t;
+        EXPECT_GT(gl, 35.0) << "clip time " << t;
+        std::printf("clip time %.2f: warped half atlas against warped full atlas: CPU cells %.2f dB, GL cells %.2f dB\n", t, cpu, gl);
+    }
+}
+
 // A proxy for other cells or key-frames than the atlas's is refused.
 TEST(Impostor, AtlasRefusesAProxyOfOtherCells) {
     const BakedHumanoid& b = BakedHumanoid::get();

@@ -322,8 +322,8 @@ INSTANTIATE_TEST_SUITE_P(
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"keyPoseCache": {"mode": "lazy", "rows": {"x": 8}}}})",
                  "/representation/keyPoseCache/mode", "intermittent"},
         BadScene{"impostor views unknown",
-                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "warped"}})",
-                 "/representation/impostorViews", "must be \"blend\" or \"nearest\", got \"warped\""},
+                 R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "morphed"}})",
+                 "/representation/impostorViews", "must be \"blend\", \"nearest\" or \"warped\", got \"morphed\""},
         BadScene{"impostor atlas unknown",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorAtlas": "quarter"}})",
                  "/representation/impostorAtlas", "must be \"full\", \"half-keyframes\" or \"half\", got \"quarter\""},
@@ -335,7 +335,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "/representation/impostorSmoothstep", "must be true or false"},
         BadScene{"impostor smoothstep of the nearest view",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorViews": "nearest", "impostorSmoothstep": true}})",
-                 "/representation/impostorSmoothstep", "applies to \"blend\" only"},
+                 "/representation/impostorSmoothstep", "applies to \"blend\" and \"warped\" only"},
         BadScene{"key-pose band beyond the impostors",
                  R"({"templates": {"x": {"procedural": "bird"}}, "actors": [], "representation": {"impostorDistance": 30, "keyPoseCache": {"distance": 40, "rows": {"x": 8}}}})",
                  "/representation/keyPoseCache/distance", "below impostorDistance"},
@@ -518,6 +518,9 @@ TEST(SceneParser, ImpostorViewChoiceDefaultsToTheSmoothlessBlend) {
     EXPECT_TRUE(sharp.representation.impostorSmoothstep);
     const SceneDescription snap = parseScene(scene(kActors, R"(, "representation": {"impostorViews": "nearest"})"), kAssets);
     EXPECT_EQ(snap.representation.impostorViews, ImpostorViews::Nearest);
+    EXPECT_EQ(parseScene(scene(kActors, R"(, "representation": {"impostorViews": "warped", "impostorSmoothstep": true})"), kAssets)
+                  .representation.impostorViews,
+              ImpostorViews::Warped);
     EXPECT_EQ(plain.representation.impostorAtlas, ImpostorAtlasStorage::HalfKeyframes);
     EXPECT_EQ(parseScene(scene(kActors, R"(, "representation": {"impostorAtlas": "half"})"), kAssets).representation.impostorAtlas,
               ImpostorAtlasStorage::Half);

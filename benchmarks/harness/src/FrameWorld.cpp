@@ -19,13 +19,14 @@ std::unique_ptr<sim::Simulation> buildWorld(const std::string& scene, std::int64
 }
 
 std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world, AtlasStorage storage,
-                                           int cellSize) {
+                                           int cellSize, std::size_t drawProxyVertices) {
     // As throng-town bakes them (apps/support's bakeSceneImpostors), without its progress bar.
     std::vector<ImpostorSet::Source> sources;
     for (const auto& t : world.templates()) sources.push_back({t.tmpl, t.clip});
     ImpostorBakeOptions bake;
     bake.cellSize = cellSize;
     bake.storage = storage;
+    bake.drawProxyVertices = drawProxyVertices;
     return std::make_unique<ImpostorSet>(context, sources, bake);
 }
 

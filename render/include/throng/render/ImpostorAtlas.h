@@ -138,6 +138,11 @@ public:
     /// Sets (or clears, with null) the surface proxy. Throws std::invalid_argument if its
     /// key-frames or cell size differ from the atlas's.
     void setProxy(std::shared_ptr<const ProxyMesh> proxy);
+    /// The coarser surface warped impostors are drawn with (fewer vertices: drawn once per
+    /// impostor and frame), or proxy() when none was set.
+    const std::shared_ptr<const ProxyMesh>& drawProxy() const { return drawProxy_ ? drawProxy_ : proxy_; }
+    /// Sets (or clears) the drawing proxy. Throws as setProxy().
+    void setDrawProxy(std::shared_ptr<const ProxyMesh> proxy);
 
     /// Writes impostor.json and `keyframe-<k>.png` for each stored key-frame into `directory`
     /// (created). Throws std::runtime_error naming the file on failure.
@@ -153,6 +158,8 @@ public:
 private:
     // Top-left pixel of a stored cell in its page; throws naming `who` when the cell is not stored.
     std::pair<int, int> cellOrigin(const char* who, std::uint32_t view, int keyframe) const;
+    // Throws std::invalid_argument naming `who` if `proxy` is for other key-frames or cells.
+    void checkProxy(const ProxyMesh* proxy, const char* who) const;
 
     std::string templateName_, clipName_;
     ViewHemisphere views_;
@@ -166,7 +173,7 @@ private:
     std::vector<Image> pages_;               // per key-frame; empty rgba when dropped
     std::vector<int> ringRow_;               // per ring: its row in the pages, -1 when dropped
     std::vector<FeatureLine> lines_;         // [keyframe][view][bone]
-    std::shared_ptr<const ProxyMesh> proxy_;
+    std::shared_ptr<const ProxyMesh> proxy_, drawProxy_;
 };
 
 }  // namespace throng

@@ -35,6 +35,9 @@ struct ImpostorBakeOptions {
     /// ImpostorSet: how much of each atlas is kept; the rest is regenerated at draw time (today's
     /// default: every other key-frame; Half also drops every other view ring, seed 000 §5).
     AtlasStorage storage = AtlasStorage::HalfKeyframes;
+    /// ImpostorSet: vertices of the coarser proxy warped impostors are drawn with (0: the full
+    /// proxy; ImpostorBaker::proxyMesh's clustering).
+    std::size_t drawProxyVertices = 256;
     /// Called after each key-frame with (done, total), for a progress bar.
     std::function<void(int, int)> progress;
 };

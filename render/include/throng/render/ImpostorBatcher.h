@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
+
 #include "throng/render/MorphCache.h"
 #include "throng/scenegraph/Math.h"
 
@@ -29,6 +31,9 @@ struct ImpostorInstance {
     std::array<std::uint32_t, 3> views{};  ///< views blended
     std::array<float, 3> weights{};        ///< their weights (sum 1)
     int keyframe = 0;                      ///< key-frame shown
+    float phase = 0.0f;                    ///< the clip time in key-frames, in [0, keyframes): warped impostors pose there
+    Vec3 origin{0.0};                      ///< the actor's world origin (warped impostors)
+    glm::mat3 axes{1.0f};                  ///< the actor transform's 3x3 part, scale included (warped impostors)
     /// Morphed cells of a dropped key-frame, when the batcher has a MorphCache (null for a stored
     /// key-frame, a zero weight, or cells left to the renderer's pool).
     std::array<const Image*, 3> morphed{};
@@ -45,6 +50,10 @@ struct ImpostorBatchStatistics {
 struct ImpostorViewChoice {
     bool nearest = false;     ///< the nearest view alone (snapping), else the blend of the three around the eye
     bool smoothstep = false;  ///< the blend's clamped weights through the quintic smoothstep, renormalised (sharper)
+    /// Each impostor whose atlas has a surface proxy drawn as that proxy, posed at the actor's clip
+    /// time and seen from the real eye, textured from the cells the quad would blend (seed 003
+    /// §4.1, the warp in the vertex stage); other atlases as quads.
+    bool warped = false;
 };
 
 /// Turns impostor draw items into quad instances, morphing through a MorphCache.

@@ -57,6 +57,9 @@ struct ImpostorRendererOptions {
     /// Quads cover only the part of the cell the blended views ever cover (the same pixels drawn:
     /// the rest is transparent and discarded), not the whole cell.
     bool tightQuads = true;
+    /// Impostors whose atlas has a surface proxy are drawn as that proxy warped to the eye and the
+    /// actor's clip time (ImpostorViewChoice::warped; CrowdRenderer sets this from it).
+    bool warped = false;
 };
 
 /// What ImpostorRenderer did in the last draw().

@@ -138,6 +138,7 @@ struct KeyPoseCacheDescription {
 enum class ImpostorViews : std::uint8_t {
     Blend,    ///< the three views around the eye, by its barycentric weights clamped to their cell
     Nearest,  ///< the nearest view alone (snapping: cheaper, pops as the eye moves)
+    Warped,   ///< the figure's surface proxy per impostor, at its clip time from the real eye, textured from the three views
 };
 
 /// How much of each impostor atlas is kept; the rest is regenerated when drawn (seed 000 §5).

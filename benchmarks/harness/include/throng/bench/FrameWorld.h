@@ -20,7 +20,8 @@ std::unique_ptr<sim::Simulation> buildWorld(const std::string& scene, std::int64
 /// The impostors throng-town draws: every template in use from its main clip, 64 px cells, every
 /// other key-frame stored; or as `storage` and `cellSize` say (the atlas-storage comparison).
 std::unique_ptr<ImpostorSet> bakeImpostors(const std::shared_ptr<GlContext>& context, const sim::Simulation& world,
-                                           AtlasStorage storage = AtlasStorage::HalfKeyframes, int cellSize = 64);
+                                           AtlasStorage storage = AtlasStorage::HalfKeyframes, int cellSize = 64,
+                                           std::size_t drawProxyVertices = ImpostorBakeOptions{}.drawProxyVertices);
 
 /// The scene's impostor distance and hysteresis in metres (40 m when it declares none).
 std::pair<double, double> impostorDistance(const sim::Simulation& world);
