@@ -438,8 +438,9 @@ std::size_t ImpostorRenderer::textureBytes() const {
     std::size_t bytes = 0;
     for (const auto& entry : impl_->atlases) {
         const GpuAtlas& g = entry.second;
-        bytes += static_cast<std::size_t>(g.stored + g.poolLayers) * static_cast<std::size_t>(g.cellSize) *
-                 static_cast<std::size_t>(g.cellSize) * 4;
+        const std::size_t layerBytes = static_cast<std::size_t>(g.cellSize) * static_cast<std::size_t>(g.cellSize) * 4;
+        bytes += static_cast<std::size_t>(g.stored + g.poolLayers) * layerBytes;
+        if (g.warped) bytes += static_cast<std::size_t>(g.warpGpu.layers) * layerBytes + g.warpGpu.bytes;  // depth layers, proxy
     }
     return bytes;
 }

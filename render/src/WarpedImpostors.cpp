@@ -242,6 +242,7 @@ WarpedAtlasGpu WarpedImpostorPass::upload(const ImpostorAtlas& atlas, int layers
     gl.GenBuffers(1, &g.triangles);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.triangles);
     gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(), GL_STATIC_DRAW);
+    g.bytes = (positions.size() + bases.size()) * sizeof(float) + indices.size() * sizeof(std::uint32_t);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     const int s = atlas.cellSize();
     gl.GenTextures(1, &g.depths);

@@ -41,6 +41,7 @@ struct WarpedAtlasGpu {
     int indexCount = 0;      ///< indices in `triangles`
     int keyframes = 0;       ///< key-frames of the proxy
     int layers = 0;          ///< layers of `depths`
+    std::size_t bytes = 0;   ///< of the positions, view bases and triangles
 };
 
 /// The programs and framebuffer that draw warped impostors and their depth layers.

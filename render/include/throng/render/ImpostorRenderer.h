@@ -108,6 +108,7 @@ public:
     /// Statistics of the last draw().
     const ImpostorRenderStatistics& statistics() const;
     /// Bytes of GPU texture held for impostors (all atlases uploaded so far: stored cells and pools).
+    /// Drawn warped, their depth layers and proxies too.
     std::size_t textureBytes() const;
 
 private:
