@@ -722,22 +722,28 @@ void sectionMemory(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTe
     }
 }
 
+// The stored cells that cell (`v`, `k`) of `atlas` is regenerated from (ImpostorAtlas::sources,
+// up to four) as warp sources reading `images`; returns how many.
+std::size_t cellProxySources(const ImpostorAtlas& atlas, std::uint32_t v, int k, std::array<Image, 4>& images,
+                             std::array<ProxySource, 4>& sources) {
+    const CellSources from = atlas.sources(v, k);
+    for (int i = 0; i < from.count; ++i) {
+        const CellSource& c = from.cells[static_cast<std::size_t>(i)];
+        images[static_cast<std::size_t>(i)] = atlas.cell(c.view, c.keyframe);
+        sources[static_cast<std::size_t>(i)] = {&images[static_cast<std::size_t>(i)], atlas.views().direction(c.view), c.keyframe, c.weight};
+    }
+    return static_cast<std::size_t>(from.count);
+}
+
 // Cell (`v`, `k`) of `half` (an atlas with cells dropped) as the run time shows it: stored, or
-// warped through `proxy` from the stored cells around it (ImpostorAtlas::sources, up to four);
-// the regeneration time goes into `s`.
+// warped through `proxy` from the stored cells around it; the regeneration time goes into `s`.
 Image shownFromHalf(const ImpostorAtlas& half, const ProxyMesh& proxy, std::uint32_t v, int k, Scores& s) {
     if (half.cellStored(v, k)) return half.cell(v, k);
     const auto t0 = std::chrono::steady_clock::now();
-    const CellSources from = half.sources(v, k);
     std::array<Image, 4> images;
     std::array<ProxySource, 4> sources{};
-    for (int i = 0; i < from.count; ++i) {
-        const CellSource& c = from.cells[static_cast<std::size_t>(i)];
-        images[static_cast<std::size_t>(i)] = half.cell(c.view, c.keyframe);
-        sources[static_cast<std::size_t>(i)] = {&images[static_cast<std::size_t>(i)], half.views().direction(c.view), c.keyframe, c.weight};
-    }
-    Image out = warpProxy(proxy, std::span<const ProxySource>(sources.data(), static_cast<std::size_t>(from.count)), half.views().direction(v), k,
-                          ourProxyOptions());
+    const std::size_t n = cellProxySources(half, v, k, images, sources);
+    Image out = warpProxy(proxy, std::span<const ProxySource>(sources.data(), n), half.views().direction(v), k, ourProxyOptions());
     s.morphMs += ms(std::chrono::steady_clock::now() - t0);
     ++s.morphs;
     return out;
@@ -826,18 +832,13 @@ void sectionRuntime(const std::string& sceneFile, std::vector<Row>& rows) {
                 auto t0 = std::chrono::steady_clock::now();
                 const Image cpu = makeDroppedCell(stored, v, k, proxy);
                 onCpu.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onCpu.morphs;
-                const CellSources from = stored.sources(v, k);
                 std::array<Image, 4> images;
                 std::array<ProxySource, 4> sources{};
-                for (int i = 0; i < from.count; ++i) {
-                    const CellSource& c = from.cells[static_cast<std::size_t>(i)];
-                    images[static_cast<std::size_t>(i)] = stored.cell(c.view, c.keyframe);
-                    sources[static_cast<std::size_t>(i)] = {&images[static_cast<std::size_t>(i)], stored.views().direction(c.view), c.keyframe, c.weight};
-                }
+                const std::size_t n = cellProxySources(stored, v, k, images, sources);
                 ProxyWarpOptions warp;
                 warp.opaqueInside = true;  // as the renderer warps
                 t0 = std::chrono::steady_clock::now();
-                const Image fromGl = gl.warp(*stored.proxy(), std::span<const ProxySource>(sources.data(), static_cast<std::size_t>(from.count)),
+                const Image fromGl = gl.warp(*stored.proxy(), std::span<const ProxySource>(sources.data(), n),
                                              stored.views().direction(v), k, warp);
                 onGl.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onGl.morphs;
                 t0 = std::chrono::steady_clock::now();
