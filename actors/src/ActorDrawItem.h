@@ -17,6 +17,7 @@ struct ActorItemBase {
     std::uint32_t member = 0;     ///< its index in that node
     ActorId id = 0;               ///< the actor
     glm::vec4 tint{1.0f};         ///< its tint
+    BodyLook body;                ///< its colours per body region
     std::int32_t clip = -1;       ///< the clip it plays (its behaviour's main clip)
     double clipTime = 0.0;        ///< seconds into that clip it shows at the frame's time
 };
@@ -24,7 +25,7 @@ struct ActorItemBase {
 /// The shared part of actor `id`'s items at simulation time `time`.
 inline ActorItemBase actorItemBase(const Crowd::State& s, ActorId id, const Node* node, std::uint32_t member, double time) {
     const Behaviour& b = *s.behaviour[id];
-    return ActorItemBase{node, member, id, s.tint[id], b.mainClip(s.slot[id]), b.clipTime(s.slot[id], time)};
+    return ActorItemBase{node, member, id, s.tint[id], s.body[id], b.mainClip(s.slot[id]), b.clipTime(s.slot[id], time)};
 }
 
 /// Fills `item` (fresh from DrawSegment::emplace, whose palette it keeps) to draw `drawable` for
@@ -34,6 +35,7 @@ inline void setActorPart(DrawItem& item, const ActorItemBase& a, const Drawable&
     item.node = a.node;
     item.instance = a.member;
     item.tint = a.tint;
+    item.look = a.body;
     item.drawable = &drawable;
     item.part = part;
     item.lodLevel = static_cast<std::uint32_t>(level);

@@ -49,6 +49,7 @@ ActorId Crowd::add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Be
     s.eyeDistance.push_back(std::numeric_limits<double>::infinity());
     s.priority.push_back(look.priority);
     s.tint.push_back(look.tint);
+    s.body.push_back(look.body);
     s.dofOffset.push_back(static_cast<std::uint32_t>(s.dofs.size()));
     s.dofs.insert(s.dofs.end(), tmpl->restDofs().begin(), tmpl->restDofs().end());
     s.nodeOffset.push_back(s.totalNodes);

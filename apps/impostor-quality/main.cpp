@@ -52,6 +52,7 @@
 #include "throng/scenegraph/WholeFile.h"
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorTemplate.h"
+#include "throng/render/BodyLookImage.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/FeatureTrack.h"
 #include "throng/render/GpuMorpher.h"
@@ -805,13 +806,21 @@ void sectionHalf(const Asset& asset, Bake& bake, std::shared_ptr<const ActorTemp
 // clip of each), every view of every dropped cell made as the run time makes it (makeDroppedCell:
 // the renderer's own CPU path; GpuProxyWarper: the GL's) against the truly rendered cell, and the
 // GL's cells against the CPU's, pixel by pixel. The feature-line morph (--cell-warp lines, the run
-// time before the surface proxy) beside them.
+// time before the surface proxy) beside them. Templates with looks are measured as shown (wearing
+// them), and their CPU cells also as the atlas holds them (every region white): a harder measure,
+// with less texture to correlate.
 void sectionRuntime(const std::string& sceneFile, std::vector<Row>& rows) {
     sim::SceneDescription description = sim::parseSceneFile(sceneFile);
     std::fprintf(stderr, "[runtime] building the world of %s...\n", sceneFile.c_str());
     const std::unique_ptr<sim::Simulation> world = sim::Simulation::build(std::move(description));
     const ImpostorBakeOptions options = support::sceneBakeOptions(*world);
     for (const sim::Simulation::TemplateInUse& t : world->templates()) {
+        // A template with looks is baked white per region and shown wearing them: measured as shown,
+        // each cell (the truth and every regenerated one alike) wearing the template's looks in
+        // turn, through the true cell's regions, as the impostor passes draw it (applyBodyLook).
+        const std::string key = t.name.substr(0, t.name.find('#'));
+        const auto declared = world->description().templates.find(key);
+        const std::vector<BodyLook> looks = declared != world->description().templates.end() ? declared->second.looks : std::vector<BodyLook>{};
         std::fprintf(stderr, "[runtime] %s: baking as throng-town does (%d px)...\n", t.name.c_str(), options.cellSize);
         auto context = createContext({.width = options.cellSize, .height = options.cellSize, .api = bakeGl});
         ImpostorBaker baker(context, t.tmpl, t.clip, options);
@@ -822,28 +831,33 @@ void sectionRuntime(const std::string& sceneFile, std::vector<Row>& rows) {
         GpuProxyWarper gl(context);
         ImpostorRendererOptions proxy, lines;  // throng-town's defaults: --morph background, --cell-warp proxy or lines
         lines.warp = CellWarp::FeatureLines;
-        Scores onCpu, onGl, byLines;
+        Scores onCpu, onGl, byLines, baked;  // baked: the CPU's cells as the atlas holds them (white regions), with looks
         std::size_t differing = 0, pixels = 0;
         int largest = 0;
         for (int k = 0; k < full.keyframeCount(); ++k)
             for (std::uint32_t v = 0; v < full.views().viewCount(); ++v) {
                 if (stored.cellStored(v, k)) continue;
-                const Image truth = full.cell(v, k);
+                const BodyLook* look = full.hasRegions() && !looks.empty() ? &looks[(static_cast<std::size_t>(k) * full.views().viewCount() + v) % looks.size()] : nullptr;
+                const auto asShown = [&](const Image& cell) { return look ? applyBodyLook(cell, full.regions(v, k), *look) : cell; };
+                const Image truth = asShown(full.cell(v, k));
                 auto t0 = std::chrono::steady_clock::now();
-                const Image cpu = makeDroppedCell(stored, v, k, proxy);
+                Image cpu = makeDroppedCell(stored, v, k, proxy);
                 onCpu.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onCpu.morphs;
+                if (look) baked.add(cpu, full.cell(v, k)), baked.morphMs = onCpu.morphMs, baked.morphs = onCpu.morphs;
+                cpu = asShown(cpu);
                 std::array<Image, 4> images;
                 std::array<ProxySource, 4> sources{};
                 const std::size_t n = cellProxySources(stored, v, k, images, sources);
                 ProxyWarpOptions warp;
                 warp.opaqueInside = true;  // as the renderer warps
                 t0 = std::chrono::steady_clock::now();
-                const Image fromGl = gl.warp(*stored.proxy(), std::span<const ProxySource>(sources.data(), n),
-                                             stored.views().direction(v), k, warp);
+                Image fromGl = gl.warp(*stored.proxy(), std::span<const ProxySource>(sources.data(), n), stored.views().direction(v), k, warp);
                 onGl.morphMs += ms(std::chrono::steady_clock::now() - t0), ++onGl.morphs;
+                fromGl = asShown(fromGl);
                 t0 = std::chrono::steady_clock::now();
-                const Image byLine = makeDroppedCell(stored, v, k, lines);
+                Image byLine = makeDroppedCell(stored, v, k, lines);
                 byLines.morphMs += ms(std::chrono::steady_clock::now() - t0), ++byLines.morphs;
+                byLine = asShown(byLine);
                 onCpu.add(cpu, truth);
                 onGl.add(fromGl, truth);
                 byLines.add(byLine, truth);
@@ -858,16 +872,19 @@ void sectionRuntime(const std::string& sceneFile, std::vector<Row>& rows) {
                       differing, pixels, pixels ? 100.0 * static_cast<double>(differing) / static_cast<double>(pixels) : 0.0, largest);
         for (auto [name, scores, path] : {std::tuple{"surface proxy, CPU (throng-town's default)", &onCpu, "CPU, 1 thread"},
                                           std::tuple{"surface proxy, GL (--morph gl)", &onGl, "GL, read back"},
-                                          std::tuple{"feature lines (--cell-warp lines)", &byLines, "CPU, 4 px grid"}}) {
+                                          std::tuple{"feature lines (--cell-warp lines)", &byLines, "CPU, 4 px grid"},
+                                          std::tuple{"white-baked cells, surface proxy CPU", &baked, "CPU, 1 thread"}}) {
+            if (scores->ncc.empty()) continue;  // no looks: no white-baked cells
             Row r = makeRow("runtime", t.name, clip, name, *scores);
             r.path = path;
             r.bytes = stored.textureBytes();
             r.extra = scores->ncc.empty() ? 0.0 : *std::min_element(scores->ncc.begin(), scores->ncc.end());
             if (scores == &onGl) r.note = note;
+            if (!looks.empty() && full.hasRegions()) r.note += std::string(r.note.empty() ? "" : "; ") + "wearing the scene's " + std::to_string(looks.size()) + " looks";
             rows.push_back(r);
         }
-        std::fprintf(stderr, "[runtime] %s: %zu dropped cells, NCC proxy CPU %.4f GL %.4f lines %.4f; %s\n", t.name.c_str(), onCpu.ncc.size(),
-                     mean(onCpu.ncc), mean(onGl.ncc), mean(byLines.ncc), note);
+        std::fprintf(stderr, "[runtime] %s: %zu dropped cells, NCC proxy CPU %.4f GL %.4f lines %.4f, white-baked cells %.4f; %s\n", t.name.c_str(),
+                     onCpu.ncc.size(), mean(onCpu.ncc), mean(onGl.ncc), mean(byLines.ncc), baked.ncc.empty() ? 0.0 : mean(baked.ncc), note);
     }
 }
 

@@ -47,6 +47,10 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("on|off")
         ->check(oneOf({"on", "off"}))
         ->default_str("on");
+    app.add_option("--looks", o.looks, "the looks the scene gives its characters (off: every actor as modelled)")
+        ->type_name("on|off")
+        ->check(oneOf({"on", "off"}))
+        ->default_str("on");
     app.add_option("--lod-scale", o.lodScale, "multiplies every LOD distance")
         ->type_name("X")
         ->check(positiveNumber())

@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
         o = town::parseTownOptions(argc, argv, THRONG_TOWN_DEFAULT_SCENE, THRONG_TOWN_DEFAULT_LADDER);
         scene = sim::parseSceneFile(o.scene);
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
+        if (!o.looks)
+            for (auto& [name, t] : scene.templates) t.looks.clear();
         // A crowd the machine cannot hold stops here, before allocating, not in the kernel's hands.
         if (const auto problem = town::memoryProblem(scene, town::availableMemory())) throw std::invalid_argument(*problem);
     } catch (const sim::SceneError& e) {

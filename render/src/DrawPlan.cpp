@@ -93,6 +93,7 @@ void writeInstance(InstanceData& d, const DrawItem& item, const Vec3& eye) {
     d.model[14] = static_cast<float>(t.z);
     d.model[15] = 1.0f;
     std::memcpy(d.tint, &item.tint[0], sizeof d.tint);
+    std::memcpy(d.look, item.look.rgba.data(), sizeof d.look);
     d.paletteBase = 0;
     d.row1Base = 0;
     d.blend = 0.0f;

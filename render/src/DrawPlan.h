@@ -78,17 +78,19 @@ private:
     bool instancing_ = true;
 };
 
-/// Per-instance vertex data: the eye-relative model matrix, the tint and the palette's first matrix
-/// (key-pose items: the first texel of row 0, the first texel of row 1 and row 1's weight).
+/// Per-instance vertex data: the eye-relative model matrix, the tint, the palette's first matrix
+/// (key-pose items: the first texel of row 0, the first texel of row 1 and row 1's weight) and the
+/// body look.
 struct InstanceData {
     float model[16];           ///< column-major, translation relative to the eye
     float tint[4];             ///< the item's tint
     std::int32_t paletteBase;  ///< first palette matrix (or row 0's first texel)
     std::int32_t row1Base;     ///< key-pose blends: row 1's first texel
-    float blend;               ///< key-pose blends: row 1's weight
-    std::int32_t pad;          ///< keeps the stride at 96 bytes
+    float blend;               ///< key-pose blends: row 1's weight (read as the bits of an int)
+    std::int32_t pad;          ///< aligns the look
+    std::uint32_t look[4];     ///< the item's BodyLook
 };
-static_assert(sizeof(InstanceData) == 96, "instance attributes assume a 96-byte stride");
+static_assert(sizeof(InstanceData) == 112, "instance attributes assume a 112-byte stride");
 
 /// The instance record of `item` seen from `eye`: T(-eye) * world, the translation subtracted in
 /// double and then rounded; tint copied; palette fields zero (the caller sets them per path).

@@ -17,7 +17,8 @@ const void* offset(std::size_t bytes) { return reinterpret_cast<const void*>(byt
 // the colour the vertex shader computes is the one the fragment shader would have.
 std::vector<std::uint32_t> withConstantFaces(const MeshData& mesh, GlMesh& g) {
     std::vector<std::uint32_t> out = mesh.indices;
-    if (mesh.influenceCount() > 0 || mesh.normals.empty()) return out;  // skinning moves normals apart
+    // Skinning moves normals apart; body regions are recoloured per pixel.
+    if (mesh.influenceCount() > 0 || mesh.normals.empty() || !mesh.regions.empty()) return out;
     const bool textured = mesh.baseColorTexture && !mesh.texcoords.empty();
     std::vector<std::uint32_t> constant, flatLit, other;
     for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
@@ -51,7 +52,8 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
     g.hasTexcoords = !mesh.texcoords.empty();
     const bool eight = g.influences == 8;
 
-    // Block layout: positions, normals, texcoords, joints0, weights0, joints1, weights1.
+    g.hasRegions = !mesh.regions.empty();
+    // Block layout: positions, normals, texcoords, joints0, weights0, joints1, weights1, regions.
     const std::size_t posBytes = n * sizeof(glm::vec3);
     const std::size_t nrmBytes = g.hasNormals ? n * sizeof(glm::vec3) : 0;
     const std::size_t uvBytes = g.hasTexcoords ? n * sizeof(glm::vec2) : 0;
@@ -59,13 +61,16 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
     const std::size_t wBytes = g.influences > 0 ? n * sizeof(glm::vec4) : 0;
     const std::size_t j1Bytes = eight ? jBytes : 0, w1Bytes = eight ? wBytes : 0;
     const std::size_t oNrm = posBytes, oUv = oNrm + nrmBytes, oJ0 = oUv + uvBytes, oW0 = oJ0 + jBytes,
-                      oJ1 = oW0 + wBytes, oW1 = oJ1 + j1Bytes, total = oW1 + w1Bytes;
+                      oJ1 = oW0 + wBytes, oW1 = oJ1 + j1Bytes, oRegion = oW1 + w1Bytes,
+                      total = oRegion + (g.hasRegions ? n : 0);
 
     g.texcoordOffset = oUv;
+    g.regionOffset = oRegion;
     std::vector<unsigned char> data(total);
     std::memcpy(data.data(), mesh.positions.data(), posBytes);
     if (nrmBytes) std::memcpy(data.data() + oNrm, mesh.normals.data(), nrmBytes);
     if (uvBytes) std::memcpy(data.data() + oUv, mesh.texcoords.data(), uvBytes);
+    if (g.hasRegions) std::memcpy(data.data() + oRegion, mesh.regions.data(), n);
     if (g.influences > 0) {
         auto* j0 = reinterpret_cast<glm::u16vec4*>(data.data() + oJ0);
         auto* w0 = reinterpret_cast<glm::vec4*>(data.data() + oW0);
@@ -109,6 +114,7 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
         gl.EnableVertexAttribArray(kTexcoord);
         gl.VertexAttribPointer(kTexcoord, 2, GL_FLOAT, GL_FALSE, 0, offset(oUv));
     }
+    if (g.hasRegions) enableRegions(gl, g);
     if (g.influences > 0) {
         gl.EnableVertexAttribArray(kJoints0);
         gl.VertexAttribIPointer(kJoints0, 4, GL_UNSIGNED_SHORT, 0, offset(oJ0));
@@ -123,6 +129,11 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
     }
     gl.BindVertexArray(0);
     return g;
+}
+
+void enableRegions(const GladGLContext& gl, const GlMesh& mesh) {
+    gl.EnableVertexAttribArray(kRegion);  // small integers as floats: the shader compares them
+    gl.VertexAttribPointer(kRegion, 1, GL_UNSIGNED_BYTE, GL_FALSE, 0, offset(mesh.regionOffset));
 }
 
 void destroyMesh(const GladGLContext& gl, GlMesh& mesh) {

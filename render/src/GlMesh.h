@@ -30,12 +30,18 @@ struct GlMesh {
     bool hasNormals = false;
     bool hasTexcoords = false;
     std::size_t texcoordOffset = 0;    ///< byte offset of the texture coordinates in `vbo`
+    bool hasRegions = false;           ///< the mesh has body regions (one byte per vertex)
+    std::size_t regionOffset = 0;      ///< byte offset of the body regions in `vbo`
 };
 
 /// Uploads `mesh` (weights normalised as skinMesh() does; joints of zero-weight influences set to 0
 /// so that no fetch can leave the palette) and records vertex array state for the attributes it
 /// has. Throws std::invalid_argument naming the mesh if a skin weight is not finite.
 GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh);
+
+/// Points attribute kRegion of the bound vertex array at `mesh`'s body regions (array buffer
+/// `mesh.vbo` bound); a vertex array without it reads region 0, none.
+void enableRegions(const GladGLContext& gl, const GlMesh& mesh);
 
 /// Deletes the buffers and the vertex array (context current).
 void destroyMesh(const GladGLContext& gl, GlMesh& mesh);

@@ -92,7 +92,7 @@ struct KeyPoseFill {
 
 struct ProgramState {
     std::unique_ptr<ShaderProgram> program;
-    GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1, flatTint = -1;
+    GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1, flatTint = -1, regionIds = -1;
     GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
     std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
 };
@@ -213,12 +213,10 @@ struct GlRenderer::Impl {
         }
         gl.EnableVertexAttribArray(detail::kTint);
         gl.VertexAttribDivisor(detail::kTint, 1);
-        gl.EnableVertexAttribArray(detail::kPaletteBase);
-        gl.VertexAttribDivisor(detail::kPaletteBase, 1);
-        gl.EnableVertexAttribArray(detail::kKeyPoseRow1);
-        gl.VertexAttribDivisor(detail::kKeyPoseRow1, 1);
-        gl.EnableVertexAttribArray(detail::kKeyPoseBlend);
-        gl.VertexAttribDivisor(detail::kKeyPoseBlend, 1);
+        gl.EnableVertexAttribArray(detail::kPalette);
+        gl.VertexAttribDivisor(detail::kPalette, 1);
+        gl.EnableVertexAttribArray(detail::kLook);
+        gl.VertexAttribDivisor(detail::kLook, 1);
     }
 
     MeshEntry& entryFor(const std::shared_ptr<const MeshData>& mesh) {
@@ -259,6 +257,10 @@ struct GlRenderer::Impl {
             gl.EnableVertexAttribArray(detail::kTexcoord);
             gl.VertexAttribPointer(detail::kTexcoord, 2, GL_FLOAT, GL_FALSE, 0, byteOffset(e.gpu.texcoordOffset));
         }
+        if (e.gpu.hasRegions) {
+            gl.BindBuffer(GL_ARRAY_BUFFER, e.gpu.vbo);
+            detail::enableRegions(gl, e.gpu);
+        }
         enableInstanceAttributes();
         return e.cpuVao;
     }
@@ -269,11 +271,8 @@ struct GlRenderer::Impl {
         for (unsigned c = 0; c < 4; ++c)
             gl.VertexAttribPointer(detail::kModel + c, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + 16 * c));
         gl.VertexAttribPointer(detail::kTint, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + offsetof(InstanceData, tint)));
-        gl.VertexAttribIPointer(detail::kPaletteBase, 1, GL_INT, stride,
-                                byteOffset(base + offsetof(InstanceData, paletteBase)));
-        gl.VertexAttribIPointer(detail::kKeyPoseRow1, 1, GL_INT, stride, byteOffset(base + offsetof(InstanceData, row1Base)));
-        gl.VertexAttribPointer(detail::kKeyPoseBlend, 1, GL_FLOAT, GL_FALSE, stride,
-                               byteOffset(base + offsetof(InstanceData, blend)));
+        gl.VertexAttribIPointer(detail::kPalette, 3, GL_INT, stride, byteOffset(base + offsetof(InstanceData, paletteBase)));
+        gl.VertexAttribIPointer(detail::kLook, 4, GL_UNSIGNED_INT, stride, byteOffset(base + offsetof(InstanceData, look)));
     }
 
     // Key-pose item `i` (in drawing order, with mesh `e`): checks it, finds (or makes the record
@@ -425,6 +424,7 @@ struct GlRenderer::Impl {
         gl.Uniform3fv(p.skyColor, 1, &options.skyColor[0]);
         gl.Uniform3fv(p.groundColor, 1, &options.groundColor[0]);
         gl.Uniform1i(p.flatTint, options.flatTint);
+        gl.Uniform1i(p.regionIds, options.regionIds);
         p.frameStamp = frameStamp;
     }
 };
@@ -445,6 +445,7 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
         p.hasTexture = s.uniformLocation("uHasTexture");
         p.hasNormals = s.uniformLocation("uHasNormals");
         p.flatTint = s.uniformLocation("uFlatTint");
+        p.regionIds = s.uniformLocation("uRegionIds");
         p.viewRotation = s.uniformLocation("uViewRotation");
         p.projection = s.uniformLocation("uProjection");
         p.lightDirection = s.uniformLocation("uLightDirection");
@@ -727,8 +728,8 @@ void GlRenderer::draw(const DrawList& list) {
         gl.Uniform1i(p.hasNormals, e.gpu.hasNormals);
     };
     // Constant faces need every drawn triangle to face the eye (their colour has no back side).
-    const bool constantFaces = r.options.constantFaces && r.options.cullBackFaces && !r.options.flatTint;  // ID renders: one program
-    const bool oneColour = r.options.probe == DrawProbe::OneColour && !r.options.flatTint;
+    const bool constantFaces = r.options.constantFaces && r.options.cullBackFaces && !r.options.flatTint && !r.options.regionIds;  // ID renders: one program
+    const bool oneColour = r.options.probe == DrawProbe::OneColour && !r.options.flatTint && !r.options.regionIds;
     for (Group& g : r.groups) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;

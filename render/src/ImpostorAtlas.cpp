@@ -1,6 +1,7 @@
 #include "throng/render/ImpostorAtlas.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <numeric>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "throng/render/ImageIO.h"
+#include "throng/scenegraph/BodyLook.h"
 #include "throng/scenegraph/WholeFile.h"
 
 namespace throng {
@@ -213,6 +215,66 @@ std::size_t ImpostorAtlas::fullTextureBytes() const {
     return static_cast<std::size_t>(keyframes_) * views_.viewCount() * cellSize_ * cellSize_ * 4;
 }
 
+std::span<const std::uint8_t> ImpostorAtlas::regions(std::uint32_t view, int keyframe) const {
+    if (regions_.empty()) return {};
+    if (view >= views_.viewCount() || keyframe < 0 || keyframe >= keyframes_)
+        throw std::invalid_argument("ImpostorAtlas::regions: cell (" + std::to_string(view) + ", " + std::to_string(keyframe) + ") out of range");
+    const std::size_t texels = static_cast<std::size_t>(cellSize_) * static_cast<std::size_t>(cellSize_);
+    return {regions_.data() + (static_cast<std::size_t>(keyframe) * views_.viewCount() + view) * texels, texels};
+}
+
+void ImpostorAtlas::setRegions(std::uint32_t view, int keyframe, std::span<const std::uint8_t> regions) {
+    const std::size_t texels = static_cast<std::size_t>(cellSize_) * static_cast<std::size_t>(cellSize_);
+    if (view >= views_.viewCount() || keyframe < 0 || keyframe >= keyframes_)
+        throw std::invalid_argument("ImpostorAtlas::setRegions: cell (" + std::to_string(view) + ", " + std::to_string(keyframe) + ") out of range");
+    if (regions.size() != texels)
+        throw std::invalid_argument("ImpostorAtlas::setRegions: " + std::to_string(regions.size()) + " regions for a cell of " +
+                                    std::to_string(texels) + " texels");
+    for (std::uint8_t r : regions)
+        if (r > kBodyRegionCount) throw std::invalid_argument("ImpostorAtlas::setRegions: region " + std::to_string(r) + " is not 0-4");
+    if (regions_.empty()) regions_.assign(texels * views_.viewCount() * static_cast<std::size_t>(keyframes_), 0);
+    std::copy(regions.begin(), regions.end(), regions_.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(keyframe) * views_.viewCount() + view) * texels));
+}
+
+namespace {
+
+// Top-left pixel of view `v`'s cell in a region page (ring r in row r, as colour pages are).
+std::pair<int, int> regionCellOrigin(const ViewHemisphere& views, std::uint32_t v, int size) {
+    const auto azimuths = static_cast<std::uint32_t>(views.azimuths());
+    return {static_cast<int>(v % azimuths) * size, static_cast<int>(v / azimuths) * size};
+}
+
+// A key-frame's regions laid out as a full page of every view (ring r in row r, as pages are),
+// the region times 60 in red.
+Image regionPage(const ImpostorAtlas& atlas, int keyframe) {
+    const ViewHemisphere& views = atlas.views();
+    const int size = atlas.cellSize();
+    Image page;
+    page.name = "regions " + std::to_string(keyframe);
+    page.width = views.azimuths() * size;
+    page.height = views.elevations() * size;
+    page.rgba.assign(static_cast<std::size_t>(page.width) * static_cast<std::size_t>(page.height) * 4, 0);
+    for (std::uint32_t v = 0; v < views.viewCount(); ++v) {
+        const std::span<const std::uint8_t> cell = atlas.regions(v, keyframe);
+        const auto [x0, y0] = regionCellOrigin(views, v, size);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                std::uint8_t* px = &page.rgba[(static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(page.width) + static_cast<std::size_t>(x0 + x)) * 4];
+                px[0] = static_cast<std::uint8_t>(cell[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] * 60);
+                px[3] = 255;
+            }
+    }
+    return page;
+}
+
+std::string regionFile(int keyframe) {
+    char name[32];
+    std::snprintf(name, sizeof name, "regions-%03d.png", keyframe);
+    return name;
+}
+
+}  // namespace
+
 void ImpostorAtlas::save(const std::filesystem::path& directory) const {
     std::filesystem::create_directories(directory);
     nlohmann::json j;
@@ -255,8 +317,11 @@ void ImpostorAtlas::save(const std::filesystem::path& directory) const {
     j["keyframes"] = frames;
     j["textureBytes"] = textureBytes();
     j["fullTextureBytes"] = fullTextureBytes();
-    for (int k = 0; k < keyframes_; ++k)
+    if (hasRegions()) j["regions"] = nlohmann::json{{"bytes", regionBytes()}, {"scale", 60}};
+    for (int k = 0; k < keyframes_; ++k) {
         if (stored(k)) writePng(pages_[static_cast<std::size_t>(k)], directory / pageFile(k));
+        if (hasRegions()) writePng(regionPage(*this, k), directory / regionFile(k));
+    }
     // Last and whole: a folder with an impostor.json holds every page it lists.
     try {
         writeWholeFile(directory / "impostor.json", j.dump(1) + '\n');
@@ -302,6 +367,25 @@ ImpostorAtlas ImpostorAtlas::load(const std::filesystem::path& directory) {
                 atlas.pages_[static_cast<std::size_t>(k)] = std::move(page);
             } else {
                 atlas.pages_[static_cast<std::size_t>(k)] = Image{};
+            }
+            if (j.contains("regions")) {
+                const Image page = readPng(directory / regionFile(k));
+                const int size = atlas.cellSize_;
+                if (page.width != views.azimuths() * size || page.height != views.elevations() * size)
+                    throw std::runtime_error(regionFile(k) + " has the wrong size");
+                std::vector<std::uint8_t> cell(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
+                for (std::uint32_t v = 0; v < views.viewCount(); ++v) {
+                    const auto [x0, y0] = regionCellOrigin(views, v, size);
+                    for (int y = 0; y < size; ++y)
+                        for (int x = 0; x < size; ++x) {
+                            const int red = page.rgba[(static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(page.width) + static_cast<std::size_t>(x0 + x)) * 4];
+                            if (red % 60 != 0 || red / 60 > static_cast<int>(kBodyRegionCount))
+                                throw std::runtime_error(regionFile(k) + ": pixel (" + std::to_string(x0 + x) + ", " + std::to_string(y0 + y) +
+                                                         ") is not a region (red " + std::to_string(red) + ")");
+                            cell[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = static_cast<std::uint8_t>(red / 60);
+                        }
+                    atlas.setRegions(v, k, cell);
+                }
             }
             const auto& segs = f.at("segments");
             for (std::uint32_t v = 0; v < views.viewCount(); ++v) {

@@ -38,6 +38,7 @@ struct ImpostorBaker::Impl {
     std::vector<BoundingSphere> geometry, subtree;
     std::vector<std::vector<glm::mat4>> palettes;
     Mat4 rootMatrix{1.0};
+    BodyLook look;  // kBakeLook when the figure has body regions: cells white per region
 
     Impl(const ImpostorBakeOptions& o) : options(o), views(o.azimuths, o.elevations) {}
 
@@ -163,6 +164,21 @@ ImpostorBaker::ImpostorBaker(std::shared_ptr<GlContext> context, std::shared_ptr
     if (!all.valid() || !(all.radius() > 0.0)) all = BoundingSphere(Vec3(0.0, 1.0, 0.0), 1.0);
     s.centre = glm::vec3(all.center());
     s.radius = static_cast<float>(all.radius() * 1.02);
+    if (hasBodyRegions(t)) s.look = kBakeLook;
+}
+
+bool ImpostorBaker::hasBodyRegions(const ActorTemplate& t) {
+    const auto regioned = [](const VaLod& lod) {
+        for (const VaLodLevel& level : lod.levels()) {
+            const auto* drawable = dynamic_cast<const MeshDrawable*>(level.drawable.get());
+            if (drawable && !drawable->mesh().regions.empty()) return true;
+        }
+        return false;
+    };
+    if (regioned(t.rootGeometry())) return true;
+    for (const SkeletonNode& n : t.nodes())
+        if (regioned(n.geometry)) return true;
+    return false;
 }
 
 ImpostorBaker::~ImpostorBaker() = default;
@@ -171,7 +187,52 @@ const ViewHemisphere& ImpostorBaker::views() const { return impl_->views; }
 
 Image ImpostorBaker::renderCell(double time, std::uint32_t view) { return renderCell(time, impl_->views.direction(view)); }
 
-Image ImpostorBaker::renderCell(double time, const glm::vec3& toEye) {
+Image ImpostorBaker::renderCell(double time, const glm::vec3& toEye) { return render(time, toEye); }
+
+std::vector<std::uint8_t> ImpostorBaker::renderRegions(double time, std::uint32_t view) {
+    Impl& s = *impl_;
+    RendererOptions ids = s.renderer->options();
+    const RendererOptions shaded = ids;
+    ids.regionIds = true;
+    s.renderer->setOptions(ids);
+    Image image;
+    try {
+        image = render(time, s.views.direction(view));
+    } catch (...) {
+        s.renderer->setOptions(shaded);
+        throw;
+    }
+    s.renderer->setOptions(shaded);
+    const int size = s.options.cellSize;
+    const std::size_t texels = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+    std::vector<std::uint8_t> regions(texels), covered(texels);
+    for (std::size_t i = 0; i < texels; ++i) {
+        regions[i] = std::min<std::uint8_t>(image.rgba[i * 4], static_cast<std::uint8_t>(kBodyRegionCount));
+        covered[i] = image.rgba[i * 4 + 3] > 0;
+    }
+    // Two texels around the figure take the region of a covered neighbour: a regenerated cell's
+    // outline differs a little from the truth's, and its rim should still be recoloured.
+    for (int pass = 0; pass < 2; ++pass) {
+        const std::vector<std::uint8_t> from = regions, was = covered;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+                if (was[i]) continue;
+                for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= size || ny >= size) continue;
+                    const std::size_t j = static_cast<std::size_t>(ny) * static_cast<std::size_t>(size) + static_cast<std::size_t>(nx);
+                    if (!was[j] || from[j] == 0) continue;
+                    regions[i] = from[j];
+                    covered[i] = 1;
+                    break;
+                }
+            }
+    }
+    return regions;
+}
+
+Image ImpostorBaker::render(double time, const glm::vec3& toEye) {
     Impl& s = *impl_;
     const ActorTemplate& t = *s.tmpl;
     s.pose(time);
@@ -184,6 +245,7 @@ Image ImpostorBaker::renderCell(double time, const glm::vec3& toEye) {
         item.drawable = level.drawable.get();
         item.world = ItemTransform(world);
         item.part = part;
+        item.look = s.look;
         if (level.skin >= 0) {
             const Skin& skin = t.skins()[static_cast<std::size_t>(level.skin)];
             s.palettes.emplace_back(skin.joints.size());
@@ -373,6 +435,7 @@ ImpostorAtlas ImpostorBaker::bake() {
         const double time = s.clip->duration() * k / s.options.keyframes;
         for (std::uint32_t v = 0; v < s.views.viewCount(); ++v) {
             atlas.setCell(v, k, renderCell(time, v));
+            if (s.look.any()) atlas.setRegions(v, k, renderRegions(time, v));
             const std::vector<FeatureLine> lines = projectBones(time, v);
             std::copy(lines.begin(), lines.end(), atlas.lines(v, k).begin());
         }

@@ -28,6 +28,7 @@ void ImpostorBatcher::build(const DrawList& list, const Camera& camera) {
         ImpostorInstance inst;
         inst.drawable = d;
         inst.tint = item.tint;
+        inst.look = item.look;
         inst.centre = Vec3(world * Vec4(Vec3(atlas.worldCentre()), 1.0));
         // The eye in the actor's frame: the transpose of a rotation (scale cancels in the blend).
         const Vec3 toEye = eye - inst.centre;

@@ -22,6 +22,7 @@
 #include "throng/render/ShaderProgram.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Stopwatch.h"
+#include "Shaders.h"
 #include "WarpedImpostors.h"
 
 namespace throng {
@@ -34,6 +35,8 @@ layout(location = 1) in vec4 iTint;
 layout(location = 2) in vec3 iLayers;
 layout(location = 3) in vec3 iWeights;
 layout(location = 4) in vec4 iRect;  // the part of the cell drawn: u0, v0, u1, v1 (v from the top)
+layout(location = 5) in vec3 iRegionLayers;  // the region maps of the three cells shown
+layout(location = 6) in uvec4 iLook;         // the actor's BodyLook
 uniform mat4 uViewRotationProjection;  // projection * view rotation (the eye at the origin)
 uniform vec3 uRight;
 uniform vec3 uUp;
@@ -41,6 +44,8 @@ out vec2 vUv;
 flat out vec3 vLayers;
 flat out vec3 vWeights;
 flat out vec4 vTint;
+flat out vec3 vRegionLayers;
+flat out uvec4 vLook;
 void main() {
     vec2 uv = mix(iRect.xy, iRect.zw, vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1)));
     vec2 corner = vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);  // cells are stored top row first
@@ -50,27 +55,53 @@ void main() {
     vLayers = iLayers;
     vWeights = iWeights;
     vTint = iTint;
+    vRegionLayers = iRegionLayers;
+    vLook = iLook;
 }
 )";
 
-const char* const kFragmentShader = R"(#version 330 core
+// The fragment shader: the colour blend of three cells; with body regions (uHasRegions), each
+// cell's texel times the actor's colour of the region that texel shows (cells of such atlases are
+// baked white per region), blended by the same shares.
+std::string fragmentShader() {
+    return std::string(R"(#version 330 core
 uniform sampler2DArray uCells;  // stored cells, then the pool's morphed ones
+uniform sampler2DArray uRegions;  // per cell (key-frame * views + view): its texels' body regions / 255
+uniform bool uHasRegions;
 in vec2 vUv;
 flat in vec3 vLayers;
 flat in vec3 vWeights;
 flat in vec4 vTint;
+flat in vec3 vRegionLayers;
+flat in uvec4 vLook;
 out vec4 fragColor;
+)") + detail::bodyLookGlsl() + detail::srgbEncodeGlsl() + R"(
 vec4 cell(float layer) {
     return texture(uCells, vec3(vUv, layer));  // one texture: a software GL samples both sides of a branch
 }
+vec3 paint(float layer) { return regionPaint(uRegions, vec3(vUv, layer), vLook); }
 void main() {
-    vec4 c = vWeights.x * cell(vLayers.x);
-    if (vWeights.y > 0.0) c += vWeights.y * cell(vLayers.y);
-    if (vWeights.z > 0.0) c += vWeights.z * cell(vLayers.z);
+    vec4 c0 = cell(vLayers.x);
+    vec4 c = vWeights.x * c0;
+    vec3 p = vec3(0.0);
+    if (uHasRegions) p += vWeights.x * c0.a * paint(vRegionLayers.x);
+    if (vWeights.y > 0.0) {
+        vec4 c1 = cell(vLayers.y);
+        c += vWeights.y * c1;
+        if (uHasRegions) p += vWeights.y * c1.a * paint(vRegionLayers.y);
+    }
+    if (vWeights.z > 0.0) {
+        vec4 c2 = cell(vLayers.z);
+        c += vWeights.z * c2;
+        if (uHasRegions) p += vWeights.z * c2.a * paint(vRegionLayers.z);
+    }
     if (c.a < 0.5) discard;  // alpha test: quads write depth like the meshes they replace
-    fragColor = vec4(c.rgb / c.a * vTint.rgb, 1.0);  // cells are premultiplied
+    vec3 rgb = c.rgb / c.a;  // cells are premultiplied
+    if (uHasRegions) rgb = linearToSrgb(srgbToLinear(rgb) * p / c.a);
+    fragColor = vec4(rgb * vTint.rgb, 1.0);
 }
 )";
+}
 
 struct Instance {
     float centreSize[4];
@@ -78,12 +109,15 @@ struct Instance {
     float layers[3];
     float weights[3];
     float rect[4];
+    float regionLayers[3];
+    std::uint32_t look[4];
 };
 
 // One atlas on the GPU: one array texture, stored cells in layers [0, stored), the pool's morphed
 // cells after them (slot s in layer stored + s).
 struct GpuAtlas {
     unsigned texture = 0;
+    unsigned regions = 0;  // with body regions: an R8 array, one layer per cell (key-frame * views + view)
     int stored = 0, poolLayers = 0, cellSize = 0;
     std::vector<int> storedLayer;  // per (keyframe, view): layer, or -1 when dropped
     std::vector<glm::vec4> viewRect;  // per view: the cell area any stored key-frame covers (u0, v0, u1, v1)
@@ -275,6 +309,19 @@ struct ImpostorRenderer::Impl {
                     gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, g.storedLayer[static_cast<std::size_t>(k) * views + v], s, s,
                                      1, GL_RGBA, GL_UNSIGNED_BYTE, cell.rgba.data());
                 }
+        if (atlas.hasRegions()) {
+            // Every cell's regions, stored or dropped: regenerated cells read their own.
+            gl.GenTextures(1, &g.regions);
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.regions);
+            gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R8, s, s, atlas.keyframeCount() * static_cast<int>(views), 0, GL_RED, GL_UNSIGNED_BYTE, nullptr);
+            setArrayParameters(gl);
+            gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // region numbers do not blend
+            gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            for (int k = 0; k < atlas.keyframeCount(); ++k)
+                for (std::uint32_t v = 0; v < views; ++v)
+                    gl.TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, k * static_cast<int>(views) + static_cast<int>(v), s, s, 1, GL_RED,
+                                     GL_UNSIGNED_BYTE, atlas.regions(v, k).data());
+        }
         if (options.warped && atlas.proxy()) {
             // The proxy on the GPU and the depth of every stored cell, for drawing it warped.
             if (!warpedPass) warpedPass = std::make_unique<WarpedImpostorPass>(*context);
@@ -295,6 +342,7 @@ struct ImpostorRenderer::Impl {
     // Frees an atlas's GL objects.
     void forget(GpuAtlas& g) {
         context->gl().DeleteTextures(1, &g.texture);
+        if (g.regions) context->gl().DeleteTextures(1, &g.regions);
         if (g.warped) warpedPass->release(g.warpGpu);
     }
 
@@ -383,7 +431,7 @@ ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const Imp
     r.context = std::move(context);
     r.context->makeCurrent();
     const GladGLContext& gl = r.context->gl();
-    r.program = std::make_unique<ShaderProgram>(*r.context, "ImpostorRenderer shader", kVertexShader, kFragmentShader);
+    r.program = std::make_unique<ShaderProgram>(*r.context, "ImpostorRenderer shader", kVertexShader, fragmentShader());
     gl.GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &r.maxLayers);
     gl.GenVertexArrays(1, &r.vao);
     gl.GenBuffers(1, &r.buffer);
@@ -400,10 +448,15 @@ ImpostorRenderer::ImpostorRenderer(std::shared_ptr<GlContext> context, const Imp
     gl.VertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, weights)));
     gl.EnableVertexAttribArray(4);
     gl.VertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, rect)));
-    for (GLuint a = 0; a < 5; ++a) gl.VertexAttribDivisor(a, 1);
+    gl.EnableVertexAttribArray(5);
+    gl.VertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(Instance, regionLayers)));
+    gl.EnableVertexAttribArray(6);
+    gl.VertexAttribIPointer(6, 4, GL_UNSIGNED_INT, stride, reinterpret_cast<void*>(offsetof(Instance, look)));
+    for (GLuint a = 0; a < 7; ++a) gl.VertexAttribDivisor(a, 1);
     gl.BindVertexArray(0);
     gl.UseProgram(r.program->id());
     gl.Uniform1i(r.program->uniformLocation("uCells"), 0);
+    gl.Uniform1i(r.program->uniformLocation("uRegions"), 1);
     gl.UseProgram(0);
 }
 
@@ -440,6 +493,7 @@ std::size_t ImpostorRenderer::textureBytes() const {
         const GpuAtlas& g = entry.second;
         const std::size_t layerBytes = static_cast<std::size_t>(g.cellSize) * static_cast<std::size_t>(g.cellSize) * 4;
         bytes += static_cast<std::size_t>(g.stored + g.poolLayers) * layerBytes;
+        if (g.regions) bytes += g.atlas->regionBytes();
         if (g.warped) bytes += static_cast<std::size_t>(g.warpGpu.layers) * layerBytes + g.warpGpu.bytes;  // depth layers, proxy
     }
     return bytes;
@@ -518,6 +572,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
         out.centreSize[2] = static_cast<float>(rel.z);
         out.centreSize[3] = inst.halfSize;
         for (int c = 0; c < 4; ++c) out.tint[c] = inst.tint[c];
+        for (std::size_t c = 0; c < 4; ++c) out.look[c] = inst.look.rgba[c];
         glm::vec4 rect(1.0f, 1.0f, 0.0f, 0.0f);  // the union of the blended views' rectangles
         std::array<float, 3> sourceViews{}, sourceKeyframes{};
         for (std::size_t i = 0; i < 3; ++i) {
@@ -562,6 +617,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
             out.layers[i] = static_cast<float>(layer);
             sourceViews[i] = static_cast<float>(shown.view);
             sourceKeyframes[i] = static_cast<float>(shown.keyframe);
+            out.regionLayers[i] = static_cast<float>(static_cast<std::uint32_t>(shown.keyframe) * views + shown.view);
         }
         if (g.warped) {
             WarpedInstance w{};
@@ -574,7 +630,8 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
                 w.keyframes[c] = sourceKeyframes[static_cast<std::size_t>(c)], w.weights[c] = out.weights[c];
             }
             WarpedImpostorPass::setViews(atlas, w, sourceViews.data());
-            for (int c = 0; c < 4; ++c) w.tint[c] = out.tint[c];
+            for (int c = 0; c < 4; ++c) w.tint[c] = out.tint[c], w.look[c] = out.look[c];
+            for (int c = 0; c < 3; ++c) w.regionLayers[c] = out.regionLayers[c];
             g.warpedInstances.push_back(w);
             continue;
         }
@@ -600,8 +657,12 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     gl.Uniform3f(r.program->uniformLocation("uRight"), right.x, right.y, right.z);
     gl.Uniform3f(r.program->uniformLocation("uUp"), up.x, up.y, up.z);
     gl.BindVertexArray(r.vao);
+    const GLint hasRegions = r.program->uniformLocation("uHasRegions");
     for (auto& [atlas, g] : r.atlases) {
         if (g.instances.empty()) continue;
+        gl.Uniform1i(hasRegions, g.regions != 0);
+        gl.ActiveTexture(GL_TEXTURE1);
+        gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.regions);
         gl.ActiveTexture(GL_TEXTURE0);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.texture);
         gl.BindBuffer(GL_ARRAY_BUFFER, r.buffer);
@@ -614,7 +675,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     // Atlases drawn warped: the proxy per impostor, one instanced call each.
     for (auto& [atlas, g] : r.atlases) {
         if (g.warpedInstances.empty()) continue;
-        r.warpedPass->draw(*g.atlas, g.warpGpu, g.texture, g.warpedInstances, vrp);
+        r.warpedPass->draw(*g.atlas, g.warpGpu, g.texture, g.regions, g.warpedInstances, vrp);
         ++r.stats.drawCalls;
         r.stats.instances += g.warpedInstances.size();
     }

@@ -15,11 +15,14 @@ layout(location = 5) in uvec4 aJoints1;
 layout(location = 6) in vec4 aWeights1;
 layout(location = 7) in mat4 iModel;      // model matrix relative to the eye
 layout(location = 11) in vec4 iTint;
-layout(location = 12) in int iPaletteBase; // first matrix of this instance's palette (key-pose: first texel of row 0)
-#if KEYPOSE
-layout(location = 13) in int iKeyPoseRow1;  // first texel of row 1
-layout(location = 14) in float iKeyPoseBlend; // weight of row 1
-#endif
+// First matrix of this instance's palette (key-pose: first texel of row 0), first texel of row 1,
+// and the bits of row 1's weight.
+layout(location = 12) in ivec3 iPalette;
+layout(location = 13) in uvec4 iLook;    // the actor's colour per body region (BodyLook)
+layout(location = 14) in float aRegion;  // the vertex's body region (0: none)
+#define iPaletteBase iPalette.x
+#define iKeyPoseRow1 iPalette.y
+#define iKeyPoseBlend intBitsToFloat(iPalette.z)
 
 uniform samplerBuffer uPalette;
 uniform mat4 uViewRotation;  // the view without its translation: the eye is the origin
@@ -54,6 +57,8 @@ out vec3 vRelPosition;
 out vec3 vNormal;
 out vec2 vTexcoord;
 flat out vec4 vTint;  // one per instance: not interpolated, so an ID render reads back exactly
+out vec4 vRegion;     // one-hot body region (skin, hair, top, bottom), blended across triangles
+flat out uvec4 vLook;
 #endif
 
 #if CONSTANT_FACES
@@ -175,6 +180,8 @@ void main() {
     vNormal = sign(dot(m[0], cof[0])) * (cof * n);
     vTexcoord = aTexcoord;
     vTint = iTint;
+    vRegion = vec4(equal(vec4(aRegion), vec4(1.0, 2.0, 3.0, 4.0)));
+    vLook = iLook;
 #endif
     gl_Position = uProjection * (uViewRotation * rel);
 #endif
@@ -209,11 +216,13 @@ void main() {
 }
 )GLSL";
 
-// Replaces the line SRGB_ENCODE by the encoding function, shared by both shading paths.
+// Replaces the lines SRGB_ENCODE and BODY_LOOK by their functions, shared by the shading paths.
 std::string withSrgbEncode(std::string text) {
-    const std::string mark = "SRGB_ENCODE";
-    const std::size_t at = text.find(mark);
-    if (at != std::string::npos) text.replace(at, mark.size(), kSrgbEncode);
+    for (const auto& [mark, body] : {std::pair{std::string("SRGB_ENCODE"), std::string(kSrgbEncode)},
+                                     std::pair{std::string("BODY_LOOK"), bodyLookGlsl()}}) {
+        const std::size_t at = text.find(mark);
+        if (at != std::string::npos) text.replace(at, mark.size(), body);
+    }
     return text;
 }
 
@@ -222,6 +231,8 @@ in vec3 vRelPosition;
 in vec3 vNormal;
 in vec2 vTexcoord;
 flat in vec4 vTint;
+in vec4 vRegion;
+flat in uvec4 vLook;
 
 uniform vec4 uBaseColor;
 uniform sampler2D uTexture;
@@ -232,18 +243,28 @@ uniform vec3 uLightColor;
 uniform vec3 uSkyColor;
 uniform vec3 uGroundColor;
 uniform bool uFlatTint;        // ID renders: the tint as is
+uniform bool uRegionIds;       // region maps: the body region / 255 in red, unlit
 
 out vec4 fragColor;
 
 SRGB_ENCODE
+BODY_LOOK
 
 void main() {
     if (uFlatTint) {
         fragColor = vTint;
         return;
     }
+    if (uRegionIds) {
+        float r = 0.0, best = 0.0;
+        for (int i = 0; i < 4; ++i)
+            if (vRegion[i] > best) best = vRegion[i], r = float(i + 1);
+        fragColor = vec4(r / 255.0, 0.0, 0.0, 1.0);
+        return;
+    }
     vec4 base = uBaseColor * vTint;
     if (uHasTexture) base *= texture(uTexture, vTexcoord);
+    base.rgb = recolour(base.rgb, vRegion, vLook);
     vec3 n;
     if (uHasNormals) {
         n = normalize(vNormal);
@@ -267,6 +288,42 @@ std::string vertexVariant(int influences, bool feedback, bool constantFaces, boo
 }
 
 }  // namespace
+
+std::string bodyLookGlsl() {
+    return R"GLSL(
+vec3 srgbToLinear(vec3 c) { return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c)); }
+// A packed sRGB BodyLook colour, decoded to linear RGB; alpha 0 (keep the material) in .a.
+vec4 lookColour(uint word) {
+    vec4 c = vec4(float(word & 255u), float((word >> 8) & 255u), float((word >> 16) & 255u), float(word >> 24)) / 255.0;
+    return vec4(srgbToLinear(c.rgb), c.a);
+}
+// Impostors: the actor's colour (linear) for the region a region map shows at `at` (uv, layer),
+// white where it shows none or the look keeps the material.
+vec3 regionPaint(sampler2DArray regions, vec3 at, uvec4 look) {
+    int r = int(texture(regions, at).r * 255.0 + 0.5);
+    if (r < 1 || r > 4) return vec3(1.0);
+    vec4 c = lookColour(look[r - 1]);
+    return c.a > 0.0 ? c.rgb : vec3(1.0);
+}
+// The albedo `a` (linear) recoloured by the one-hot (or blended) body region `region` with the
+// actor's `look`: the colour times bodyRecolourGrey(luminance), where the look colours the region.
+vec3 recolour(vec3 a, vec4 region, uvec4 look) {
+    float grey = clamp(0.3 + 1.4 * dot(a, vec3(0.2126, 0.7152, 0.0722)), 0.0, 1.0);
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        if (region[i] <= 0.0) continue;
+        vec4 c = lookColour(look[i]);
+        if (c.a <= 0.0) continue;
+        sum += region[i] * c.rgb;
+        weight += region[i];
+    }
+    return weight > 0.0 ? mix(a, sum / weight * grey, min(weight, 1.0)) : a;
+}
+)GLSL";
+}
+
+std::string srgbEncodeGlsl() { return kSrgbEncode; }
 
 std::string vertexShaderSource(int influences, bool feedback) {
     return vertexVariant(influences, feedback, false, false, 0, false);

@@ -10,8 +10,10 @@ namespace throng::detail {
 enum AttributeLocation : unsigned {
     kPosition = 0, kNormal = 1, kTexcoord = 2, kJoints0 = 3, kWeights0 = 4, kJoints1 = 5, kWeights1 = 6,
     kModel = 7,  // a mat4: locations 7-10
-    kTint = 11, kPaletteBase = 12,
-    kKeyPoseRow1 = 13, kKeyPoseBlend = 14  // key-pose items: second row's first texel, weight of that row
+    kTint = 11,
+    kPalette = 12,  // an ivec3: first palette matrix (key-pose: row 0's first texel), row 1's first texel, row 1's weight's bits
+    kLook = 13,     // a uvec4: the actor's colour per body region (BodyLook)
+    kRegion = 14    // per vertex: its body region, 0 (none) when the mesh has none
 };
 
 /// Texture units.
@@ -21,6 +23,15 @@ enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1, kKeyPoseUnit = 2 
 /// the first three words, the unit normal octahedron-encoded as two 16-bit snorms in the fourth
 /// (x in the low half). One texel fetch reads a whole vertex.
 inline constexpr unsigned kKeyPoseVertexBytes = 16;
+
+/// GLSL linearToSrgb(vec3): linear RGB (clamped) to sRGB, as every shading path writes it.
+std::string srgbEncodeGlsl();
+
+/// GLSL functions of crowd diversity: srgbToLinear(vec3), lookColour(uint) decodes a packed BodyLook colour to linear
+/// RGB (alpha in .a), recolour(albedo, region, look) applies an actor's look to a linear albedo
+/// (BodyLook's formula), regionPaint(regions, uvLayer, look) the colour an impostor's region map
+/// asks for at a texel (white for none). Shared by the mesh shaders and the impostor passes.
+std::string bodyLookGlsl();
 
 /// The vertex shader for `influences` (0, 4 or 8) joint influences. With `feedback`, it outputs
 /// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing, with the

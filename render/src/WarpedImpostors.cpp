@@ -11,6 +11,7 @@
 #include "throng/render/GlContext.h"
 #include "throng/render/ImpostorAtlas.h"
 #include "throng/render/ShaderProgram.h"
+#include "Shaders.h"
 
 namespace throng {
 namespace {
@@ -53,6 +54,8 @@ layout(location = 10) in vec3 iRight1;
 layout(location = 11) in vec3 iUp1;
 layout(location = 12) in vec3 iRight2;
 layout(location = 13) in vec3 iUp2;
+layout(location = 14) in vec3 iRegionLayers;
+layout(location = 15) in uvec4 iLook;
 uniform int uKeyframes;
 uniform mat4 uViewRotationProjection;
 out vec3 vSource0;
@@ -61,6 +64,8 @@ out vec3 vSource2;
 flat out vec3 vLayers;
 flat out vec3 vWeights;
 flat out vec4 vTint;
+flat out vec3 vRegionLayers;
+flat out uvec4 vLook;
 void main() {
     float phase = iOriginPhase.w;
     int k0 = int(floor(phase));
@@ -75,12 +80,18 @@ void main() {
     vLayers = iLayers;
     vWeights = iWeights;
     vTint = iTint;
+    vRegionLayers = iRegionLayers;
+    vLook = iLook;
 }
 )";
 
-const char* const kWarpFragment = R"(#version 330 core
+// The fragment shader, with body regions recoloured as ImpostorRenderer's quads do.
+std::string warpFragment() {
+    return std::string(R"(#version 330 core
 uniform sampler2DArray uCells;   // colour layers, rows top first
 uniform sampler2DArray uDepths;  // the proxy's nearest depth in the same layers
+uniform sampler2DArray uRegions; // per cell (key-frame * views + view): body regions / 255
+uniform bool uHasRegions;
 uniform float uSize;
 uniform float uTolerance;
 uniform float uDistrust;
@@ -90,7 +101,10 @@ in vec3 vSource2;
 flat in vec3 vLayers;
 flat in vec3 vWeights;
 flat in vec4 vTint;
+flat in vec3 vRegionLayers;
+flat in uvec4 vLook;
 out vec4 fragColor;
+)") + detail::bodyLookGlsl() + detail::srgbEncodeGlsl() + R"(
 // A source is trusted where the surface point is the nearest surface its cell shows there.
 float trust(vec3 q, float layer) {
     ivec2 p = ivec2(floor(q.xy));
@@ -100,6 +114,7 @@ float trust(vec3 q, float layer) {
     return front < -1e29 || q.z >= front - uTolerance ? 1.0 : uDistrust;
 }
 vec4 cell(vec3 q, float layer) { return texture(uCells, vec3(q.xy / uSize, layer)); }
+vec3 paint(vec3 q, float layer) { return regionPaint(uRegions, vec3(q.xy / uSize, layer), vLook); }
 void main() {
     vec3 w = vWeights * vec3(trust(vSource0, vLayers.x), trust(vSource1, vLayers.y), trust(vSource2, vLayers.z));
     float sum = w.x + w.y + w.z;
@@ -107,14 +122,27 @@ void main() {
         w = vWeights;
         sum = w.x + w.y + w.z;
     }
-    vec4 c = w.x * cell(vSource0, vLayers.x);
-    if (w.y > 0.0) c += w.y * cell(vSource1, vLayers.y);
-    if (w.z > 0.0) c += w.z * cell(vSource2, vLayers.z);
-    c /= sum;
-    if (c.a < 0.5) discard;  // alpha test, as the quads: the cells' outline, not the proxy's
-    fragColor = vec4(c.rgb / c.a * vTint.rgb, 1.0);
+    vec4 c0 = cell(vSource0, vLayers.x);
+    vec4 c = w.x * c0;
+    vec3 p = vec3(0.0);
+    if (uHasRegions) p += w.x * c0.a * paint(vSource0, vRegionLayers.x);
+    if (w.y > 0.0) {
+        vec4 c1 = cell(vSource1, vLayers.y);
+        c += w.y * c1;
+        if (uHasRegions) p += w.y * c1.a * paint(vSource1, vRegionLayers.y);
+    }
+    if (w.z > 0.0) {
+        vec4 c2 = cell(vSource2, vLayers.z);
+        c += w.z * c2;
+        if (uHasRegions) p += w.z * c2.a * paint(vSource2, vRegionLayers.z);
+    }
+    if (c.a < 0.5 * sum) discard;  // alpha test, as the quads: the cells' outline, not the proxy's
+    vec3 rgb = c.rgb / c.a;
+    if (uHasRegions) rgb = linearToSrgb(srgbToLinear(rgb) * p / c.a);
+    fragColor = vec4(rgb * vTint.rgb, 1.0);
 }
 )";
+}
 
 // The depth pass: the proxy at one key-frame seen from one view, into one layer; pixel rows as
 // the cells' (GL row j is image row j), the nearest surface winning.
@@ -162,7 +190,7 @@ void setCommon(const GladGLContext& gl, const ShaderProgram& p, const ImpostorAt
 WarpedImpostorPass::WarpedImpostorPass(GlContext& context) : context_(context) {
     const GladGLContext& gl = context_.gl();
     warp_ = std::make_unique<ShaderProgram>(context_, "ImpostorRenderer warped-impostor shader", std::string(kCommon) + kWarpVertex,
-                                            kWarpFragment);
+                                            warpFragment());
     depth_ = std::make_unique<ShaderProgram>(context_, "ImpostorRenderer proxy-depth shader", std::string(kCommon) + kDepthVertex,
                                              kDepthFragment);
     gl.GenVertexArrays(1, &vao_);
@@ -190,10 +218,15 @@ WarpedImpostorPass::WarpedImpostorPass(GlContext& context) : context_(context) {
         attribute(8 + 2 * s, 3, offsetof(WarpedInstance, axes) + s * 6 * sizeof(float));
         attribute(9 + 2 * s, 3, offsetof(WarpedInstance, axes) + (s * 6 + 3) * sizeof(float));
     }
+    attribute(14, 3, offsetof(WarpedInstance, regionLayers));
+    gl.EnableVertexAttribArray(15);
+    gl.VertexAttribIPointer(15, 4, GL_UNSIGNED_INT, stride, reinterpret_cast<void*>(offsetof(WarpedInstance, look)));
+    gl.VertexAttribDivisor(15, 1);
     gl.BindVertexArray(0);
     gl.UseProgram(warp_->id());
     gl.Uniform1i(warp_->uniformLocation("uCells"), 0);
     gl.Uniform1i(warp_->uniformLocation("uDepths"), 1);
+    gl.Uniform1i(warp_->uniformLocation("uRegions"), 4);
     gl.UseProgram(0);
 }
 
@@ -310,8 +343,8 @@ void WarpedImpostorPass::depthInto(const ImpostorAtlas& atlas, WarpedAtlasGpu& g
     blend ? gl.Enable(GL_BLEND) : gl.Disable(GL_BLEND);
 }
 
-void WarpedImpostorPass::draw(const ImpostorAtlas& atlas, const WarpedAtlasGpu& g, unsigned cells, std::span<const WarpedInstance> instances,
-                              const glm::mat4& viewRotationProjection) {
+void WarpedImpostorPass::draw(const ImpostorAtlas& atlas, const WarpedAtlasGpu& g, unsigned cells, unsigned regions,
+                              std::span<const WarpedInstance> instances, const glm::mat4& viewRotationProjection) {
     if (instances.empty()) return;
     const GladGLContext& gl = context_.gl();
     gl.UseProgram(warp_->id());
@@ -320,6 +353,9 @@ void WarpedImpostorPass::draw(const ImpostorAtlas& atlas, const WarpedAtlasGpu& 
     gl.Uniform1i(warp_->uniformLocation("uKeyframes"), g.keyframes);
     gl.Uniform1f(warp_->uniformLocation("uTolerance"), 2.0f);  // ProxyWarpOptions' defaults
     gl.Uniform1f(warp_->uniformLocation("uDistrust"), 0.0f);
+    gl.Uniform1i(warp_->uniformLocation("uHasRegions"), regions != 0);
+    gl.ActiveTexture(GL_TEXTURE4);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, regions);
     gl.ActiveTexture(GL_TEXTURE1);
     gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.depths);
     gl.ActiveTexture(GL_TEXTURE0);

@@ -30,6 +30,8 @@ struct WarpedInstance {
     float weights[3];      ///< each source's share (sum 1; 0: unused)
     float tint[4];         ///< the actor's tint
     float axes[18];        ///< each source cell's view: its image's right and up axes (viewBasis)
+    float regionLayers[3]; ///< each source cell's region map (atlases with body regions)
+    std::uint32_t look[4]; ///< the actor's BodyLook
 };
 
 /// One atlas's proxy on the GPU: positions per key-frame, triangles, view bases, depth layers.
@@ -64,9 +66,10 @@ public:
     /// Fills `w.axes` from the views of its three sources.
     static void setViews(const ImpostorAtlas& atlas, WarpedInstance& w, const float views[3]);
     /// Draws `instances` of `atlas` from colour array `cells` into the bound framebuffer (depth
-    /// test on), `viewRotationProjection` taking eye-relative positions to clip space.
-    void draw(const ImpostorAtlas& atlas, const WarpedAtlasGpu& gpu, unsigned cells, std::span<const WarpedInstance> instances,
-              const glm::mat4& viewRotationProjection);
+    /// test on), `viewRotationProjection` taking eye-relative positions to clip space; `regions`
+    /// (0: none) is the atlas's region maps, one layer per cell, recoloured as the quads are.
+    void draw(const ImpostorAtlas& atlas, const WarpedAtlasGpu& gpu, unsigned cells, unsigned regions,
+              std::span<const WarpedInstance> instances, const glm::mat4& viewRotationProjection);
 
 private:
     GlContext& context_;

@@ -1,4 +1,5 @@
 #include "throng/scenegraph/MeshData.h"
+#include "throng/scenegraph/BodyLook.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -23,6 +24,9 @@ void MeshData::validate() const {
         fail(*this, "has skin influence arrays (joints0/weights0) whose sizes do not match the vertex count");
     if (joints1.size() != weights1.size() || (!joints1.empty() && joints1.size() != n) || (!joints1.empty() && joints0.empty()))
         fail(*this, "has skin influence arrays (joints1/weights1) whose sizes do not match the vertex count");
+    if (!regions.empty() && regions.size() != n) fail(*this, "has " + std::to_string(regions.size()) + " body regions for " + std::to_string(n) + " vertices");
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        if (regions[i] > kBodyRegionCount) fail(*this, "vertex " + std::to_string(i) + " has body region " + std::to_string(regions[i]) + ", not 0-4");
     if (indices.size() % 3 != 0) fail(*this, "has " + std::to_string(indices.size()) + " indices, not a multiple of 3");
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= n) fail(*this, "index " + std::to_string(i) + " refers to vertex " + std::to_string(indices[i]) + " of " + std::to_string(n));

@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "throng/sim/CrowdLooks.h"
 #include "throng/sim/ScaleActors.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneRanges.h"
@@ -422,6 +423,31 @@ void readCamera(const Reader& root, SceneDescription& s) {
     }
 }
 
+// "looks": a count of generated looks, or a list of looks, each {"skin", "hair", "top",
+// "bottom"} colours "#rrggbb".
+std::vector<BodyLook> readLooks(const Reader& r) {
+    if (r.value().is_number()) return generatedLooks(static_cast<int>(r.wholeWithin("templates", "looks")));
+    const std::size_t n = r.array();
+    if (n == 0) r.fail("must list at least one look");
+    std::vector<BodyLook> looks;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Reader l = r.at(i);
+        l.object({"skin", "hair", "top", "bottom"});
+        BodyLook look;
+        for (std::size_t k = 0; k < kBodyRegionCount; ++k) {
+            const std::string name(bodyRegionName(static_cast<BodyRegion>(k + 1)));
+            const Reader c = l.at(name.c_str());
+            try {
+                look.rgba[k] = parseBodyColour(c.string());
+            } catch (const std::invalid_argument& e) {
+                c.fail(e.what());
+            }
+        }
+        looks.push_back(look);
+    }
+    return looks;
+}
+
 // "templates": each a glTF file or a procedural character, with its clips, scale and LOD.
 void readTemplates(const Reader& root, SceneDescription& s, const std::string& baseDirectory, const std::string& file) {
     const Reader templates = root.at("templates");
@@ -429,7 +455,7 @@ void readTemplates(const Reader& root, SceneDescription& s, const std::string& b
     for (auto it = templates.value().begin(); it != templates.value().end(); ++it) {
         const Reader t(it.value(), "/templates/" + it.key(), file);
         Reader::checkName(t, it.key());
-        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod", "jointMinAngle"});
+        t.object({"gltf", "procedural", "walkClip", "runClip", "idleClip", "walkClipSpeed", "runClipSpeed", "scale", "lod", "jointMinAngle", "looks"});
         TemplateDescription d;
         if (t.has("gltf") == t.has("procedural")) t.fail("must give exactly one of 'gltf' and 'procedural'");
         if (t.has("gltf")) d.gltf = existingPath(t.at("gltf"), baseDirectory, PathKind::GltfFile);
@@ -444,8 +470,9 @@ void readTemplates(const Reader& root, SceneDescription& s, const std::string& b
         if (t.has("walkClipSpeed")) d.walkClipSpeed = t.at("walkClipSpeed").within("templates", "walkClipSpeed");
         if (t.has("runClipSpeed")) d.runClipSpeed = t.at("runClipSpeed").within("templates", "runClipSpeed");
         if (!d.runClip.empty() && d.runClipSpeed <= d.walkClipSpeed) t.at("runClipSpeed").fail("must exceed walkClipSpeed");
-        if ((t.has("scale") || t.has("lod") || t.has("jointMinAngle")) && !t.has("gltf"))
-            t.fail("'scale', 'lod' and 'jointMinAngle' apply to glTF templates only");
+        if ((t.has("scale") || t.has("lod") || t.has("jointMinAngle") || t.has("looks")) && !t.has("gltf"))
+            t.fail("'scale', 'lod', 'jointMinAngle' and 'looks' apply to glTF templates only");
+        if (t.has("looks")) d.looks = readLooks(t.at("looks"));
         if (t.has("jointMinAngle")) d.jointMinAngle = t.at("jointMinAngle").within("templates", "jointMinAngle");
         if (t.has("scale")) d.scale = t.at("scale").within("templates", "scale");
         if (t.has("lod")) d.lod = geometricLevels(t.at("lod"));

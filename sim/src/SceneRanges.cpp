@@ -26,6 +26,7 @@ constexpr std::array kRanges{
     SceneRange{"templates", "runClipSpeed", 0.05, 20.0, false, false, false, "m/s"},
     SceneRange{"templates", "scale", 0.0001, 1000.0},
     SceneRange{"templates", "jointMinAngle", 0.0, 0.1, false, true, false, "radians"},
+    SceneRange{"templates", "looks", 1, 240, false, false, true},
     SceneRange{"lod levels", "until", 0.0, kFar, true, false, false, "m"},
     SceneRange{"lod levels", "triangles", 0.0, 1.0, true, false},
     SceneRange{"actors", "count", 0, 2'000'000, false, false, true},

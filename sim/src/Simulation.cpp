@@ -32,6 +32,7 @@
 #include "throng/sim/Ranks.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SpeedProfile.h"
+#include "throng/sim/CrowdLooks.h"
 #include "throng/sim/TownRegions.h"
 
 namespace throng::sim {
@@ -42,6 +43,14 @@ struct ResolvedTemplate {
     std::shared_ptr<const ActorTemplate> tmpl;
     int walkClip = -1, runClip = -1, idleClip = -1;
     double walkClipSpeed = 1.4, runClipSpeed = 3.5;
+    std::vector<BodyLook> looks;  // worn in turn by its actors (empty: as modelled)
+
+    // `base` with the body look of the actor drawn from `stream`.
+    ActorLook lookFor(const ActorLook& base, std::uint64_t stream) const {
+        ActorLook look = base;
+        if (!looks.empty()) look.body = lookForActor(looks, 0, stream);
+        return look;
+    }
 };
 
 int clipIndex(const ActorTemplate& t, const std::string& name, const std::string& file, const std::string& path) {
@@ -64,6 +73,7 @@ ResolvedTemplate resolve(const std::string& key, const TemplateDescription& d, c
             GltfLoadOptions options;
             options.scale = d.scale;
             options.jointMinAngle = d.jointMinAngle;
+            options.bodyRegions = !d.looks.empty();
             for (const glm::dvec2& level : d.lod) options.lodLevels.push_back({level.x, level.y});
             r.tmpl = loadCharacter(d.gltf, options).primaryTemplate();
         } catch (const std::exception& e) {
@@ -83,6 +93,7 @@ ResolvedTemplate resolve(const std::string& key, const TemplateDescription& d, c
     r.idleClip = clipIndex(*r.tmpl, d.idleClip, file, path + "/idleClip");
     r.walkClipSpeed = d.walkClipSpeed;
     r.runClipSpeed = d.runClipSpeed;
+    r.looks = d.looks;
     return r;
 }
 
@@ -221,7 +232,7 @@ struct Placement {
             a.stream = stream;
             std::uint32_t slot = walkers->addActor(a);
             if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
-            ids.push_back(crowd.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, look));
+            ids.push_back(crowd.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, t.lookFor(look, stream)));
         }
     }
 
@@ -252,7 +263,7 @@ struct Placement {
                 a.timeOffset = rng.uniform(stream * 3 + 1, 0.0, t.tmpl->clips()[std::size_t(clip)]->duration());
                 std::uint32_t slot = idlers->addPerson(a);
                 if (idleGaze) slot = idleGaze->wrap(slot, t.tmpl, stream);
-                ids.push_back(crowd.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, look));
+                ids.push_back(crowd.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, t.lookFor(look, stream)));
             }
         }
     }
@@ -267,7 +278,7 @@ struct Placement {
         s.speed = g.speed.value_or(glm::dvec2(6.0, 11.0));
         s.seed = d.seed + gi;
         auto flock = std::make_shared<Flock>(s, levels, &effects);
-        for (std::int64_t i = 0; i < g.count; ++i, ++stream) ids.push_back(crowd.add(t.tmpl, flock, flock->addBird({t.tmpl, t.walkClip, stream}), look));
+        for (std::int64_t i = 0; i < g.count; ++i, ++stream) ids.push_back(crowd.add(t.tmpl, flock, flock->addBird({t.tmpl, t.walkClip, stream}), t.lookFor(look, stream)));
         return flock;
     }
 };
@@ -457,7 +468,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
             continue;
         }
         const ResolvedTemplate& t = templates.at(copyKey(g));
-        const ActorLook look{float(g.priority), glm::vec4(1.0f)};
+        const ActorLook look{float(g.priority), glm::vec4(1.0f), {}};
         const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
         if (g.behaviour == "walk") place.walk(g, t, look, levels, info.actors);
         else if (g.behaviour == "idle") place.stand(g, t, look, levels, info.actors);

@@ -33,7 +33,7 @@ struct OneActor {
 std::unique_ptr<OneActor> standingActor(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Behaviour> b,
                                         std::uint32_t slot, float priority = 1.0f) {
     auto s = std::make_unique<OneActor>();
-    s->id = s->crowd.add(std::move(tmpl), std::move(b), slot, ActorLook{priority, glm::vec4(1)});
+    s->id = s->crowd.add(std::move(tmpl), std::move(b), slot, ActorLook{priority, glm::vec4(1), {}});
     s->root->addChild(s->crowd.makeActorNode(s->id));
     return s;
 }

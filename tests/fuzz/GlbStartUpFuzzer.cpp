@@ -1,6 +1,6 @@
 // libFuzzer entry point: any bytes as a glTF character that a scene declares as a template, through
-// throng-town's start-up (StartUp.h): loaded, built into a template with geometric LOD levels and
-// skeletal LOD, eight of it standing and four flying, stepped and culled. A bad file must be a
+// throng-town's start-up (StartUp.h): loaded, built into a template with geometric LOD levels,
+// skeletal LOD and body regions (looks), eight of it standing and four flying, stepped and culled. A bad file must be a
 // SceneError at /templates/x/gltf (or a documented runtime error), never a crash. (The loader alone,
 // with its limits, is fuzz_gltf's.)
 
@@ -14,6 +14,7 @@
 #include <string>
 
 #include "StartUp.h"
+#include "throng/sim/CrowdLooks.h"
 
 namespace {
 
@@ -41,6 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     t.gltf = inputFile().string();
     t.lod = {{10.0, 1.0}, {std::numeric_limits<double>::infinity(), 0.3}};
     t.jointMinAngle = 0.004;
+    t.looks = generatedLooks(4);  // body regions from whatever skin the file has
     scene.templates["x"] = t;
     ActorGroupDescription standing;
     standing.name = "standing";

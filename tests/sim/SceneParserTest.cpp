@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <set>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include "throng/testkit/Assets.h"
+#include "throng/sim/CrowdLooks.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/SceneRanges.h"
@@ -155,6 +158,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"actors not an array", scene(R"({"template": "cesium"})"), "/actors", "must be an array"},
         BadScene{"bad speed range", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "speed": [2, 1]}])"),
                  "/actors/0/speed", "min <= max"},
+        BadScene{"looks on a procedural template", birds(R"(, "looks": 4)"), "/templates/x", "'looks' apply to glTF templates only"},
+        BadScene{"too many generated looks", R"({"templates": {"c": {"gltf": "characters/CesiumMan.glb", "looks": 241}}, "actors": []})",
+                 "/templates/c/looks", "must be from 1 to 240"},
+        BadScene{"no looks", R"({"templates": {"c": {"gltf": "characters/CesiumMan.glb", "looks": []}}, "actors": []})",
+                 "/templates/c/looks", "must list at least one look"},
+        BadScene{"a look's colour malformed",
+                 R"({"templates": {"c": {"gltf": "characters/CesiumMan.glb", "looks": [{"skin": "#ffcc99", "hair": "brown", "top": "#000000", "bottom": "#000000"}]}}, "actors": []})",
+                 "/templates/c/looks/0/hair", "'brown' is not a colour \"#rrggbb\""},
+        BadScene{"a look without its bottom",
+                 R"({"templates": {"c": {"gltf": "characters/CesiumMan.glb", "looks": [{"skin": "#ffcc99", "hair": "#101010", "top": "#000000"}]}}, "actors": []})",
+                 "/templates/c/looks/0/bottom", "is missing"},
         BadScene{"levels not increasing", scene(R"([{"template": "cesium", "count": 5, "behaviour": "walk", "levels": [30, 20]}])"),
                  "/actors/0/levels/1", "must increase"},
         BadScene{"missing asset",
@@ -548,6 +562,44 @@ TEST(SceneParser, EveryShippedSceneParses) {
 
 // Every range the parser checks is the one the scene guide states, in the row of its key in the
 // table of its section ("## `town`", "### LOD levels", ...).
+TEST(SceneParser, LooksAreGeneratedOrRead) {
+    const SceneDescription d = parseScene(
+        R"({"templates": {"a": {"gltf": "characters/CesiumMan.glb", "looks": 12},
+                          "b": {"gltf": "characters/CesiumMan.glb", "looks": [{"skin": "#FFCC99", "hair": "#101010", "top": "#2050a0", "bottom": "#000000"}]},
+                          "c": {"gltf": "characters/CesiumMan.glb"}}, "actors": []})",
+        kAssets);
+    ASSERT_EQ(d.templates.at("a").looks.size(), 12u);
+    const std::set<std::array<std::uint32_t, 4>> distinct = [&] {
+        std::set<std::array<std::uint32_t, 4>> s;
+        for (const throng::BodyLook& l : d.templates.at("a").looks) s.insert(l.rgba);
+        return s;
+    }();
+    EXPECT_EQ(distinct.size(), 12u);
+    ASSERT_EQ(d.templates.at("b").looks.size(), 1u);
+    EXPECT_EQ(d.templates.at("b").looks[0].rgba[0], throng::packBodyColour(0xff, 0xcc, 0x99));
+    EXPECT_EQ(d.templates.at("b").looks[0].rgba[2], throng::packBodyColour(0x20, 0x50, 0xa0));
+    EXPECT_TRUE(d.templates.at("c").looks.empty());
+    // All 240 generated looks differ; actors of a group spread over them.
+    std::set<std::array<std::uint32_t, 4>> all;
+    for (const throng::BodyLook& l : generatedLooks(240)) all.insert(l.rgba);
+    EXPECT_EQ(all.size(), 240u);
+    const std::vector<throng::BodyLook> eight = generatedLooks(8);
+    std::set<std::array<std::uint32_t, 4>> worn;
+    for (std::size_t i = 0; i < 40; ++i) worn.insert(lookForActor(eight, 0, i).rgba);
+    EXPECT_EQ(worn.size(), 8u) << "40 actors should wear all 8 looks";
+}
+
+// The default scene dresses every glTF template in at least four looks (issue 37's diversity).
+TEST(SceneParser, TheDefaultSceneHasFourLooksPerCharacter) {
+    const SceneDescription d = parseSceneFile((repositoryRoot() / "apps/town/scenes/default.json").string());
+    for (const auto& [name, t] : d.templates) {
+        if (t.gltf.empty()) continue;
+        std::set<std::array<std::uint32_t, 4>> distinct;
+        for (const throng::BodyLook& l : t.looks) distinct.insert(l.rgba);
+        EXPECT_GE(distinct.size(), 4u) << name;
+    }
+}
+
 TEST(SceneParser, TheSceneGuideStatesEveryRange) {
     std::ifstream in(repositoryRoot() / "docs/guides/scene-files.md");
     ASSERT_TRUE(in) << "docs/guides/scene-files.md";

@@ -54,7 +54,7 @@ struct Row {
             a.tmpl = human;
             a.clip = human->findClip("walk");
             a.position = Vec3(-60.0 + 5.0 * i, 0.0, -10.0);
-            ids.push_back(crowd.add(human, stand, stand->addActor(a), ActorLook{1.0f, glm::vec4(1, 0, 0, 1)}));
+            ids.push_back(crowd.add(human, stand, stand->addActor(a), ActorLook{1.0f, glm::vec4(1, 0, 0, 1), {}}));
         }
         root->addChild(crowd.makeGroupNode(ids));
     }

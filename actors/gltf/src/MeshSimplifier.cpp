@@ -26,6 +26,7 @@ std::shared_ptr<MeshData> compact(const MeshData& in, std::vector<std::uint32_t>
             out->positions.push_back(in.positions[i]);
             if (!in.normals.empty()) out->normals.push_back(in.normals[i]);
             if (!in.texcoords.empty()) out->texcoords.push_back(in.texcoords[i]);
+            if (!in.regions.empty()) out->regions.push_back(in.regions[i]);
             if (!in.joints0.empty()) out->joints0.push_back(in.joints0[i]), out->weights0.push_back(in.weights0[i]);
             if (!in.joints1.empty()) out->joints1.push_back(in.joints1[i]), out->weights1.push_back(in.weights1[i]);
         }

@@ -10,6 +10,7 @@
 
 #include "JsonPointer.h"
 #include "SkinnedMeshMerger.h"
+#include "throng/actors/BodyRegions.h"
 #include "throng/gltf/MeshSimplifier.h"
 #include "throng/scenegraph/MeshDrawable.h"
 
@@ -260,6 +261,32 @@ int SkinTemplateBuilder::addNodesAndSkin() {
 
 void SkinTemplateBuilder::addMeshLevels(const std::shared_ptr<MeshData>& mesh, int skinIndex) {
     LoadedCharacter& ch = out_.character;
+    if (options_.bodyRegions) {
+        std::vector<std::string> names;
+        for (int k : skeletonOfJoint_) names.push_back(k < 0 ? std::string() : nodes_[static_cast<std::size_t>(k)].name);
+        // Heights in the glTF world at rest (its +Y up), whatever frame the mesh itself lies in.
+        const auto& joints = c_.skinJoints[static_cast<std::size_t>(s_)];
+        std::vector<dmat4> restSkin(joints.size());
+        for (std::size_t k = 0; k < joints.size(); ++k)
+            restSkin[k] = c_.world[static_cast<std::size_t>(joints[k])] * dmat4(c_.inverseBinds[static_cast<std::size_t>(s_)][k]);
+        std::vector<float> height(mesh->vertexCount());
+        for (std::size_t v = 0; v < height.size(); ++v) {
+            double y = 0.0, total = 0.0;
+            for (int c = 0; c < mesh->influenceCount(); ++c) {
+                const float w = c < 4 ? mesh->weights0[v][c] : mesh->weights1[v][c - 4];
+                const std::size_t k = c < 4 ? mesh->joints0[v][c] : mesh->joints1[v][c - 4];
+                if (!(w > 0.0f) || k >= restSkin.size()) continue;
+                y += w * (restSkin[k] * glm::dvec4(dvec3(mesh->positions[v]), 1.0)).y;
+                total += w;
+            }
+            height[v] = static_cast<float>(total > 0.0 ? y / total : mesh->positions[v].y);
+        }
+        try {
+            mesh->regions = bodyRegions(*mesh, height, names);
+        } catch (const std::invalid_argument& e) {
+            doc_.warn(ptr("/skins", static_cast<std::size_t>(s_)), std::string("no body regions: ") + e.what());
+        }
+    }
     if (options_.lodLevels.empty()) {
         builder_.rootGeometry().addLevel(std::numeric_limits<double>::infinity(), std::make_shared<MeshDrawable>(mesh), skinIndex);
         ch.lodErrors.push_back(0.0);

@@ -41,6 +41,7 @@ struct ActorLook {
     /// far and 0.5 drops it at half the distance. Must be positive.
     float priority = 1.0f;
     glm::vec4 tint{1.0f};  ///< colour multiplier for this clone
+    BodyLook body;         ///< its colours per body region (templates whose meshes have regions)
 };
 
 /// An object an actor holds (seed 002 §4.3): drawn in a Skeleton node's frame.
@@ -81,6 +82,7 @@ public:
         std::vector<double> eyeDistance;            ///< distance eye - Skeleton Root (infinite if not computed)
         std::vector<float> priority;                ///< detail priority
         std::vector<glm::vec4> tint;                ///< colour multiplier
+        std::vector<BodyLook> body;                 ///< colours per body region
         std::vector<std::uint32_t> dofOffset;       ///< first DOF value in `dofs`
         std::vector<float> dofs;                    ///< DOF values of every actor
         std::vector<std::uint32_t> nodeOffset;      ///< first Skeleton node entry in per-node workspaces

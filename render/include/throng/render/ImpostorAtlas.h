@@ -132,6 +132,20 @@ public:
     /// Bytes the pages would take with every key-frame stored.
     std::size_t fullTextureBytes() const;
 
+    /// Whether the atlas holds body regions (then its cells were baked with kBakeLook, every
+    /// region white, for the draw to multiply by each actor's BodyLook).
+    bool hasRegions() const { return !regions_.empty(); }
+    /// The body region (BodyRegion) of every texel of cell (`view`, `keyframe`), cellSize()^2
+    /// bytes, top row first; kept for every cell, stored or dropped (a byte per texel: a quarter of
+    /// a colour cell), so regenerated cells need no regions of their own. Empty without regions.
+    std::span<const std::uint8_t> regions(std::uint32_t view, int keyframe) const;
+    /// Sets the regions of cell (`view`, `keyframe`); the first call gives every other cell
+    /// region 0 (none). Throws std::invalid_argument if the cell is out of range, the size is not
+    /// cellSize()^2 or a value is not a BodyRegion.
+    void setRegions(std::uint32_t view, int keyframe, std::span<const std::uint8_t> regions);
+    /// Bytes of texture the region maps take (one per texel of every cell; 0 without regions).
+    std::size_t regionBytes() const { return regions_.size(); }
+
     /// The figure's surface for warping cells (ProxyWarp), or null when the atlas has none (then
     /// in-betweens are morphed with the feature lines). Not saved: a loaded atlas has none.
     const std::shared_ptr<const ProxyMesh>& proxy() const { return proxy_; }
@@ -144,7 +158,8 @@ public:
     /// Sets (or clears) the drawing proxy. Throws as setProxy().
     void setDrawProxy(std::shared_ptr<const ProxyMesh> proxy);
 
-    /// Writes impostor.json and `keyframe-<k>.png` for each stored key-frame into `directory`
+    /// Writes impostor.json and `keyframe-<k>.png` for each stored key-frame (and with regions
+    /// `regions-<k>.png`, the region times 60 in red, for every key-frame) into `directory`
     /// (created). Throws std::runtime_error naming the file on failure.
     void save(const std::filesystem::path& directory) const;
     /// Reads what save() wrote. Throws std::runtime_error naming the file and the problem.
@@ -173,6 +188,7 @@ private:
     std::vector<Image> pages_;               // per key-frame; empty rgba when dropped
     std::vector<int> ringRow_;               // per ring: its row in the pages, -1 when dropped
     std::vector<FeatureLine> lines_;         // [keyframe][view][bone]
+    std::vector<std::uint8_t> regions_;      // [keyframe][view][texel], or empty
     std::shared_ptr<const ProxyMesh> proxy_, drawProxy_;
 };
 

@@ -62,7 +62,13 @@ public:
     Image renderCell(double time, std::uint32_t view);
     /// The cell seen from unit direction `toEye` (actor frame; any direction with a horizontal
     /// component), as a baked view would be: the truth view blending is measured against.
+    /// A figure with body regions is drawn with kBakeLook (every region white).
     Image renderCell(double time, const glm::vec3& toEye);
+    /// The body region (BodyRegion) of every texel of `view`'s cell at `time`, top row first, with
+    /// two texels around the figure given a neighbour's region (for regenerated cells' rims).
+    std::vector<std::uint8_t> renderRegions(double time, std::uint32_t view);
+    /// Whether any mesh of `tmpl` has body regions (then bake() records them with the cells).
+    static bool hasBodyRegions(const ActorTemplate& tmpl);
     /// The bones of the pose at `time` projected into `view`'s cell (pixels), one per bone.
     std::vector<FeatureLine> projectBones(double time, std::uint32_t view);
     /// The bones in 3-D at every key-frame (the same bones, in the same order, as the atlas's
@@ -77,6 +83,9 @@ public:
     ProxyMesh proxyMesh(std::size_t maxVertices = 0, int samplesPerKeyframe = 1);
 
 private:
+    // Renders the figure at `time` seen from `toEye` as the renderer's options say.
+    Image render(double time, const glm::vec3& toEye);
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

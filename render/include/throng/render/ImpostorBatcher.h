@@ -13,6 +13,7 @@
 #include <glm/mat3x3.hpp>
 
 #include "throng/render/MorphCache.h"
+#include "throng/scenegraph/BodyLook.h"
 #include "throng/scenegraph/Math.h"
 
 namespace throng {
@@ -27,6 +28,7 @@ struct ImpostorInstance {
     Vec3 centre{0.0};                      ///< world centre of the baked volume
     float halfSize = 1.0f;                 ///< half the quad's side (metres)
     glm::vec4 tint{1.0f};                  ///< the actor's tint
+    BodyLook look;                         ///< the actor's colours per body region (atlases with regions)
     const ImpostorDrawable* drawable = nullptr;  ///< whose atlas
     std::array<std::uint32_t, 3> views{};  ///< views blended
     std::array<float, 3> weights{};        ///< their weights (sum 1)

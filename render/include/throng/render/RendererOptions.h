@@ -29,6 +29,9 @@ struct RendererOptions {
     bool cullBackFaces = true;        ///< skip triangles facing away (closed, counter-clockwise meshes)
     bool captureFrames = false;       ///< endFrame() reads the frame into lastFrame() before presenting
     bool flatTint = false;            ///< write each item's tint as is, unlit and untextured (ID renders; no constant faces)
+    /// Write each pixel's body region (BodyRegion / 255 in red, alpha 1), unlit: the region maps of
+    /// impostor atlases. No constant faces.
+    bool regionIds = false;
     /// beginFrame clears colour and depth. Off when drawing into a frame another renderer has begun
     /// and will present (a VTK render window), so its picture and depth stay under ours.
     bool clear = true;

@@ -20,6 +20,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
+#include "throng/scenegraph/BodyLook.h"
 #include "throng/scenegraph/FrameArena.h"
 #include "throng/scenegraph/ItemTransform.h"
 #include "throng/scenegraph/KeyPoseSource.h"
@@ -60,6 +61,7 @@ struct DrawItem {
     std::uint32_t actor = kNoActor;      ///< the actor (its id in its crowd), or kNoActor
     std::int32_t clip = -1;              ///< the clip the actor plays (its main clip for impostors), or -1
     glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
+    BodyLook look;                       ///< per-actor colours of the mesh's body regions
     Representation representation = Representation::Mesh;  ///< how it is shown
     KeyPoseRef keyPose;                  ///< Representation::KeyPose: the cached poses shown
 };

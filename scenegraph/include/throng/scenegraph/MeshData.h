@@ -29,6 +29,8 @@ struct MeshData {
     std::vector<glm::vec4> weights0;           ///< skin: their weights
     std::vector<glm::u16vec4> joints1;         ///< skin: influences 5-8 per vertex, or empty
     std::vector<glm::vec4> weights1;           ///< skin: their weights
+    /// Body region per vertex (BodyRegion values; BodyLook recolours them), or empty: none.
+    std::vector<std::uint8_t> regions;
     glm::vec4 baseColor{1.0f};                 ///< multiplies the texture (linear RGBA)
     std::shared_ptr<const Image> baseColorTexture;  ///< or null
 
@@ -42,7 +44,7 @@ struct MeshData {
     int influenceCount() const { return joints0.empty() ? 0 : joints1.empty() ? 4 : 8; }
 
     /// Throws std::invalid_argument naming the mesh and the problem if attribute counts disagree,
-    /// an index is out of range, the index count is not a multiple of 3, or a value is not finite.
+    /// a region is not a BodyRegion, an index is out of range, the index count is not a multiple of 3, or a value is not finite.
     void validate() const;
     /// Smallest-ish sphere holding every vertex (in the mesh frame). Throws if there is no vertex.
     BoundingSphere computeBound() const;

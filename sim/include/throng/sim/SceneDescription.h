@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "throng/actors/KeyPoseCache.h"
+#include "throng/scenegraph/BodyLook.h"
 #include "throng/scenegraph/OcclusionCulling.h"
 
 namespace throng::sim {
@@ -60,6 +61,9 @@ struct TemplateDescription {
     /// may reach to infinity. Empty: the full mesh at every distance.
     std::vector<glm::dvec2> lod;
     double jointMinAngle = 0.0; ///< glTF: skeletal LOD, joints off below this angle (radians; 0: off)
+    /// glTF: crowd diversity, the looks its actors wear (each actor one, hashed from its group and
+    /// index); empty: every actor as modelled. Non-empty gives the mesh body regions.
+    std::vector<BodyLook> looks;
 };
 
 /// Where a group of actors starts: a rectangle on the ground (centre and size, metres).

@@ -44,6 +44,9 @@ struct GltfLoadOptions {
     /// moves subtends less than this angle, radians. 0: every joint stays on. 0.004 is about 3
     /// pixels of a 1280 x 720 view with a 55 degree field of view.
     double jointMinAngle = 0.0;
+    /// Give each skinned mesh's vertices body regions (bodyRegions: skin, hair, top, bottom by
+    /// height in the bind pose, hands by joint name), for actors recoloured per region (BodyLook).
+    bool bodyRegions = false;
 };
 
 }  // namespace throng

@@ -67,7 +67,7 @@ inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int acto
             a.heading = 6.3 * unit(rng);
             a.pathRadius = unit(rng) < 0.3 ? 4.0 : 0.0;
             a.pathSpeed = 1.4;
-            id = scene->crowd.add(tmpl, keyframes, keyframes->addActor(a), ActorLook{float(0.5 + unit(rng)), glm::vec4(1)});
+            id = scene->crowd.add(tmpl, keyframes, keyframes->addActor(a), ActorLook{float(0.5 + unit(rng)), glm::vec4(1), {}});
         } else {
             ProceduralGait::Actor a;
             a.center = where;
