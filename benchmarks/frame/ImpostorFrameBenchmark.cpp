@@ -17,6 +17,8 @@
 //     measured against it);
 //   - impostors warped: each drawn as the figure's surface proxy at its own clip time from the
 //     real eye, textured from the cells the quad would blend (ImpostorViewChoice::warped);
+//   - impostors without looks in the pass: the surface-proxy row's options with the actors' looks
+//     left out of the impostor pass (cells as baked, white per region): what diversity costs there;
 //   - with --storages, the atlas storages (issue 37 item 3): full, half the key-frames (today's
 //     default), half (every other key-frame and view ring), and half at twice the cell size, each
 //     drawn as throng-town draws them (surface proxy on another thread, budget 2).
@@ -181,6 +183,14 @@ std::vector<Row> runMethods(const Options& o, const std::shared_ptr<GlContext>& 
         warped.views.warped = true;
         add("impostors warped (the proxy per impostor), pool, surface proxy on another thread, budget 2", Kind::Impostors, warped,
             "impostor views", "warped");
+    }
+    {
+        // The same as the surface-proxy row at budget 2, but the pass draws the cells as baked,
+        // without the looks' region lookups: what crowd diversity costs in the impostor pass.
+        CrowdRendererOptions plain = poolOptions(o, MorphSource::Cpu, 2, o.gridStep, true, CellWarp::SurfaceProxy);
+        plain.impostors.bodyLooks = false;
+        add("impostors without looks in the pass, pool, surface proxy on another thread, budget 2", Kind::Impostors, plain,
+            "impostor looks", "off");
     }
     for (double d : o.distances)
         add("impostors from " + std::to_string(int(d)) + " m, pool, surface proxy on another thread, budget 2", Kind::Impostors,

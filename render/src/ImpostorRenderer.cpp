@@ -660,7 +660,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     const GLint hasRegions = r.program->uniformLocation("uHasRegions");
     for (auto& [atlas, g] : r.atlases) {
         if (g.instances.empty()) continue;
-        gl.Uniform1i(hasRegions, g.regions != 0);
+        gl.Uniform1i(hasRegions, g.regions != 0 && r.options.bodyLooks);
         gl.ActiveTexture(GL_TEXTURE1);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, g.regions);
         gl.ActiveTexture(GL_TEXTURE0);
@@ -675,7 +675,7 @@ void ImpostorRenderer::draw(const Camera& camera, std::span<const ImpostorInstan
     // Atlases drawn warped: the proxy per impostor, one instanced call each.
     for (auto& [atlas, g] : r.atlases) {
         if (g.warpedInstances.empty()) continue;
-        r.warpedPass->draw(*g.atlas, g.warpGpu, g.texture, g.regions, g.warpedInstances, vrp);
+        r.warpedPass->draw(*g.atlas, g.warpGpu, g.texture, r.options.bodyLooks ? g.regions : 0u, g.warpedInstances, vrp);
         ++r.stats.drawCalls;
         r.stats.instances += g.warpedInstances.size();
     }

@@ -60,6 +60,9 @@ struct ImpostorRendererOptions {
     /// Impostors whose atlas has a surface proxy are drawn as that proxy warped to the eye and the
     /// actor's clip time (ImpostorViewChoice::warped; CrowdRenderer sets this from it).
     bool warped = false;
+    /// Atlases with body regions are drawn wearing each actor's look (BodyLook); off, their cells
+    /// as baked (white per region) and the pass without the region lookups: what the looks cost.
+    bool bodyLooks = true;
 };
 
 /// What ImpostorRenderer did in the last draw().

@@ -37,6 +37,7 @@ struct BodyLook {
 
     /// Whether any region is recoloured.
     bool any() const { return (rgba[0] | rgba[1] | rgba[2] | rgba[3]) >> 24 != 0; }
+    /// Two looks are equal when every region has the same colour.
     friend bool operator==(const BodyLook&, const BodyLook&) = default;
 };
 
