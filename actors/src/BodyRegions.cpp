@@ -35,13 +35,7 @@ std::vector<std::uint8_t> bodyRegions(const MeshData& mesh, std::span<const floa
     std::vector<std::uint8_t> out(mesh.vertexCount());
     for (std::size_t v = 0; v < out.size(); ++v) {
         if (mesh.skinned()) {
-            // The strongest influence decides; the first of equals.
-            std::uint32_t joint = mesh.joints0[v][0];
-            float best = mesh.weights0[v][0];
-            for (int c = 1; c < mesh.influenceCount(); ++c) {
-                const float w = c < 4 ? mesh.weights0[v][c] : mesh.weights1[v][c - 4];
-                if (w > best) best = w, joint = c < 4 ? mesh.joints0[v][c] : mesh.joints1[v][c - 4];
-            }
+            const std::uint32_t joint = mesh.strongestJoint(v);
             if (joint >= hand.size())
                 throw std::invalid_argument("bodyRegions: mesh '" + mesh.name + "': vertex " + std::to_string(v) +
                                             " names joint " + std::to_string(joint) + " of " + std::to_string(hand.size()));

@@ -75,7 +75,7 @@ flat in vec4 vTint;
 flat in vec3 vRegionLayers;
 flat in uvec4 vLook;
 out vec4 fragColor;
-)") + detail::bodyLookGlsl() + detail::srgbEncodeGlsl() + R"(
+)") + detail::srgbEncodeGlsl() + detail::bodyLookGlsl() + R"(
 vec4 cell(float layer) {
     return texture(uCells, vec3(vUv, layer));  // one texture: a software GL samples both sides of a branch
 }
@@ -97,7 +97,7 @@ void main() {
     }
     if (c.a < 0.5) discard;  // alpha test: quads write depth like the meshes they replace
     vec3 rgb = c.rgb / c.a;  // cells are premultiplied
-    if (uHasRegions) rgb = linearToSrgb(srgbToLinear(rgb) * p / c.a);
+    if (uHasRegions) rgb = wearLook(c, p);
     fragColor = vec4(rgb * vTint.rgb, 1.0);
 }
 )";

@@ -305,6 +305,9 @@ vec3 regionPaint(sampler2DArray regions, vec3 at, uvec4 look) {
     vec4 c = lookColour(look[r - 1]);
     return c.a > 0.0 ? c.rgb : vec3(1.0);
 }
+// Impostors: the blend `c` of premultiplied sRGB cells, and `paint`, the same blend of each cell's
+// coverage times its region colour: the straight colour the actor's look makes of it (sRGB).
+vec3 wearLook(vec4 c, vec3 paint) { return linearToSrgb(srgbToLinear(c.rgb / c.a) * paint / c.a); }
 // The albedo `a` (linear) recoloured by the one-hot (or blended) body region `region` with the
 // actor's `look`: the colour times bodyRecolourGrey(luminance), where the look colours the region.
 vec3 recolour(vec3 a, vec4 region, uvec4 look) {

@@ -30,7 +30,8 @@ std::string srgbEncodeGlsl();
 /// GLSL functions of crowd diversity: srgbToLinear(vec3), lookColour(uint) decodes a packed BodyLook colour to linear
 /// RGB (alpha in .a), recolour(albedo, region, look) applies an actor's look to a linear albedo
 /// (BodyLook's formula), regionPaint(regions, uvLayer, look) the colour an impostor's region map
-/// asks for at a texel (white for none). Shared by the mesh shaders and the impostor passes.
+/// asks for at a texel (white for none), wearLook(blend, paint) an impostor's blended cells wearing
+/// it. Needs linearToSrgb (srgbEncodeGlsl) before it. Shared by the mesh shaders and the impostor passes.
 std::string bodyLookGlsl();
 
 /// The vertex shader for `influences` (0, 4 or 8) joint influences. With `feedback`, it outputs

@@ -104,7 +104,7 @@ flat in vec4 vTint;
 flat in vec3 vRegionLayers;
 flat in uvec4 vLook;
 out vec4 fragColor;
-)") + detail::bodyLookGlsl() + detail::srgbEncodeGlsl() + R"(
+)") + detail::srgbEncodeGlsl() + detail::bodyLookGlsl() + R"(
 // A source is trusted where the surface point is the nearest surface its cell shows there.
 float trust(vec3 q, float layer) {
     ivec2 p = ivec2(floor(q.xy));
@@ -138,7 +138,7 @@ void main() {
     }
     if (c.a < 0.5 * sum) discard;  // alpha test, as the quads: the cells' outline, not the proxy's
     vec3 rgb = c.rgb / c.a;
-    if (uHasRegions) rgb = linearToSrgb(srgbToLinear(rgb) * p / c.a);
+    if (uHasRegions) rgb = wearLook(c, p);
     fragColor = vec4(rgb * vTint.rgb, 1.0);
 }
 )";

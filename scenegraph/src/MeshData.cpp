@@ -35,6 +35,16 @@ void MeshData::validate() const {
     if (baseColorTexture && !baseColorTexture->valid()) fail(*this, "has an invalid base colour texture");
 }
 
+std::uint32_t MeshData::strongestJoint(std::size_t v) const {
+    std::uint32_t best = joints0[v][0];
+    float bestWeight = weights0[v][0];
+    for (int c = 1; c < influenceCount(); ++c) {
+        const float w = c < 4 ? weights0[v][c] : weights1[v][c - 4];
+        if (w > bestWeight) bestWeight = w, best = c < 4 ? joints0[v][c] : joints1[v][c - 4];
+    }
+    return best;
+}
+
 BoundingSphere MeshData::computeBound() const {
     if (positions.empty()) fail(*this, "has no vertices to bound");
     // Centre of the axis-aligned box, then the farthest vertex: never too small, close to minimal.

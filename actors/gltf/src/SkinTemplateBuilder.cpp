@@ -41,19 +41,6 @@ void deactivateSmallParts(std::vector<SkeletonNode>& nodes, std::vector<Bounding
                                                 : std::max(kNearest, part[i].valid() ? 2.0 * part[i].radius() / angle : 0.0);
 }
 
-// The skin joint (index k) with the largest weight on vertex `v`; the first of equals.
-int dominantJoint(const MeshData& mesh, std::size_t v) {
-    int bestK = mesh.joints0[v][0];
-    float bestW = mesh.weights0[v][0];
-    for (int c = 1; c < 8; ++c) {
-        const bool second = c >= 4;
-        if (second && mesh.joints1.empty()) break;
-        const float w = second ? mesh.weights1[v][c - 4] : mesh.weights0[v][c];
-        if (w > bestW) bestW = w, bestK = second ? mesh.joints1[v][c - 4] : mesh.joints0[v][c];
-    }
-    return bestK;
-}
-
 // The template's name: the asset's, with the skin's when the file has several skins.
 std::string templateName(const tinygltf::Model& m, const std::string& name, int s) {
     if (m.skins.size() <= 1) return name;
@@ -233,7 +220,7 @@ std::vector<BoundingSphere> SkinTemplateBuilder::computeJointSpheres(const MeshD
     std::vector<BoundingSphere> parts(nodes_.size());  // bind space, metres: what each node moves
     const auto& ibm = c_.inverseBinds[static_cast<std::size_t>(s_)];
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-        const int bestK = dominantJoint(mesh, v);
+        const int bestK = static_cast<int>(mesh.strongestJoint(v));
         const glm::dvec4 p = glm::dmat4(ibm[static_cast<std::size_t>(bestK)]) * glm::dvec4(dvec3(mesh.positions[v]), 1.0);
         if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) spheres[static_cast<std::size_t>(bestK)].expandBy(dvec3(p));
         extentPoints_.push_back(options_.scale * dvec3(mesh.positions[v]));  // bind space, scaled

@@ -42,6 +42,9 @@ struct MeshData {
     bool skinned() const { return !joints0.empty(); }
     /// Number of influences per vertex (0, 4 or 8).
     int influenceCount() const { return joints0.empty() ? 0 : joints1.empty() ? 4 : 8; }
+    /// The skin joint with the largest weight on vertex `v` (the first of equals); the mesh must be
+    /// skinned and `v` in range.
+    std::uint32_t strongestJoint(std::size_t v) const;
 
     /// Throws std::invalid_argument naming the mesh and the problem if attribute counts disagree,
     /// a region is not a BodyRegion, an index is out of range, the index count is not a multiple of 3, or a value is not finite.
