@@ -24,7 +24,43 @@ bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.
 // Largest absolute value a 1-value DOF can take (its limits), for the reach bound.
 double dofReach(const Dof& d) { return std::max(std::abs(double(d.min)), std::abs(double(d.max))); }
 
+// The morph channels of a template's drawables: names in order of first appearance (nodes in
+// order, each's levels in order, then the actor-level vaLod), the first default weight of each,
+// and per node (nodeCount() for the actor-level vaLod) and level the channel of each target.
+struct MorphChannels {
+    std::vector<std::string> names;
+    std::vector<float> rest;
+    std::vector<std::vector<std::vector<std::uint32_t>>> maps;
+    bool any = false;
+};
+
+MorphChannels collectMorphChannels(const std::vector<SkeletonNode>& nodes, const VaLod& rootGeometry) {
+    MorphChannels out;
+    out.maps.resize(nodes.size() + 1);
+    auto mapLevels = [&](const VaLod& lod, std::vector<std::vector<std::uint32_t>>& map) {
+        map.resize(lod.levels().size());
+        for (std::size_t l = 0; l < lod.levels().size(); ++l) {
+            const auto* mesh = dynamic_cast<const MeshDrawable*>(lod.levels()[l].drawable.get());
+            if (!mesh) continue;
+            for (const MorphTarget& target : mesh->mesh().morphTargets) {
+                out.any = true;
+                const auto found = std::find(out.names.begin(), out.names.end(), target.name);
+                if (found == out.names.end()) {
+                    out.names.push_back(target.name);
+                    out.rest.push_back(target.defaultWeight);
+                }
+                map[l].push_back(static_cast<std::uint32_t>(std::find(out.names.begin(), out.names.end(), target.name) - out.names.begin()));
+            }
+        }
+    };
+    for (std::size_t i = 0; i < nodes.size(); ++i) mapLevels(nodes[i].geometry, out.maps[i]);
+    mapLevels(rootGeometry, out.maps[nodes.size()]);
+    return out;
+}
+
 }  // namespace
+
+std::vector<std::string> ActorTemplateBuilder::morphChannels() const { return collectMorphChannels(nodes_, rootGeometry_).names; }
 
 int ActorTemplate::findNode(std::string_view name) const {
     for (std::size_t i = 0; i < nodes_.size(); ++i)
@@ -38,6 +74,12 @@ int ActorTemplate::findClip(std::string_view name) const {
     return -1;
 }
 
+int ActorTemplate::findMorphChannel(std::string_view name) const {
+    for (std::size_t i = 0; i < morphChannels_.size(); ++i)
+        if (morphChannels_[i] == name) return static_cast<int>(i);
+    return -1;
+}
+
 std::size_t ActorTemplate::sharedBytes() const {
     std::size_t bytes = sizeof(ActorTemplate);
     std::set<const void*> meshes;
@@ -46,6 +88,7 @@ std::size_t ActorTemplate::sharedBytes() const {
             auto* mesh = dynamic_cast<const MeshDrawable*>(l.drawable.get());
             if (!mesh || !meshes.insert(&mesh->mesh()).second) continue;
             const MeshData& m = mesh->mesh();
+            for (const MorphTarget& t : m.morphTargets) bytes += (t.positions.size() + t.normals.size()) * sizeof(glm::vec3);
             bytes += m.positions.size() * sizeof(glm::vec3) + m.normals.size() * sizeof(glm::vec3) +
                      m.texcoords.size() * sizeof(glm::vec2) + m.indices.size() * sizeof(std::uint32_t) +
                      (m.joints0.size() + m.joints1.size()) * (sizeof(glm::u16vec4) + sizeof(glm::vec4));
@@ -217,6 +260,16 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
             ++dofs;
         }
     }
+    // Morph channels: one weight per target name, after the skeleton's values; each drawable's
+    // targets mapped to them.
+    t->morphWeightOffset_ = values;
+    {
+        MorphChannels channels = collectMorphChannels(nodes_, rootGeometry_);
+        t->morphChannels_ = std::move(channels.names);
+        t->restDofs_.insert(t->restDofs_.end(), channels.rest.begin(), channels.rest.end());
+        if (channels.any) t->morphMaps_ = std::move(channels.maps);
+    }
+    values += static_cast<std::uint32_t>(t->morphChannels_.size());
     t->dofValueCount_ = values;
     t->dofCount_ = dofs;
 
@@ -233,7 +286,12 @@ std::shared_ptr<const ActorTemplate> ActorTemplateBuilder::build() {
             const ClipChannel& c = clip->channels()[i];
             const std::string where = who + ", clip '" + clip->name() + "', channel " + std::to_string(i);
             int width = 0;
-            if (c.target == ClipChannel::Target::NodeDof) {
+            if (c.target == ClipChannel::Target::MorphWeight) {
+                if (c.node >= t->morphChannels_.size())
+                    throw std::invalid_argument(where + ": targets morph channel " + std::to_string(c.node) + " of " +
+                                                std::to_string(t->morphChannels_.size()));
+                width = 1;
+            } else if (c.target == ClipChannel::Target::NodeDof) {
                 if (c.node >= n) throw std::invalid_argument(where + ": targets node " + std::to_string(c.node) + " of " + std::to_string(n));
                 const SkeletonNode& node = t->nodes_[c.node];
                 if (c.dof >= node.dofs.size())

@@ -1,4 +1,4 @@
-// throng-inspect FILE: what the glTF loader makes of a file (templates, joint tree, clips,
+// throng-inspect FILE: what the glTF loader makes of a file (templates, joint tree, morph targets, clips,
 // primitives, bounding spheres, warnings). Exit 1 with "file: where: problem" when it cannot load,
 // 2 on a bad command line (no file, a file that does not exist, an unknown option).
 
@@ -39,9 +39,17 @@ void printCharacter(const CharacterAsset& asset, const LoadedCharacter& c) {
                         n.geometrySphere.center().z, n.geometrySphere.radius());
         std::printf("\n");
     }
+    std::printf("  morph channels: %zu\n", t.morphChannels().size());
+    for (std::size_t k = 0; k < t.morphChannels().size(); ++k)
+        std::printf("    %-24s rest weight %.3g\n", t.morphChannels()[k].c_str(), t.restDofs()[t.morphWeightOffset() + k]);
     std::printf("  clips: %zu\n", t.clips().size());
-    for (const auto& clip : t.clips())
-        std::printf("    %-24s %8.3f s  %zu channels\n", clip->name().c_str(), clip->duration(), clip->channels().size());
+    for (const auto& clip : t.clips()) {
+        std::size_t weights = 0;
+        for (const ClipChannel& ch : clip->channels()) weights += ch.target == ClipChannel::Target::MorphWeight;
+        std::printf("    %-24s %8.3f s  %zu channels", clip->name().c_str(), clip->duration(), clip->channels().size());
+        if (weights) std::printf(" (%zu of morph weights)", weights);
+        std::printf("\n");
+    }
 }
 
 }  // namespace
@@ -49,8 +57,8 @@ void printCharacter(const CharacterAsset& asset, const LoadedCharacter& c) {
 int main(int argc, char** argv) {
     std::string file;
     support::CommandLine cl("throng-inspect",
-                            "What the glTF loader makes of a character file: templates, the joint tree, clips,\n"
-                            "primitives, bounding spheres and warnings.");
+                            "What the glTF loader makes of a character file: templates, the joint tree, morph\n"
+                            "channels, clips, primitives with their morph targets, bounding spheres and warnings.");
     cl.app().add_option("FILE", file, "a .gltf or .glb file")->required()->check(support::existingFile());
     if (const auto code = cl.parse(argc, argv)) return *code;
     CharacterAsset asset;
@@ -82,6 +90,12 @@ int main(int argc, char** argv) {
                                                 std::to_string(p.data->baseColorTexture->height) + " texture").c_str()
                                              : "no texture",
                     b.center().x, b.center().y, b.center().z, b.radius());
+        if (!p.data->morphTargets.empty()) {
+            std::printf("    morph targets:");
+            for (const MorphTarget& m : p.data->morphTargets)
+                std::printf(" %s%s", m.name.c_str(), m.normals.empty() ? "" : " (+normals)");
+            std::printf("\n");
+        }
     }
     std::printf("triangles: %zu\nvertices: %zu\n", triangles, vertices);
     std::printf("warnings: %zu\n", asset.warnings.size());

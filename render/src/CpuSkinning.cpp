@@ -40,7 +40,7 @@ glm::mat4 blend(const MeshData& mesh, std::size_t v, const glm::vec4& w0, const 
 
 template <bool Eight>
 bool skinAll(const MeshData& mesh, std::span<const glm::mat4> palette, std::span<glm::vec3> positions,
-             std::span<glm::vec3> normals) {
+             std::span<glm::vec3> normals, const glm::vec3* sourcePositions, const glm::vec3* sourceNormals) {
     const std::size_t n = mesh.vertexCount();
     const bool doNormals = !normals.empty() && !mesh.normals.empty();
     const glm::mat4* pal = palette.data();
@@ -49,11 +49,11 @@ bool skinAll(const MeshData& mesh, std::span<const glm::mat4> palette, std::span
     for (std::size_t v = 0; v < n; ++v) {
         glm::vec4 w0, w1;
         detail::normalisedWeights(mesh, v, Eight, w0, w1);
-        const glm::vec3 p = mesh.positions[v];
+        const glm::vec3 p = sourcePositions[v];
         if (w0 == glm::vec4(0.0f) && w1 == glm::vec4(0.0f)) {  // no influence: bind pose
             positions[v] = p;
             if (doNormals) {
-                const glm::vec3 q = mesh.normals[v];
+                const glm::vec3 q = sourceNormals[v];
                 const float len = glm::length(q);
                 normals[v] = len > 0.0f ? q / len : q;
             }
@@ -62,7 +62,7 @@ bool skinAll(const MeshData& mesh, std::span<const glm::mat4> palette, std::span
         const glm::mat4 s = blend<Eight>(mesh, v, w0, w1, pal, size, bad);
         positions[v] = glm::vec3(s * glm::vec4(p, 1.0f));  // affine: the bottom row is ignored
         if (doNormals) {
-            const glm::vec3 q = glm::mat3(s) * mesh.normals[v];
+            const glm::vec3 q = glm::mat3(s) * sourceNormals[v];
             const float len = glm::length(q);
             normals[v] = len > 0.0f ? q / len : q;
         }
@@ -92,7 +92,7 @@ std::uint32_t requiredPaletteSize(const MeshData& mesh) {
 }
 
 void skinMesh(const MeshData& mesh, std::span<const glm::mat4> palette, std::span<glm::vec3> positions,
-              std::span<glm::vec3> normals) {
+              std::span<glm::vec3> normals, std::span<const glm::vec3> sourcePositions, std::span<const glm::vec3> sourceNormals) {
     const char* where = "skinMesh";
     if (!mesh.skinned()) fail(where, mesh, "is not skinned (it has no joints0/weights0)");
     const std::size_t n = mesh.vertexCount();
@@ -106,8 +106,17 @@ void skinMesh(const MeshData& mesh, std::span<const glm::mat4> palette, std::spa
     if (!normals.empty() && normals.size() != n)
         fail(where, mesh, "output 'normals' holds " + std::to_string(normals.size()) + " vertices, the mesh has " +
                               std::to_string(n));
-    const bool ok = mesh.influenceCount() == 8 ? skinAll<true>(mesh, palette, positions, normals)
-                                               : skinAll<false>(mesh, palette, positions, normals);
+    if (!sourcePositions.empty() && sourcePositions.size() != n)
+        fail(where, mesh, "'sourcePositions' holds " + std::to_string(sourcePositions.size()) + " vertices, the mesh has " +
+                              std::to_string(n));
+    const bool doNormals = !normals.empty() && !mesh.normals.empty();
+    if (doNormals && !sourceNormals.empty() && sourceNormals.size() != n)
+        fail(where, mesh, "'sourceNormals' holds " + std::to_string(sourceNormals.size()) + " vertices, the mesh has " +
+                              std::to_string(n));
+    const glm::vec3* p = sourcePositions.empty() ? mesh.positions.data() : sourcePositions.data();
+    const glm::vec3* q = sourceNormals.empty() || !doNormals ? mesh.normals.data() : sourceNormals.data();
+    const bool ok = mesh.influenceCount() == 8 ? skinAll<true>(mesh, palette, positions, normals, p, q)
+                                               : skinAll<false>(mesh, palette, positions, normals, p, q);
     if (!ok)  // rare: find what to name (the slow scan runs only on error)
         fail(where, mesh, "a joint index needs a palette of " + std::to_string(requiredPaletteSize(mesh)) +
                               " matrices, the palette has " + std::to_string(palette.size()));

@@ -128,6 +128,30 @@ GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh) {
         gl.VertexAttribPointer(kWeights1, 4, GL_FLOAT, GL_FALSE, 0, offset(oW1));
     }
     gl.BindVertexArray(0);
+    if (!mesh.morphTargets.empty()) {
+        // Target by target, vertex by vertex: the position offset, then the normal offset (zero
+        // where the target has none).
+        g.morphTargets = static_cast<std::uint32_t>(mesh.morphTargets.size());
+        std::vector<glm::vec4> texels(mesh.morphTargets.size() * n * kMorphTexelsPerVertex, glm::vec4(0.0f));
+        for (std::size_t k = 0; k < mesh.morphTargets.size(); ++k) {
+            const MorphTarget& t = mesh.morphTargets[k];
+            for (std::size_t v = 0; v < n; ++v) {
+                glm::vec4* at = texels.data() + (k * n + v) * kMorphTexelsPerVertex;
+                at[0] = glm::vec4(t.positions[v], 0.0f);
+                if (!t.normals.empty()) at[1] = glm::vec4(t.normals[v], 0.0f);
+            }
+        }
+        g.morphBytes = texels.size() * sizeof(glm::vec4);
+        gl.GenBuffers(1, &g.morphBuffer);
+        gl.BindBuffer(GL_TEXTURE_BUFFER, g.morphBuffer);
+        gl.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(g.morphBytes), texels.data(), GL_STATIC_DRAW);
+        gl.GenTextures(1, &g.morphTexture);
+        gl.ActiveTexture(GL_TEXTURE0 + kMorphOffsetUnit);
+        gl.BindTexture(GL_TEXTURE_BUFFER, g.morphTexture);
+        gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, g.morphBuffer);
+        gl.BindBuffer(GL_TEXTURE_BUFFER, 0);
+        gl.ActiveTexture(GL_TEXTURE0);
+    }
     return g;
 }
 
@@ -140,6 +164,8 @@ void destroyMesh(const GladGLContext& gl, GlMesh& mesh) {
     if (mesh.vao) gl.DeleteVertexArrays(1, &mesh.vao);
     if (mesh.vbo) gl.DeleteBuffers(1, &mesh.vbo);
     if (mesh.ibo) gl.DeleteBuffers(1, &mesh.ibo);
+    if (mesh.morphBuffer) gl.DeleteBuffers(1, &mesh.morphBuffer);
+    if (mesh.morphTexture) gl.DeleteTextures(1, &mesh.morphTexture);
     mesh = GlMesh{};
 }
 

@@ -32,11 +32,14 @@ struct GlMesh {
     std::size_t texcoordOffset = 0;    ///< byte offset of the texture coordinates in `vbo`
     bool hasRegions = false;           ///< the mesh has body regions (one byte per vertex)
     std::size_t regionOffset = 0;      ///< byte offset of the body regions in `vbo`
+    std::uint32_t morphTargets = 0;    ///< morph targets of the mesh
+    GLuint morphBuffer = 0, morphTexture = 0;  ///< their offsets (see kMorphTexelsPerVertex), a texture buffer
+    std::size_t morphBytes = 0;        ///< of `morphBuffer`
 };
 
 /// Uploads `mesh` (weights normalised as skinMesh() does; joints of zero-weight influences set to 0
-/// so that no fetch can leave the palette) and records vertex array state for the attributes it
-/// has. Throws std::invalid_argument naming the mesh if a skin weight is not finite.
+/// so that no fetch can leave the palette; morph target offsets into a texture buffer) and records
+/// vertex array state for the attributes it has. Throws std::invalid_argument naming the mesh if a skin weight is not finite.
 GlMesh uploadMesh(const GladGLContext& gl, const MeshData& mesh);
 
 /// Points attribute kRegion of the bound vertex array at `mesh`'s body regions (array buffer

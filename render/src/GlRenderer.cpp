@@ -93,7 +93,7 @@ struct KeyPoseFill {
 struct ProgramState {
     std::unique_ptr<ShaderProgram> program;
     GLint baseColor = -1, hasTexture = -1, hasNormals = -1, viewRotation = -1, projection = -1, flatTint = -1, regionIds = -1;
-    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1;
+    GLint lightDirection = -1, lightColor = -1, skyColor = -1, groundColor = -1, morphVertices = -1;
     std::uint64_t frameStamp = 0;  // frame whose camera and lights are loaded
 };
 
@@ -123,6 +123,7 @@ struct GlRenderer::Impl {
     RenderStatistics stats;
     Image lastFrame;
     ProgramState programs[3];  // 0, 4 and 8 influences
+    ProgramState morphPrograms[3];  // the same with morph targets, built when a mesh first has them
     ProgramState constantFaces;  // rigid triangles of one colour, shaded per vertex
     ProgramState flatLight;      // rigid triangles of one normal, lit per vertex
     ProgramState keyPosePrograms[2];  // key-pose items: one row, two rows blended
@@ -130,7 +131,8 @@ struct GlRenderer::Impl {
     GLint fillBase[2] = {-1, -1}, fillStride[2] = {-1, -1};
     std::size_t keyPoseBytes = 0;     // GPU bytes of every key-pose cache
     GLuint instanceBuffer = 0, paletteBuffer = 0, paletteTexture = 0, streamBuffer = 0, whiteTexture = 0;
-    std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0;
+    GLuint morphWeightBuffer = 0, morphWeightTexture = 0;  // this draw's (target, weight) pairs, made on first use
+    std::size_t instanceCapacity = 0, paletteCapacity = 0, streamCapacity = 0, morphWeightCapacity = 0;
     GLuint fragmentQuery = 0;  // GL_SAMPLES_PASSED, made on the first draw that counts fragments
     GLint maxTextureBufferTexels = 0;
     std::unordered_map<const MeshData*, std::unique_ptr<MeshEntry>> meshes;
@@ -150,6 +152,8 @@ struct GlRenderer::Impl {
     std::vector<InstanceData> instances;
     std::vector<glm::mat4> palette;
     std::vector<glm::vec3> cpuPositions, cpuNormals;
+    std::vector<glm::vec2> morphWeights;  // this draw's (target, weight) pairs, item after item
+    std::vector<glm::vec3> morphedPositions, morphedNormals;  // CPU path: one item's morphed shape
     std::vector<KeyPoseFill> fills;   // rows to skin this draw
     std::uint32_t keyPoseCaches = 0;  // caches met this draw
     const MeshData* lastMesh = nullptr;  // shortcut for runs of clones sharing a mesh
@@ -158,6 +162,39 @@ struct GlRenderer::Impl {
     explicit Impl(std::shared_ptr<GlContext> c) : context(std::move(c)), gl(context->gl()) {}
 
     ProgramState& programFor(int influences) { return programs[influences == 0 ? 0 : influences == 4 ? 1 : 2]; }
+
+    // Builds one program and finds its uniforms (absent ones read -1 and are ignored by GL).
+    void buildProgram(ProgramState& p, const std::string& name, const std::string& vertex, const std::string& fragment) {
+        p.program = std::make_unique<ShaderProgram>(*context, "GlRenderer shader (" + name + ")", vertex, fragment);
+        const ShaderProgram& s = *p.program;
+        p.baseColor = s.uniformLocation("uBaseColor");
+        p.hasTexture = s.uniformLocation("uHasTexture");
+        p.hasNormals = s.uniformLocation("uHasNormals");
+        p.flatTint = s.uniformLocation("uFlatTint");
+        p.regionIds = s.uniformLocation("uRegionIds");
+        p.viewRotation = s.uniformLocation("uViewRotation");
+        p.projection = s.uniformLocation("uProjection");
+        p.lightDirection = s.uniformLocation("uLightDirection");
+        p.lightColor = s.uniformLocation("uLightColor");
+        p.skyColor = s.uniformLocation("uSkyColor");
+        p.groundColor = s.uniformLocation("uGroundColor");
+        p.morphVertices = s.uniformLocation("uMorphVertices");
+        gl.UseProgram(s.id());
+        gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
+        gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
+        gl.Uniform1i(s.uniformLocation("uKeyPoses"), detail::kKeyPoseUnit);
+        gl.Uniform1i(s.uniformLocation("uMorphOffsets"), detail::kMorphOffsetUnit);
+        gl.Uniform1i(s.uniformLocation("uMorphWeights"), detail::kMorphWeightUnit);
+    }
+
+    // The program drawing meshes with morph targets and `influences` joint influences.
+    ProgramState& morphProgramFor(int influences) {
+        ProgramState& p = morphPrograms[influences == 0 ? 0 : influences == 4 ? 1 : 2];
+        if (!p.program)
+            buildProgram(p, std::to_string(influences) + " joint influences, morph targets",
+                         detail::vertexShaderSource(influences, false, true), detail::fragmentShaderSource());
+        return p;
+    }
 
     GLuint textureFor(const std::shared_ptr<const Image>& image) {
         if (!image) return 0;
@@ -233,6 +270,11 @@ struct GlRenderer::Impl {
             entry->source = mesh;
             entry->texture = textureFor(mesh->baseColorTexture);
             entry->baseColor = mesh->baseColor;
+            if (mesh->morphTargets.size() * mesh->vertexCount() * detail::kMorphTexelsPerVertex > static_cast<std::size_t>(maxTextureBufferTexels))
+                throw std::runtime_error("GlRenderer: mesh '" + mesh->name + "': its " + std::to_string(mesh->morphTargets.size()) +
+                                         " morph targets of " + std::to_string(mesh->vertexCount()) +
+                                         " vertices need more texels than this GL's texture buffer limit of " +
+                                         std::to_string(maxTextureBufferTexels));
             entry->gpu = detail::uploadMesh(gl, *mesh);
             gl.BindVertexArray(entry->gpu.vao);
             enableInstanceAttributes();
@@ -273,6 +315,21 @@ struct GlRenderer::Impl {
         gl.VertexAttribPointer(detail::kTint, 4, GL_FLOAT, GL_FALSE, stride, byteOffset(base + offsetof(InstanceData, tint)));
         gl.VertexAttribIPointer(detail::kPalette, 3, GL_INT, stride, byteOffset(base + offsetof(InstanceData, paletteBase)));
         gl.VertexAttribIPointer(detail::kLook, 4, GL_UNSIGNED_INT, stride, byteOffset(base + offsetof(InstanceData, look)));
+    }
+
+    // The non-zero morph weights of item `i` (with mesh `e`) once clamped; throws
+    // std::invalid_argument naming the item if one is not finite.
+    std::uint32_t morphWeightsOf(std::uint32_t i, const DrawItem& item, const MeshEntry& e) const {
+        if (!item.morphWeights || e.gpu.morphTargets == 0) return 0;
+        std::uint32_t n = 0;
+        for (std::uint32_t k = 0; k < e.gpu.morphTargets; ++k) {
+            const float w = item.morphWeights[k];
+            if (!std::isfinite(w))
+                throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + ": morph weight " +
+                                            std::to_string(k) + " is not finite");
+            n += w != 0.0f;
+        }
+        return n;
     }
 
     // Key-pose item `i` (in drawing order, with mesh `e`): checks it, finds (or makes the record
@@ -437,25 +494,8 @@ GlRenderer::GlRenderer(std::shared_ptr<GlContext> context, const RendererOptions
     r.options = options;
     r.context->makeCurrent();
     const GladGLContext& gl = r.gl;
-    // Builds one program and finds its uniforms (absent ones read -1 and are ignored by GL).
     const auto build = [&](ProgramState& p, const std::string& name, const std::string& vertex, const std::string& fragment) {
-        p.program = std::make_unique<ShaderProgram>(*r.context, "GlRenderer shader (" + name + ")", vertex, fragment);
-        const ShaderProgram& s = *p.program;
-        p.baseColor = s.uniformLocation("uBaseColor");
-        p.hasTexture = s.uniformLocation("uHasTexture");
-        p.hasNormals = s.uniformLocation("uHasNormals");
-        p.flatTint = s.uniformLocation("uFlatTint");
-        p.regionIds = s.uniformLocation("uRegionIds");
-        p.viewRotation = s.uniformLocation("uViewRotation");
-        p.projection = s.uniformLocation("uProjection");
-        p.lightDirection = s.uniformLocation("uLightDirection");
-        p.lightColor = s.uniformLocation("uLightColor");
-        p.skyColor = s.uniformLocation("uSkyColor");
-        p.groundColor = s.uniformLocation("uGroundColor");
-        gl.UseProgram(s.id());
-        gl.Uniform1i(s.uniformLocation("uTexture"), detail::kBaseColorUnit);
-        gl.Uniform1i(s.uniformLocation("uPalette"), detail::kPaletteUnit);
-        gl.Uniform1i(s.uniformLocation("uKeyPoses"), detail::kKeyPoseUnit);
+        r.buildProgram(p, name, vertex, fragment);
     };
     const int influences[3] = {0, 4, 8};
     for (int k = 0; k < 3; ++k)
@@ -510,10 +550,10 @@ GlRenderer::~GlRenderer() {
     const GladGLContext& gl = r.gl;
     for (auto& [key, entry] : r.meshes) r.destroyEntry(*entry);
     for (auto& [key, texture] : r.textures) gl.DeleteTextures(1, &texture.name);
-    const GLuint buffers[] = {r.instanceBuffer, r.streamBuffer, r.paletteBuffer};
-    gl.DeleteBuffers(3, buffers);
-    const GLuint textures[] = {r.paletteTexture, r.whiteTexture};
-    gl.DeleteTextures(2, textures);
+    const GLuint buffers[] = {r.instanceBuffer, r.streamBuffer, r.paletteBuffer, r.morphWeightBuffer};
+    gl.DeleteBuffers(4, buffers);  // zero names are ignored
+    const GLuint textures[] = {r.paletteTexture, r.whiteTexture, r.morphWeightTexture};
+    gl.DeleteTextures(3, textures);
     if (r.fragmentQuery) gl.DeleteQueries(1, &r.fragmentQuery);
 }
 
@@ -592,7 +632,7 @@ void GlRenderer::draw(const DrawList& list) {
     // 1. Check every item and sort it into a group (first appearance in drawing order: with
     // frontToBack, groups by their nearest item), before any drawing.
     r.drawOrder.plan(items, r.eye, r.options.frontToBack);
-    std::size_t paletteMatrices = 0, cpuVertices = 0;
+    std::size_t paletteMatrices = 0, cpuVertices = 0, morphWeights = 0;
     for (const std::uint32_t i : r.drawOrder.order()) {
         const DrawItem& item = *items[i];
         if (!item.drawable) throw std::invalid_argument("GlRenderer::draw: item " + std::to_string(i) + " has no drawable");
@@ -626,7 +666,12 @@ void GlRenderer::draw(const DrawList& list) {
             throw std::invalid_argument("GlRenderer::draw: " + itemName(i, *item.drawable) + ": its skin palette has " +
                                         std::to_string(item.skinPaletteSize) + " matrices but its joint indices need " +
                                         std::to_string(e.gpu.requiredPalette));
-        const Path path = !skinned ? Path::Rigid : r.options.forceCpuSkinning ? Path::CpuSkinned : Path::GpuSkinned;
+        const std::uint32_t morphs = r.morphWeightsOf(i, item, e);
+        morphWeights += morphs;
+        // The CPU path deforms on the CPU whatever it deforms: skin, morph targets or both.
+        const Path path = !skinned && !(morphs && r.options.forceCpuSkinning) ? Path::Rigid
+                          : r.options.forceCpuSkinning                       ? Path::CpuSkinned
+                                                                             : Path::GpuSkinned;
         if (path == Path::CpuSkinned) {
             r.itemGroup[i] = r.planner.alone(band);
             r.groups.push_back(Group{&e, path, mirrored, 1, 0, static_cast<std::uint32_t>(cpuVertices), band});
@@ -664,6 +709,8 @@ void GlRenderer::draw(const DrawList& list) {
     for (const KeyPoseFill& f : r.fills) std::copy_n(f.palette, f.mesh->gpu.requiredPalette, r.palette.data() + f.paletteBase);
     r.cpuPositions.resize(cpuVertices);
     r.cpuNormals.resize(cpuVertices);
+    r.morphWeights.clear();
+    r.morphWeights.reserve(morphWeights);
     std::size_t paletteCursor = 0;  // the items' palettes come first, then the fills'
     const Vec3 eye = r.eye;
     for (const std::uint32_t i : r.drawOrder.order()) {
@@ -672,6 +719,18 @@ void GlRenderer::draw(const DrawList& list) {
         const Group& g = r.groups[r.itemGroup[i]];
         InstanceData& d = r.instances[r.planner.nextSlot(r.itemGroup[i])];
         detail::writeInstance(d, item, eye);
+        if (g.mesh->gpu.morphTargets && item.morphWeights && g.path != Path::CpuSkinned) {
+            // Only the non-zero weights, in target order: the shader reads nothing else.
+            d.row1Base = static_cast<std::int32_t>(r.morphWeights.size());
+            for (std::uint32_t k = 0; k < g.mesh->gpu.morphTargets; ++k) {
+                const float w = std::clamp(item.morphWeights[k], -kMaxMorphWeight, kMaxMorphWeight);
+                if (w != 0.0f) r.morphWeights.emplace_back(static_cast<float>(k), w);
+            }
+            const auto count = static_cast<std::int32_t>(r.morphWeights.size()) - d.row1Base;
+            std::memcpy(&d.blend, &count, sizeof count);  // read as an int: the weights' count
+            if (count) ++r.stats.morphInstances;
+            r.stats.morphTargetsRead += static_cast<std::uint64_t>(count);
+        }
         if (g.path == Path::KeyPose || g.path == Path::KeyPoseBlend) {
             const KeyPoseRef& k = item.keyPose;
             const std::uint32_t n = g.mesh->gpu.vertexCount;  // rows * n fits the texel limit, checked above
@@ -685,10 +744,21 @@ void GlRenderer::draw(const DrawList& list) {
         } else if (g.path == Path::CpuSkinned) {
             const MeshData& mesh = static_cast<const MeshDrawable*>(item.drawable)->mesh();
             const std::size_t n = mesh.vertexCount();
-            skinMesh(mesh, std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize),
-                     std::span<glm::vec3>(r.cpuPositions).subspan(g.cpuVertexBase, n),
-                     mesh.normals.empty() ? std::span<glm::vec3>()
-                                          : std::span<glm::vec3>(r.cpuNormals).subspan(g.cpuVertexBase, n));
+            const std::span<glm::vec3> positions = std::span<glm::vec3>(r.cpuPositions).subspan(g.cpuVertexBase, n);
+            const std::span<glm::vec3> normals =
+                mesh.normals.empty() ? std::span<glm::vec3>() : std::span<glm::vec3>(r.cpuNormals).subspan(g.cpuVertexBase, n);
+            const bool morphed = g.mesh->gpu.morphTargets && item.morphWeights;
+            if (morphed) {  // targets first, then the skin (applyMorphTargets clamps as the shader's weights are)
+                applyMorphTargets(mesh, std::span<const float>(item.morphWeights, mesh.morphTargets.size()), positions, normals);
+                for (std::uint32_t k = 0; k < g.mesh->gpu.morphTargets; ++k) r.stats.morphTargetsRead += item.morphWeights[k] != 0.0f;
+                ++r.stats.morphInstances;
+            }
+            if (item.skinPalette && mesh.skinned())
+                skinMesh(mesh, std::span<const glm::mat4>(item.skinPalette, item.skinPaletteSize), positions, normals,
+                         morphed ? std::span<const glm::vec3>(positions) : std::span<const glm::vec3>(),
+                         morphed ? std::span<const glm::vec3>(normals) : std::span<const glm::vec3>());
+            else if (!morphed)
+                std::copy(mesh.positions.begin(), mesh.positions.end(), positions.begin());
         }
     }
 
@@ -701,6 +771,21 @@ void GlRenderer::draw(const DrawList& list) {
         const std::size_t bytes = paletteMatrices * sizeof(glm::mat4);
         r.reserveStream(GL_TEXTURE_BUFFER, r.paletteBuffer, r.paletteCapacity, bytes);
         gl.BufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), r.palette.data());
+    }
+    if (!r.morphWeights.empty()) {
+        if (!r.morphWeightBuffer) {
+            gl.GenBuffers(1, &r.morphWeightBuffer);
+            gl.GenTextures(1, &r.morphWeightTexture);
+        }
+        const std::size_t bytes = r.morphWeights.size() * sizeof(glm::vec2);
+        const std::size_t had = r.morphWeightCapacity;
+        r.reserveStream(GL_TEXTURE_BUFFER, r.morphWeightBuffer, r.morphWeightCapacity, bytes);
+        if (had != r.morphWeightCapacity || had == 0) {
+            gl.ActiveTexture(GL_TEXTURE0 + detail::kMorphWeightUnit);
+            gl.BindTexture(GL_TEXTURE_BUFFER, r.morphWeightTexture);
+            gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RG32F, r.morphWeightBuffer);
+        }
+        gl.BufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), r.morphWeights.data());
     }
     const std::size_t cpuBlock = cpuVertices * sizeof(glm::vec3);
     if (cpuVertices > 0) {
@@ -734,8 +819,17 @@ void GlRenderer::draw(const DrawList& list) {
         MeshEntry& e = *g.mesh;
         const detail::GlMesh& m = e.gpu;
         const bool keyPose = g.path == Path::KeyPose || g.path == Path::KeyPoseBlend;
+        const bool morph = m.morphTargets > 0 && (g.path == Path::Rigid || g.path == Path::GpuSkinned);
         ProgramState& p = keyPose ? r.keyPosePrograms[g.path == Path::KeyPoseBlend ? 1 : 0]
+                          : morph ? r.morphProgramFor(g.path == Path::GpuSkinned ? m.influences : 0)
                                   : r.programFor(g.path == Path::GpuSkinned ? m.influences : 0);
+        if (morph) {
+            gl.ActiveTexture(GL_TEXTURE0 + detail::kMorphOffsetUnit);
+            gl.BindTexture(GL_TEXTURE_BUFFER, m.morphTexture);
+            gl.ActiveTexture(GL_TEXTURE0 + detail::kMorphWeightUnit);
+            gl.BindTexture(GL_TEXTURE_BUFFER, r.morphWeightTexture);  // 0 when no item morphs: never read
+            gl.ActiveTexture(GL_TEXTURE0 + detail::kBaseColorUnit);
+        }
         gl.BindTexture(GL_TEXTURE_2D, e.texture ? e.texture : r.whiteTexture);
         if (g.mirrored != clockwise) {
             clockwise = g.mirrored;
@@ -776,7 +870,11 @@ void GlRenderer::draw(const DrawList& list) {
             ++r.stats.drawCalls;
         };
         const GLsizei classified = m.constantIndexCount + m.flatLitIndexCount;
-        if (oneColour && g.path == Path::Rigid) {
+        if (morph) {  // the shape moves: no triangle's shading is known in advance
+            useProgram(p, e);
+            gl.Uniform1i(p.morphVertices, static_cast<GLint>(m.vertexCount));
+            drawRange(0, m.indexCount);
+        } else if (oneColour && g.path == Path::Rigid) {
             useProgram(r.constantFaces, e);
             drawRange(constantFaces && classified > 0 ? m.indexCount : 0, m.indexCount);  // the order the pass itself draws
         } else if (constantFaces && g.path == Path::Rigid && classified > 0) {

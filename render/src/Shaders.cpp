@@ -23,6 +23,8 @@ layout(location = 14) in float aRegion;  // the vertex's body region (0: none)
 #define iPaletteBase iPalette.x
 #define iKeyPoseRow1 iPalette.y
 #define iKeyPoseBlend intBitsToFloat(iPalette.z)
+#define iMorphFirst iPalette.y
+#define iMorphCount iPalette.z
 
 uniform samplerBuffer uPalette;
 uniform mat4 uViewRotation;  // the view without its translation: the eye is the origin
@@ -96,6 +98,21 @@ void cachedVertex(int first, out vec3 p, out vec3 n) {
 }
 #endif
 
+#if MORPH
+uniform samplerBuffer uMorphOffsets;  // the mesh's: per target and vertex, position then normal offset
+uniform samplerBuffer uMorphWeights;  // this draw's: (target, weight) per non-zero weight
+uniform int uMorphVertices;
+// The instance's morph targets added, target by target in ascending order (as applyMorphTargets).
+void morph(inout vec3 p, inout vec3 n) {
+    for (int i = 0; i < iMorphCount; ++i) {
+        vec2 e = texelFetch(uMorphWeights, iMorphFirst + i).xy;
+        int t = 2 * (int(e.x) * uMorphVertices + gl_VertexID);
+        p += e.y * texelFetch(uMorphOffsets, t).xyz;
+        n += e.y * texelFetch(uMorphOffsets, t + 1).xyz;
+    }
+}
+#endif
+
 mat4 joint(int base, uint j) {
     int t = 4 * (base + int(j));
     return mat4(texelFetch(uPalette, t), texelFetch(uPalette, t + 1), texelFetch(uPalette, t + 2),
@@ -123,6 +140,9 @@ mat4 skinMatrix(int base) {
 void main() {
     vec3 p = aPosition;
     vec3 n = aNormal;
+#if MORPH
+    morph(p, n);  // before skinning: offsets are in the mesh's bind frame
+#endif
 #if INFLUENCES > 0
 #if FEEDBACK
     mat4 s = skinMatrix(uFeedbackBase + gl_InstanceID * uFeedbackStride);
@@ -279,12 +299,13 @@ void main() {
 )GLSL";
 
 // The vertex body with its switches set.
-std::string vertexVariant(int influences, bool feedback, bool constantFaces, bool flatLight, int keyPose, bool keyPoseFill) {
+std::string vertexVariant(int influences, bool feedback, bool constantFaces, bool flatLight, int keyPose, bool keyPoseFill,
+                          bool morph = false) {
     const auto flag = [](bool b) { return b ? "1" : "0"; };
     return std::string("#version 330 core\n#define INFLUENCES ") + std::to_string(influences) + "\n#define FEEDBACK " +
            flag(feedback) + "\n#define CONSTANT_FACES " + flag(constantFaces) + "\n#define FLAT_LIGHT " + flag(flatLight) +
-           "\n#define KEYPOSE " + std::to_string(keyPose) + "\n#define KEYPOSE_FILL " + flag(keyPoseFill) + "\n" +
-           withSrgbEncode(kVertexBody);
+           "\n#define KEYPOSE " + std::to_string(keyPose) + "\n#define KEYPOSE_FILL " + flag(keyPoseFill) + "\n#define MORPH " +
+           flag(morph) + "\n" + withSrgbEncode(kVertexBody);
 }
 
 }  // namespace
@@ -328,8 +349,8 @@ vec3 recolour(vec3 a, vec4 region, uvec4 look) {
 
 std::string srgbEncodeGlsl() { return kSrgbEncode; }
 
-std::string vertexShaderSource(int influences, bool feedback) {
-    return vertexVariant(influences, feedback, false, false, 0, false);
+std::string vertexShaderSource(int influences, bool feedback, bool morph) {
+    return vertexVariant(influences, feedback, false, false, 0, false, morph);
 }
 
 std::string keyPoseFillVertexShaderSource(int influences) { return vertexVariant(influences, true, false, false, 0, true); }

@@ -11,13 +11,19 @@ enum AttributeLocation : unsigned {
     kPosition = 0, kNormal = 1, kTexcoord = 2, kJoints0 = 3, kWeights0 = 4, kJoints1 = 5, kWeights1 = 6,
     kModel = 7,  // a mat4: locations 7-10
     kTint = 11,
-    kPalette = 12,  // an ivec3: first palette matrix (key-pose: row 0's first texel), row 1's first texel, row 1's weight's bits
+    // An ivec3: first palette matrix (key-pose: row 0's first texel), then row 1's first texel and
+    // row 1's weight's bits, or (meshes with morph targets) the first morph weight and their count.
+    kPalette = 12,
     kLook = 13,     // a uvec4: the actor's colour per body region (BodyLook)
     kRegion = 14    // per vertex: its body region, 0 (none) when the mesh has none
 };
 
 /// Texture units.
-enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1, kKeyPoseUnit = 2 };
+enum TextureUnit : int { kBaseColorUnit = 0, kPaletteUnit = 1, kKeyPoseUnit = 2, kMorphOffsetUnit = 3, kMorphWeightUnit = 4 };
+
+/// Texels of one vertex of one morph target in a mesh's offset buffer (RGBA32F): the position
+/// offset, then the normal offset. Target k's vertex v starts at texel 2 * (k * vertices + v).
+inline constexpr int kMorphTexelsPerVertex = 2;
 
 /// Bytes of one vertex in a key-pose cache: RGBA32UI, the skinned position's exact float bits in
 /// the first three words, the unit normal octahedron-encoded as two 16-bit snorms in the fourth
@@ -37,8 +43,11 @@ std::string bodyLookGlsl();
 /// The vertex shader for `influences` (0, 4 or 8) joint influences. With `feedback`, it outputs
 /// the skinned model-space position and normal (tfPosition, tfNormal) instead of drawing, with the
 /// palette starting at matrix uFeedbackBase + gl_InstanceID * uFeedbackStride (uniforms; 0 unless
-/// set).
-std::string vertexShaderSource(int influences, bool feedback);
+/// set). With `morph`, the mesh's morph targets are added before skinning: the instance's
+/// weights are (target, weight) pairs in uMorphWeights (RG32F) from its first morph weight on,
+/// the offsets in uMorphOffsets (see kMorphTexelsPerVertex), the mesh's vertex count in
+/// uMorphVertices.
+std::string vertexShaderSource(int influences, bool feedback, bool morph = false);
 
 /// The transform-feedback program that fills key-pose cache rows: the feedback variant of
 /// vertexShaderSource(influences, true) (the same skinning), capturing each vertex packed as

@@ -1,6 +1,7 @@
 #include "throng/scenegraph/MeshData.h"
 #include "throng/scenegraph/BodyLook.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -33,6 +34,26 @@ void MeshData::validate() const {
     for (std::size_t i = 0; i < n; ++i)
         if (!finite(positions[i])) fail(*this, "position " + std::to_string(i) + " is not finite");
     if (baseColorTexture && !baseColorTexture->valid()) fail(*this, "has an invalid base colour texture");
+    for (std::size_t t = 0; t < morphTargets.size(); ++t) {
+        const MorphTarget& m = morphTargets[t];
+        const std::string which = "morph target " + std::to_string(t) + (m.name.empty() ? std::string() : " '" + m.name + "'");
+        if (m.name.empty()) fail(*this, which + " has no name");
+        for (std::size_t u = 0; u < t; ++u)
+            if (morphTargets[u].name == m.name) fail(*this, which + " has the name of morph target " + std::to_string(u));
+        if (m.positions.size() != n) fail(*this, which + " has " + std::to_string(m.positions.size()) + " position offsets for " + std::to_string(n) + " vertices");
+        if (!m.normals.empty() && (normals.empty() || m.normals.size() != n))
+            fail(*this, which + " has " + std::to_string(m.normals.size()) + " normal offsets for " + std::to_string(normals.size()) + " normals");
+        for (std::size_t i = 0; i < n; ++i)
+            if (!finite(m.positions[i]) || (!m.normals.empty() && !finite(m.normals[i])))
+                fail(*this, which + ": the offset of vertex " + std::to_string(i) + " is not finite");
+        if (!std::isfinite(m.defaultWeight)) fail(*this, which + " has a non-finite default weight");
+    }
+}
+
+int MeshData::findMorphTarget(const std::string& targetName) const {
+    for (std::size_t t = 0; t < morphTargets.size(); ++t)
+        if (morphTargets[t].name == targetName) return static_cast<int>(t);
+    return -1;
 }
 
 std::uint32_t MeshData::strongestJoint(std::size_t v) const {
@@ -59,7 +80,14 @@ BoundingSphere MeshData::computeBound() const {
         const glm::dvec3 d = glm::dvec3(p) - c;
         r2 = std::max(r2, glm::dot(d, d));
     }
-    return BoundingSphere(c, std::sqrt(r2) * (1.0 + 1e-7));
+    // Any mix of targets moves a vertex by at most the sum of their largest offsets.
+    double reach = 0.0;
+    for (const MorphTarget& m : morphTargets) {
+        double largest = 0.0;
+        for (const glm::vec3& d : m.positions) largest = std::max(largest, glm::length(glm::dvec3(d)));
+        reach += kMaxMorphWeight * largest;
+    }
+    return BoundingSphere(c, (std::sqrt(r2) + reach) * (1.0 + 1e-7));
 }
 
 }  // namespace throng

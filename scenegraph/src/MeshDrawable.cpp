@@ -16,6 +16,7 @@ const std::shared_ptr<const MeshData>& checked(const std::shared_ptr<const MeshD
 MeshDrawable::MeshDrawable(std::shared_ptr<const MeshData> mesh) : MeshDrawable(Checked{}, checked(mesh)) {}
 
 MeshDrawable::MeshDrawable(Checked, std::shared_ptr<const MeshData> mesh)
-    : Drawable(mesh->name, mesh->computeBound(), mesh->triangleCount()), mesh_(std::move(mesh)) {}
+    : Drawable(mesh->name, mesh->computeBound(), mesh->triangleCount(), static_cast<std::uint32_t>(mesh->morphTargets.size())),
+      mesh_(std::move(mesh)) {}
 
 }  // namespace throng

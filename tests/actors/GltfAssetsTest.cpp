@@ -190,3 +190,15 @@ TEST(GltfAssets, JointSpheresStayInsideTheSklsrootSphereOverEveryClip) {
         }
     }
 }
+
+TEST(GltfAssets, RobotExpressiveLoadsItsFaceTargetsAndTheirClips) {
+    const CharacterAsset a = loadCharacter(testkit::characterPath("RobotExpressive.glb"));
+    const ActorTemplate& t = *a.primaryTemplate();
+    for (const char* name : {"Angry", "Surprised", "Sad"}) EXPECT_GE(t.findMorphChannel(name), 0) << name;
+    EXPECT_EQ(t.morphChannels().size(), 3u);
+    std::size_t weightChannels = 0;
+    for (const auto& clip : t.clips())
+        for (const ClipChannel& c : clip->channels()) weightChannels += c.target == ClipChannel::Target::MorphWeight;
+    EXPECT_GE(weightChannels, t.clips().size());  // every clip drives the face
+    for (const std::string& w : a.warnings) EXPECT_EQ(w.find("morph target"), std::string::npos) << w;
+}

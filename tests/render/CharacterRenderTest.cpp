@@ -101,13 +101,7 @@ TEST_F(CharacterRenderTest, GoldenImagesOfLoadedCharacters) {
     }
 }
 
-// Compares `a` with `b` under `t`; empty when they agree, else what differs.
-std::string disagreement(const Image& a, const Image& b, const test::GoldenTolerance& t) {
-    const testkit::ImageDifference d = testkit::compareImages(a, b, t.threshold);
-    if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
-    return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
-           "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";
-}
+using test::disagreement;
 
 TEST_F(CharacterRenderTest, CpuAndGpuSkinningAgreeOnCesiumMan) {
     const auto tmpl = asset("CesiumMan.glb").primaryTemplate();

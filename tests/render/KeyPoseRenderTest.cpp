@@ -76,13 +76,7 @@ Character character(const std::string& file) {
     return c;
 }
 
-// What a pass/fail comparison says: empty when `a` and `b` agree under `t`.
-std::string disagreement(const Image& a, const Image& b, const test::GoldenTolerance& t) {
-    const testkit::ImageDifference d = testkit::compareImages(a, b, t.threshold);
-    if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
-    return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
-           "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";
-}
+using test::disagreement;
 
 // A camera from `azimuthDeg` (about +Y from +Z) and `elevationDeg` framing `mesh` posed by `palette`
 // and placed by `world`.

@@ -86,4 +86,11 @@ std::string compareWithGolden(const Image& actual, const std::string& name, cons
     return why.str();
 }
 
+std::string disagreement(const Image& a, const Image& b, const GoldenTolerance& t) {
+    const testkit::ImageDifference d = testkit::compareImages(a, b, t.threshold);
+    if (d.fractionOverThreshold <= t.maxFraction && d.psnr >= t.minPsnr) return {};
+    return std::to_string(d.pixelsOverThreshold) + " pixels (" + std::to_string(100.0 * d.fractionOverThreshold) +
+           "%) differ by more than " + std::to_string(t.threshold) + ", PSNR " + std::to_string(d.psnr) + " dB";
+}
+
 }  // namespace throng::test

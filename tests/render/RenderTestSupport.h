@@ -71,6 +71,10 @@ struct GoldenTolerance {
 /// an empty string on success, else what failed; writes output/<name>-actual.png and -diff.png.
 std::string compareWithGolden(const Image& actual, const std::string& name, const GoldenTolerance& tolerance = {});
 
+/// What a pass/fail comparison of two frames says: empty when `a` and `b` agree under `t`, else
+/// how many pixels differ and the PSNR.
+std::string disagreement(const Image& a, const Image& b, const GoldenTolerance& t);
+
 /// Writes `image` to output/<name>.png for a human to look at.
 void writeOutput(const Image& image, const std::string& name);
 

@@ -277,6 +277,7 @@ ReadPrimitive ContentReader::readPrimitive(int nodeIndex, int meshIndex, int p) 
         sameCount("NORMAL", nv.count, nv.width, 3);
         for (std::size_t v = 0; v < count; ++v) mesh->normals.emplace_back(nv.values[v * 3], nv.values[v * 3 + 1], nv.values[v * 3 + 2]);
     }
+    readMorphTargets(meshIndex, prim, where, *mesh);
     // Material: base colour and its texture.
     int texCoord = 0;
     if (prim.material >= 0) {
@@ -427,6 +428,7 @@ ReadPrimitive ContentReader::readPrimitive(int nodeIndex, int meshIndex, int p) 
         auto w = std::make_shared<MeshData>(*mesh);
         const dmat4& mw = c_.world[static_cast<std::size_t>(nodeIndex)];
         const glm::dmat3 nm = glm::inverseTranspose(glm::dmat3(mw));
+        transformMorphTargets(*w, mw);  // before the normals it reads are transformed
         for (std::size_t v = 0; v < w->positions.size(); ++v) {
             glm::vec3& p3 = w->positions[v];
             p3 = glm::vec3(mw * glm::dvec4(dvec3(p3), 1.0));
@@ -451,7 +453,91 @@ ReadPrimitive ContentReader::readPrimitive(int nodeIndex, int meshIndex, int p) 
     return out;
 }
 
+const std::vector<std::string>& ContentReader::targetNames(int meshIndex) {
+    auto& names = c_.targetNames[static_cast<std::size_t>(meshIndex)];
+    if (!names.empty()) return names;
+    const tinygltf::Mesh& mesh = m_.meshes[static_cast<std::size_t>(meshIndex)];
+    const std::string where = ptr("/meshes", static_cast<std::size_t>(meshIndex));
+    const std::size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    for (std::size_t p = 1; p < mesh.primitives.size(); ++p)
+        if (mesh.primitives[p].targets.size() != targets)
+            doc_.fail(ptr(where + "/primitives", p) + "/targets", "has " + std::to_string(mesh.primitives[p].targets.size()) +
+                                                                " morph targets, primitive 0 has " + std::to_string(targets) +
+                                                                " (glTF: every primitive of a mesh has the same number)");
+    if (!mesh.weights.empty() && mesh.weights.size() != targets)
+        doc_.fail(where + "/weights", "holds " + std::to_string(mesh.weights.size()) + " weights for " + std::to_string(targets) +
+                                          " morph targets");
+    for (std::size_t k = 0; k < mesh.weights.size(); ++k)
+        if (!std::isfinite(mesh.weights[k])) doc_.fail(ptr(where + "/weights", k), "is not finite");
+    // Names: the de facto convention, extras.targetNames; otherwise "target<k>".
+    const tinygltf::Value& given = mesh.extras.Has("targetNames") ? mesh.extras.Get("targetNames") : tinygltf::Value();
+    bool named = false;
+    if (given.IsArray()) {
+        if (given.ArrayLen() != targets)
+            doc_.warn(where + "/extras/targetNames", "holds " + std::to_string(given.ArrayLen()) + " names for " +
+                                                         std::to_string(targets) + " morph targets: targets named by number");
+        else named = true;
+        for (std::size_t k = 0; named && k < targets; ++k)
+            if (!given.Get(static_cast<int>(k)).IsString() || given.Get(static_cast<int>(k)).Get<std::string>().empty()) {
+                doc_.warn(ptr(where + "/extras/targetNames", k), "is not a non-empty string: targets named by number");
+                named = false;
+            }
+    } else if (mesh.extras.Has("targetNames")) {
+        doc_.warn(where + "/extras/targetNames", "is not an array: targets named by number");
+    }
+    std::set<std::string> seen;
+    for (std::size_t k = 0; k < targets; ++k) {
+        const std::string base = named ? given.Get(static_cast<int>(k)).Get<std::string>() : "target" + std::to_string(k);
+        std::string name = base;
+        for (int n = 2; seen.count(name); ++n) name = base + "#" + std::to_string(n);
+        if (name != base) doc_.warn(ptr(where + "/extras/targetNames", k), "repeats '" + base + "': renamed '" + name + "'");
+        seen.insert(name);
+        names.push_back(name);
+    }
+    return names;
+}
+
+void ContentReader::readMorphTargets(int meshIndex, const tinygltf::Primitive& prim, const std::string& where, MeshData& mesh) {
+    if (prim.targets.empty()) return;
+    const std::vector<std::string>& names = targetNames(meshIndex);
+    const tinygltf::Mesh& gm = m_.meshes[static_cast<std::size_t>(meshIndex)];
+    const std::size_t count = mesh.vertexCount();
+    std::set<std::string> dropped;
+    for (std::size_t k = 0; k < prim.targets.size(); ++k) {
+        const std::string tw = ptr(where + "/targets", k) + "/";
+        MorphTarget target;
+        target.name = names[k];
+        target.defaultWeight = gm.weights.empty() ? 0.0f : static_cast<float>(gm.weights[k]);
+        // Offsets are VEC3, FLOAT or normalised integers, one per vertex of the primitive.
+        auto offsets = [&](const std::string& key, std::vector<glm::vec3>& out) {
+            const int a = prim.targets[k].at(key);
+            const auto v = reader_.readNumbers(a, tw + key);
+            if (v.width != 3 || reader_.accessor(a, tw + key).type != TINYGLTF_TYPE_VEC3) doc_.fail(tw + key, "must be VEC3");
+            if (v.count != count)
+                doc_.fail(tw + key, "holds " + std::to_string(v.count) + " offsets, the primitive has " + std::to_string(count) + " vertices");
+            for (std::size_t i = 0; i < count; ++i) out.emplace_back(v.values[i * 3], v.values[i * 3 + 1], v.values[i * 3 + 2]);
+        };
+        for (const auto& [key, accessor] : prim.targets[k]) {
+            if (key == "POSITION") offsets(key, target.positions);
+            else if (key == "NORMAL" && !mesh.normals.empty()) offsets(key, target.normals);
+            else if (key == "TANGENT") {
+                std::vector<glm::vec3> checked;  // read and checked; no tangent is drawn
+                offsets(key, checked);
+                dropped.insert(key);
+            } else dropped.insert(key);
+        }
+        if (target.positions.empty()) target.positions.assign(count, glm::vec3(0.0f));  // a target of normals alone
+        mesh.morphTargets.push_back(std::move(target));
+    }
+    if (!dropped.empty()) {
+        std::string keys;
+        for (const std::string& k : dropped) keys += (keys.empty() ? "" : ", ") + k;
+        doc_.warn(where + "/targets", "morph target offsets of " + keys + " are not used (no such attribute is drawn): ignored");
+    }
+}
+
 void ContentReader::readPrimitives() {
+    c_.targetNames.resize(m_.meshes.size());
     for (int n : c_.order) {
         const tinygltf::Node& node = m_.nodes[static_cast<std::size_t>(n)];
         if (node.mesh < 0) continue;
@@ -503,13 +589,18 @@ void ContentReader::readAnimations() {
             if (ch.target_path == "translation") path = 0;
             else if (ch.target_path == "rotation") path = 1;
             else if (ch.target_path == "scale") path = 2;
-            else if (ch.target_path == "weights") {
-                doc_.warn(cw + "/target/path", "morph target weights are not supported: ignored");
-                continue;
-            } else {
+            else if (ch.target_path == "weights") path = 3;
+            else {
                 doc_.fail(cw + "/target/path", "unknown path '" + ch.target_path + "'");
             }
-            if (!drivesJoint[static_cast<std::size_t>(ch.target_node)]) {
+            std::size_t targets = 0;  // weights: the node's mesh's morph targets
+            if (path == 3) {
+                const int meshIndex = m_.nodes[static_cast<std::size_t>(ch.target_node)].mesh;
+                targets = meshIndex < 0 ? 0 : targetNames(meshIndex).size();
+                if (targets == 0)
+                    doc_.fail(cw + "/target", "animates the morph weights of node " + std::to_string(ch.target_node) +
+                                                  ", whose mesh has no morph target");
+            } else if (!drivesJoint[static_cast<std::size_t>(ch.target_node)]) {
                 // Only joints and the nodes above them become Skeleton nodes; the data of such
                 // channels is not even read.
                 doc_.warn(cw, "animates node " + std::to_string(ch.target_node) + ", which is not a joint of any skin nor above one: ignored");
@@ -544,23 +635,36 @@ void ContentReader::readAnimations() {
                 cached.first = times;
                 cached.second = values;
                 const std::size_t perKey = (out.interpolation == Interpolation::CubicSpline ? 3u : 1u);
-                if (outv.count != times->size() * perKey)
-                    doc_.fail(sw + "/output", "holds " + std::to_string(outv.count) + " elements for " + std::to_string(times->size()) +
-                                             " keys (" + s.interpolation + " needs " + std::to_string(times->size() * perKey) + ")");
+                if (path == 3) {
+                    // Weights: a SCALAR per target per key (and per tangent for CUBICSPLINE).
+                    if (outv.width != 1) doc_.fail(sw + "/output", "has " + std::to_string(outv.width) + " components, weights need SCALAR");
+                    if (outv.count % targets != 0)
+                        doc_.fail(sw + "/output", "holds " + std::to_string(outv.count) + " weights, not a multiple of the " +
+                                                 std::to_string(targets) + " morph targets of node " + std::to_string(ch.target_node) + "'s mesh");
+                    if (outv.count != times->size() * perKey * targets)
+                        doc_.fail(sw + "/output", "holds " + std::to_string(outv.count) + " weights for " + std::to_string(times->size()) +
+                                                 " keys of " + std::to_string(targets) + " morph targets (" + s.interpolation + " needs " +
+                                                 std::to_string(times->size() * perKey * targets) + ")");
+                } else {
+                    if (outv.count != times->size() * perKey)
+                        doc_.fail(sw + "/output", "holds " + std::to_string(outv.count) + " elements for " + std::to_string(times->size()) +
+                                                 " keys (" + s.interpolation + " needs " + std::to_string(times->size() * perKey) + ")");
+                    if (outv.width != (path == 1 ? 4 : 3))
+                        doc_.fail(sw + "/output", "has " + std::to_string(outv.width) + " components, " + ch.target_path + " needs " +
+                                                 std::to_string(path == 1 ? 4 : 3));
+                }
                 info.duration = std::max(info.duration, double(times->back()));
-                if (outv.width != (path == 1 ? 4 : 3))
-                    doc_.fail(sw + "/output", "has " + std::to_string(outv.width) + " components, " + ch.target_path + " needs " +
-                                             std::to_string(path == 1 ? 4 : 3));
             } else {
-                const std::size_t width = path == 1 ? 4 : 3;
+                const std::size_t width = path == 1 ? 4 : path == 3 ? targets : 3;
                 const std::size_t perKey = (out.interpolation == Interpolation::CubicSpline ? 3u : 1u);
                 if (cached.second->size() != cached.first->size() * perKey * width)
                     doc_.fail(sw + "/output", "is used for paths of different widths");
             }
+            out.targets = static_cast<int>(targets);
             out.times = cached.first;
             out.values = cached.second;
             c_.channels[a].push_back(out);
-            c_.animatedNodes.insert(out.node);
+            if (path != 3) c_.animatedNodes.insert(out.node);  // weights move no node
         }
         asset_.animations.push_back(info);
     }

@@ -41,6 +41,12 @@ private:
     void readPrimitives();
     // One primitive: positions, normals, material colour and texture, triangles, skin influences.
     ReadPrimitive readPrimitive(int nodeIndex, int meshIndex, int p);
+    // The morph targets of primitive `prim` of mesh `meshIndex` (at `where`) into `mesh`, whose
+    // positions and normals are read: offsets checked against its vertex count.
+    void readMorphTargets(int meshIndex, const tinygltf::Primitive& prim, const std::string& where, MeshData& mesh);
+    // The morph target names of mesh `meshIndex` (checked once: target counts of its primitives,
+    // its default weights, its extras.targetNames), unique within the mesh.
+    const std::vector<std::string>& targetNames(int meshIndex);
     // glTF image `imageIndex` decoded (once), or null (with a warning) when it cannot be.
     std::shared_ptr<const Image> texture(int imageIndex);
     // The channels that drive joints or nodes above them, with their keys checked.

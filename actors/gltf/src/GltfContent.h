@@ -29,7 +29,8 @@ struct ReadPrimitive {
 /// One animation channel that drives a joint or a node above one (the others are not read).
 struct ReadChannel {
     int node = -1;   ///< glTF node driven
-    int path = 0;    ///< 0 translation, 1 rotation, 2 scale
+    int path = 0;    ///< 0 translation, 1 rotation, 2 scale, 3 morph weights
+    int targets = 0; ///< morph weights: the morph targets of the node's mesh (values per key)
     int index = 0;   ///< channel index in the animation
     Interpolation interpolation = Interpolation::Linear;  ///< as the sampler says
     std::shared_ptr<const std::vector<float>> times;      ///< key times, shared by channels of one sampler
@@ -48,6 +49,7 @@ struct GltfContent {
     std::vector<std::vector<glm::mat4>> inverseBinds;  ///< per skin: one per joint
     std::vector<ReadPrimitive> primitives;             ///< every primitive instance of the scene
     std::vector<std::vector<ReadChannel>> channels;    ///< per animation: channels read
+    std::vector<std::vector<std::string>> targetNames; ///< per mesh: its morph targets' names (unique), when read
     std::set<int> animatedNodes;      ///< nodes some read channel drives
 };
 

@@ -20,6 +20,12 @@ std::shared_ptr<MeshData> compact(const MeshData& in, std::vector<std::uint32_t>
     out->name = in.name;
     out->baseColor = in.baseColor;
     out->baseColorTexture = in.baseColorTexture;
+    for (const MorphTarget& t : in.morphTargets) {  // the targets keep the kept vertices' offsets
+        MorphTarget kept;
+        kept.name = t.name;
+        kept.defaultWeight = t.defaultWeight;
+        out->morphTargets.push_back(std::move(kept));
+    }
     for (std::uint32_t& i : indices) {
         if (remap[i] == kUnused) {
             remap[i] = static_cast<std::uint32_t>(out->positions.size());
@@ -29,6 +35,11 @@ std::shared_ptr<MeshData> compact(const MeshData& in, std::vector<std::uint32_t>
             if (!in.regions.empty()) out->regions.push_back(in.regions[i]);
             if (!in.joints0.empty()) out->joints0.push_back(in.joints0[i]), out->weights0.push_back(in.weights0[i]);
             if (!in.joints1.empty()) out->joints1.push_back(in.joints1[i]), out->weights1.push_back(in.weights1[i]);
+            for (std::size_t k = 0; k < in.morphTargets.size(); ++k) {
+                const MorphTarget& t = in.morphTargets[k];
+                out->morphTargets[k].positions.push_back(t.positions[i]);
+                if (!t.normals.empty()) out->morphTargets[k].normals.push_back(t.normals[i]);
+            }
         }
         i = remap[i];
     }

@@ -198,6 +198,7 @@ void SkinTemplateBuilder::addRigidGeometry(int node, int skeletonNode) {
     for (int pi : r->second) {
         const ReadPrimitive& p = c_.primitives[static_cast<std::size_t>(pi)];
         auto mesh = std::make_shared<MeshData>(*p.world);
+        transformMorphTargets(*mesh, toJoint);  // before the normals it reads are transformed
         for (auto& v : mesh->positions) v = glm::vec3(toJoint * glm::dvec4(dvec3(v), 1.0));
         const glm::dmat3 nm = glm::inverseTranspose(glm::dmat3(toJoint));
         for (auto& v : mesh->normals) {
@@ -296,9 +297,19 @@ void SkinTemplateBuilder::addMeshLevels(const std::shared_ptr<MeshData>& mesh, i
 
 void SkinTemplateBuilder::addClips() {
     std::set<std::string> clipNames;
+    const std::vector<std::string> morphChannels = builder_.morphChannels();
+    std::set<int> drawnNodes;  // glTF nodes whose primitives this template draws
+    for (int i : out_.character.primitives) drawnNodes.insert(c_.primitives[static_cast<std::size_t>(i)].node);
     for (std::size_t a = 0; a < c_.channels.size(); ++a) {
         std::vector<ClipChannel> out;
+        std::set<std::uint32_t> weighted;  // morph channels this clip drives already
         for (const ReadChannel& in : c_.channels[a]) {
+            if (in.path == 3) {
+                if (!drawnNodes.count(in.node)) continue;  // another template's mesh
+                const bool used = addWeightChannels(in, morphChannels, weighted, out);
+                if (used) out_.channelsUsed.emplace_back(static_cast<int>(a), in.index);
+                continue;
+            }
             const JointFold& f = fold_[static_cast<std::size_t>(in.node)];
             if (f.skeleton < 0) continue;  // not a Skeleton node of this template
             out.push_back(clipChannel(in, f, a));
@@ -315,6 +326,34 @@ void SkinTemplateBuilder::addClips() {
         }
         out_.character.clipSource.push_back(static_cast<int>(a));
     }
+}
+
+bool SkinTemplateBuilder::addWeightChannels(const ReadChannel& in, const std::vector<std::string>& morphChannels,
+                                            std::set<std::uint32_t>& weighted, std::vector<ClipChannel>& out) const {
+    const int meshIndex = m_.nodes[static_cast<std::size_t>(in.node)].mesh;
+    const std::vector<std::string>& names = c_.targetNames[static_cast<std::size_t>(meshIndex)];
+    const auto targets = static_cast<std::size_t>(in.targets);
+    const std::size_t perKey = in.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    bool used = false;
+    for (std::size_t k = 0; k < targets && k < names.size(); ++k) {
+        const auto found = std::find(morphChannels.begin(), morphChannels.end(), names[k]);
+        if (found == morphChannels.end()) continue;
+        const auto channel = static_cast<std::uint32_t>(found - morphChannels.begin());
+        // Meshes sharing a target name share its weight: the first channel driving it wins.
+        if (!weighted.insert(channel).second) continue;
+        ClipChannel cc;
+        cc.target = ClipChannel::Target::MorphWeight;
+        cc.node = channel;
+        cc.interpolation = in.interpolation;
+        cc.times = *in.times;
+        // Per key the file holds every target's value (CUBICSPLINE: in-tangents, values and
+        // out-tangents, each for every target); this target's are picked out.
+        for (std::size_t key = 0; key < cc.times.size(); ++key)
+            for (std::size_t part = 0; part < perKey; ++part) cc.values.push_back((*in.values)[(key * perKey + part) * targets + k]);
+        out.push_back(std::move(cc));
+        used = true;
+    }
+    return used;
 }
 
 ClipChannel SkinTemplateBuilder::clipChannel(const ReadChannel& in, const JointFold& f, std::size_t a) const {

@@ -74,6 +74,11 @@ private:
     void addMeshLevels(const std::shared_ptr<MeshData>& mesh, int skinIndex);
     // One clip per animation that drives a Skeleton node of this template.
     void addClips();
+    // Morph-weight channel `in` as one MorphWeight clip channel per target of its node's mesh
+    // (indices into `morphChannels`), into `out`, skipping channels `weighted` already holds (it
+    // gains the new ones). Returns whether any was added.
+    bool addWeightChannels(const ReadChannel& in, const std::vector<std::string>& morphChannels,
+                           std::set<std::uint32_t>& weighted, std::vector<ClipChannel>& out) const;
     // Channel `in` of animation `a` as a clip channel of Skeleton node `f.skeleton`: translations
     // carry the folded scale and rotation, quaternion keys are normalised.
     ClipChannel clipChannel(const ReadChannel& in, const JointFold& f, std::size_t a) const;

@@ -89,6 +89,34 @@ std::shared_ptr<MeshData> mergeSkinnedPrimitives(GltfDocument& doc, const std::v
             }
     }
     if (chosen >= 0 && !merged->baseColorTexture) merged->texcoords.clear();
+    // Morph targets by name: a primitive without one of them adds zero offsets for it.
+    for (int i : which)
+        for (const MorphTarget& t : primitives[static_cast<std::size_t>(i)].local->morphTargets)
+            if (merged->findMorphTarget(t.name) < 0) {
+                MorphTarget m;
+                m.name = t.name;
+                m.defaultWeight = t.defaultWeight;
+                merged->morphTargets.push_back(std::move(m));
+            }
+    for (MorphTarget& m : merged->morphTargets) {
+        bool anyNormals = false;
+        for (int i : which) {
+            const MeshData& p = *primitives[static_cast<std::size_t>(i)].local;
+            const int k = p.findMorphTarget(m.name);
+            anyNormals = anyNormals || (k >= 0 && !p.morphTargets[static_cast<std::size_t>(k)].normals.empty());
+        }
+        anyNormals = anyNormals && normals;
+        for (int i : which) {
+            const MeshData& p = *primitives[static_cast<std::size_t>(i)].local;
+            const int k = p.findMorphTarget(m.name);
+            const MorphTarget* t = k >= 0 ? &p.morphTargets[static_cast<std::size_t>(k)] : nullptr;
+            if (t) m.positions.insert(m.positions.end(), t->positions.begin(), t->positions.end());
+            else m.positions.insert(m.positions.end(), p.vertexCount(), glm::vec3(0.0f));
+            if (!anyNormals) continue;
+            if (t && !t->normals.empty()) m.normals.insert(m.normals.end(), t->normals.begin(), t->normals.end());
+            else m.normals.insert(m.normals.end(), p.vertexCount(), glm::vec3(0.0f));
+        }
+    }
     return merged;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace throng::gltf {
@@ -46,6 +47,18 @@ double restExtent(const std::vector<dvec3>& points) {
     double far = 0;
     for (const dvec3& p : points) far = std::max(far, glm::length(p));
     return far;
+}
+
+void transformMorphTargets(MeshData& mesh, const dmat4& m) {
+    const glm::dmat3 linear(m);
+    const glm::dmat3 normal = glm::inverseTranspose(linear);
+    for (MorphTarget& t : mesh.morphTargets) {
+        for (glm::vec3& d : t.positions) d = glm::vec3(linear * dvec3(d));
+        for (std::size_t v = 0; v < t.normals.size(); ++v) {
+            const double len = glm::length(normal * dvec3(mesh.normals[v]));
+            t.normals[v] = glm::vec3(normal * dvec3(t.normals[v]) / (len > 0.0 ? len : 1.0));
+        }
+    }
 }
 
 }  // namespace throng::gltf

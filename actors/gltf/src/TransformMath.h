@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include "throng/scenegraph/MeshData.h"
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -34,5 +35,10 @@ bool nearIdentity(const dmat4& m);
 dmat4 uniformScale(double scale);
 /// The largest distance of `points` from the origin (0 for none): a character's rest extent.
 double restExtent(const std::vector<dvec3>& points);
+/// Carries the morph targets of `mesh` (whose positions and normals are still untransformed) into
+/// the frame `m` takes the mesh to: position offsets by its linear part, normal offsets by its
+/// normal matrix scaled per vertex as the vertex's normal is, so that normalising the morphed,
+/// transformed normal gives what transforming the morphed normal gives.
+void transformMorphTargets(MeshData& mesh, const dmat4& m);
 
 }  // namespace throng::gltf

@@ -46,8 +46,22 @@ public:
     /// Kind of DOF `dof` of node `node` (what nodes()[node].dofs[dof].kind says, from a flat table
     /// that sampling a clip reads once per channel).
     DofKind dofKind(std::size_t node, std::size_t dof) const { return dofKind_[firstDof_[node] + dof]; }
-    /// Number of DOF values of the whole skeleton.
+    /// Number of DOF values of a pose: the skeleton's, then one weight per morph channel.
     std::uint32_t dofValueCount() const { return dofValueCount_; }
+
+    /// Morph channels: the names of the morph targets of the template's meshes, one weight each
+    /// (meshes with a target of the same name share its weight), in order of first appearance.
+    std::span<const std::string> morphChannels() const { return morphChannels_; }
+    /// Index of the morph channel named `name`, or -1.
+    int findMorphChannel(std::string_view name) const;
+    /// Offset of morph channel 0's weight in a pose's DOF array (after the skeleton's values).
+    std::uint32_t morphWeightOffset() const { return morphWeightOffset_; }
+    /// The morph channel of each morph target of the drawable of vaLod level `level` of node
+    /// `node` (nodeCount() for the actor-level vaLod); empty when it has none (or no such level).
+    std::span<const std::uint32_t> morphChannelsOf(std::size_t node, std::size_t level) const {
+        if (morphMaps_.empty() || node >= morphMaps_.size() || level >= morphMaps_[node].size()) return {};
+        return morphMaps_[node][level];
+    }
     /// Number of DOFs (not values) of the whole skeleton (19 for the seed's humanoid).
     std::uint32_t dofCount() const { return dofCount_; }
     /// DOF values of the rest pose.
@@ -96,6 +110,9 @@ private:
     std::uint32_t dofValueCount_ = 0;
     std::uint32_t dofCount_ = 0;
     std::vector<float> restDofs_;
+    std::vector<std::string> morphChannels_;
+    std::uint32_t morphWeightOffset_ = 0;
+    std::vector<std::vector<std::vector<std::uint32_t>>> morphMaps_;  // [node][level]: empty without morph targets
     VaLod rootGeometry_;
     std::vector<Skin> skins_;
     std::vector<std::shared_ptr<const AnimationClip>> clips_;
@@ -125,6 +142,9 @@ public:
     /// Adds a clip. Throws std::invalid_argument naming the clip and channel if a channel targets a
     /// node or DOF that does not exist or its values do not fit the DOF.
     void addClip(std::shared_ptr<const AnimationClip> clip);
+    /// The morph channels the template will have with the nodes and vaLod levels added so far
+    /// (ActorTemplate::morphChannels): what a clip's MorphWeight channels index.
+    std::vector<std::string> morphChannels() const;
     /// Margin added to the Sklsroot radius sampled from the clips (default 0.05 m).
     void setSkeletonRootMargin(double metres);
     /// Sampling rate of the clips for the Sklsroot radius, besides every key time (default 60 Hz).

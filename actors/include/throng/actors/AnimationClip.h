@@ -23,12 +23,13 @@ enum class Interpolation : std::uint8_t {
     CubicSpline,  ///< Hermite spline with per-key in and out tangents (glTF CUBICSPLINE)
 };
 
-/// One animated value: a DOF of a node, or the Skeleton Root's translation or orientation.
+/// One animated value: a DOF of a node, the Skeleton Root's translation or orientation, or the
+/// weight of a morph channel (ActorTemplate::morphChannels).
 struct ClipChannel {
     /// What the channel drives.
-    enum class Target : std::uint8_t { NodeDof, RootTranslation, RootOrientation };
+    enum class Target : std::uint8_t { NodeDof, RootTranslation, RootOrientation, MorphWeight };
     Target target = Target::NodeDof;        ///< what is driven
-    std::uint32_t node = 0;                 ///< node index (NodeDof)
+    std::uint32_t node = 0;                 ///< node index (NodeDof), morph channel index (MorphWeight)
     std::uint32_t dof = 0;                  ///< DOF index within the node (NodeDof)
     Interpolation interpolation = Interpolation::Linear;  ///< between keys
     std::vector<float> times;               ///< key times, seconds, strictly increasing, >= 0
@@ -52,9 +53,10 @@ public:
     /// Channels.
     const std::vector<ClipChannel>& channels() const { return channels_; }
 
-    /// Samples the node channels at time `t` (wrapped into [0, duration) when `loop`, else clamped)
-    /// into `dofs` (the DOF layout of `tmpl`, a template the clip was added to). Channels of nodes
-    /// whose `active` flag is 0 are skipped (an empty `active` means every node). With `holdKeys`,
+    /// Samples the node and morph-weight channels at time `t` (wrapped into [0, duration) when
+    /// `loop`, else clamped) into `dofs` (the DOF layout of `tmpl`, a template the clip was added
+    /// to). Channels of nodes whose `active` flag is 0 are skipped (an empty `active` means every
+    /// node). With `holdKeys`,
     /// every channel holds its previous key (cheaper, for far actors). Costs go to `ops`. Returns
     /// the number of values written.
     std::size_t sample(const ActorTemplate& tmpl, double t, bool loop, std::span<const std::uint8_t> active,

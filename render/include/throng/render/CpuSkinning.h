@@ -21,9 +21,13 @@ std::uint32_t requiredPaletteSize(const MeshData& mesh);
 /// is left untouched for a mesh without normals). Each vertex's weights are divided by their sum
 /// (4 or 8 influences); a vertex whose weights sum to zero keeps its bind position. Normals are
 /// transformed by the blended matrix's upper 3x3 and normalised.
-/// Throws std::invalid_argument naming the mesh if an output span has the wrong size, the mesh is
+/// `sourcePositions` and `sourceNormals`, when not empty, are skinned instead of the mesh's own
+/// (its morphed shape, from applyMorphTargets: targets go before skinning); they may be the
+/// output spans themselves.
+/// Throws std::invalid_argument naming the mesh if a span has the wrong size, the mesh is
 /// not skinned, or a joint with a non-zero weight is outside `palette` (outputs are then partial).
 void skinMesh(const MeshData& mesh, std::span<const glm::mat4> palette, std::span<glm::vec3> positions,
-              std::span<glm::vec3> normals);
+              std::span<glm::vec3> normals, std::span<const glm::vec3> sourcePositions = {},
+              std::span<const glm::vec3> sourceNormals = {});
 
 }  // namespace throng

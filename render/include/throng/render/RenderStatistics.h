@@ -23,6 +23,8 @@ struct RenderStatistics {
                                            ///< consecutive rows; not counted in drawCalls)
     std::uint64_t keyPoseVertices = 0;     ///< cache vertices read (an interpolated instance reads two per vertex)
     std::uint64_t keyPoseCacheBytes = 0;   ///< GPU bytes held by the renderer's key-pose caches (every mesh and source)
+    std::uint64_t morphInstances = 0;      ///< of `instances`, items drawn with a non-zero morph weight
+    std::uint64_t morphTargetsRead = 0;    ///< non-zero morph weights applied, over those items (each reads its target per vertex)
     std::uint64_t fragments = 0;           ///< fragments that passed the depth test (RendererOptions::countFragments)
     double drawMs = 0;                     ///< CPU time spent in draw() (GL work may run later)
 };

@@ -21,6 +21,7 @@
 #include <glm/vec4.hpp>
 
 #include "throng/scenegraph/BodyLook.h"
+#include "throng/scenegraph/Drawable.h"
 #include "throng/scenegraph/FrameArena.h"
 #include "throng/scenegraph/ItemTransform.h"
 #include "throng/scenegraph/KeyPoseSource.h"
@@ -28,7 +29,6 @@
 
 namespace throng {
 
-class Drawable;
 class Node;
 
 /// How an item shows its object; DRAW dispatches on it.
@@ -41,8 +41,8 @@ enum class Representation : std::uint8_t {
 /// Marks an item that belongs to no actor (generic scene geometry).
 inline constexpr std::uint32_t kNoActor = ~std::uint32_t{0};
 
-/// One thing to draw. Fields are ordered largest first to keep the item small (176 bytes): a crowd
-/// writes one per drawn part every frame.
+/// One thing to draw. Fields are ordered largest first to keep the item at three cache lines (192
+/// bytes): a crowd writes one per drawn part every frame.
 struct DrawItem {
     /// Every field at its default. Written out (not defaulted) so that a list appending a fresh item
     /// stores each field once, which the compiler can merge with the caller's own stores, instead of
@@ -54,15 +54,18 @@ struct DrawItem {
     const glm::mat4* skinPalette = nullptr;  ///< for skinned meshes: joint matrices (joint-to-model times
                                              ///< inverse bind), in the frame of `world`; else null
     double clipTime = 0.0;               ///< seconds into `clip` the actor shows this frame
+    /// Weights of the mesh's morph targets (one per MeshData::morphTargets entry, kept by the list
+    /// like palettes), or null: the mesh's neutral shape.
+    const float* morphWeights = nullptr;
     std::uint32_t instance = 0;          ///< which of the node's instances (an actor of an actor group)
     std::uint32_t part = 0;              ///< index of the part within the instance (0 for a Geometry leaf)
-    std::uint32_t lodLevel = 0;          ///< level of detail chosen (0 = highest)
     std::uint32_t skinPaletteSize = 0;   ///< number of matrices in `skinPalette`
     std::uint32_t actor = kNoActor;      ///< the actor (its id in its crowd), or kNoActor
     std::int32_t clip = -1;              ///< the clip the actor plays (its main clip for impostors), or -1
     glm::vec4 tint{1.0f};                ///< per-actor colour multiplier
     BodyLook look;                       ///< per-actor colours of the mesh's body regions
     Representation representation = Representation::Mesh;  ///< how it is shown
+    std::uint16_t lodLevel = 0;          ///< level of detail chosen (0 = highest)
     KeyPoseRef keyPose;                  ///< Representation::KeyPose: the cached poses shown
 };
 
@@ -114,6 +117,13 @@ public:
     static std::span<glm::mat4> paletteRoom(DrawItem& item) {
         return {const_cast<glm::mat4*>(item.skinPalette), item.skinPaletteSize};  // the segment's own memory
     }
+    /// Gives `item` (an item of this segment) room for `count` morph weights kept by the segment,
+    /// and returns it for the caller to fill before the list is drawn.
+    std::span<float> addMorphWeights(DrawItem& item, std::size_t count) {
+        float* room = weights_.allocate(count);
+        item.morphWeights = room;
+        return {room, count};
+    }
     /// The items, in the order they were added.
     std::span<const DrawItem> items() const { return items_; }
     /// Number of items.
@@ -126,6 +136,7 @@ public:
     void clear() {
         items_.clear();
         palettes_.clear();
+        weights_.clear();
         primitives_ = 0;
     }
 
@@ -142,6 +153,7 @@ private:
     }
     std::vector<DrawItem> items_;
     FrameArena<glm::mat4> palettes_;
+    FrameArena<float> weights_;
     std::uint64_t primitives_ = 0;
 };
 
@@ -251,16 +263,22 @@ public:
     }
     /// Segment `i` (opened this frame).
     DrawSegment& segment(std::size_t i) { return *segments_[i]; }
-    /// Appends every item of `other` in order, with copies of their palettes.
+    /// Appends every item of `other` in order, with copies of their palettes and morph weights.
     void append(const DrawList& other) {
         DrawSegment& into = serial();
         for (const DrawItem& item : other.items()) {
+            DrawItem* added = nullptr;
             if (!item.skinPalette) {
                 into.add(item, 0);
-                continue;
+                added = &into.items_.back();
+            } else {
+                added = &into.copyIn(item, 0, item.skinPaletteSize);
+                std::copy_n(item.skinPalette, item.skinPaletteSize, DrawSegment::paletteRoom(*added).begin());
             }
-            DrawItem& added = into.copyIn(item, 0, item.skinPaletteSize);
-            std::copy_n(item.skinPalette, item.skinPaletteSize, DrawSegment::paletteRoom(added).begin());
+            if (item.morphWeights) {
+                const std::size_t n = item.drawable->morphTargetCount();
+                std::copy_n(item.morphWeights, n, into.addMorphWeights(*added, n).begin());
+            }
         }
         into.primitives_ += other.primitiveCount();  // as the other list counted them
     }

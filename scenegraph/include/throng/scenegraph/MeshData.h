@@ -15,6 +15,7 @@
 
 #include "throng/scenegraph/BoundingSphere.h"
 #include "throng/scenegraph/Image.h"
+#include "throng/scenegraph/MorphTarget.h"
 
 namespace throng {
 
@@ -31,6 +32,8 @@ struct MeshData {
     std::vector<glm::vec4> weights1;           ///< skin: their weights
     /// Body region per vertex (BodyRegion values; BodyLook recolours them), or empty: none.
     std::vector<std::uint8_t> regions;
+    /// Morph targets (blend shapes) added before skinning, weighted per actor; names unique.
+    std::vector<MorphTarget> morphTargets;
     glm::vec4 baseColor{1.0f};                 ///< multiplies the texture (linear RGBA)
     std::shared_ptr<const Image> baseColorTexture;  ///< or null
 
@@ -46,10 +49,16 @@ struct MeshData {
     /// skinned and `v` in range.
     std::uint32_t strongestJoint(std::size_t v) const;
 
+    /// Index of the morph target named `name`, or -1.
+    int findMorphTarget(const std::string& targetName) const;
+
     /// Throws std::invalid_argument naming the mesh and the problem if attribute counts disagree,
-    /// a region is not a BodyRegion, an index is out of range, the index count is not a multiple of 3, or a value is not finite.
+    /// a region is not a BodyRegion, an index is out of range, the index count is not a multiple of
+    /// 3, a value is not finite, or a morph target is unnamed, named twice or sized unlike the mesh.
     void validate() const;
-    /// Smallest-ish sphere holding every vertex (in the mesh frame). Throws if there is no vertex.
+    /// Smallest-ish sphere holding every vertex (in the mesh frame), grown by the largest offset of
+    /// every morph target so that it holds every shape weights up to kMaxMorphWeight make. Throws
+    /// if there is no vertex.
     BoundingSphere computeBound() const;
 };
 

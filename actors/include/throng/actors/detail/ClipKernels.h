@@ -175,11 +175,17 @@ std::size_t sampleClip(const AnimationClip& clip, const ActorTemplate& tmpl, Wid
     std::size_t upper = 0;
     for (std::size_t i = 0; i < channels.size(); ++i) {
         const ClipChannel& c = channels[i];
-        if (c.target != ClipChannel::Target::NodeDof) continue;
-        if (!active.empty() && !active[c.node]) continue;  // inactive nodes are never evaluated
+        const bool weight = c.target == ClipChannel::Target::MorphWeight;
+        if (c.target != ClipChannel::Target::NodeDof && !weight) continue;
+        if (!weight && !active.empty() && !active[c.node]) continue;  // inactive nodes are never evaluated
         if (sources[i] != searched) {
             searched = sources[i];
             upper = keyAfter(c.times, ft, ops);
+        }
+        if (weight) {
+            sampleChannelAt(c, 1, false, ft, upper, dofs.data() + tmpl.morphWeightOffset() + c.node, ops, holdKeys);
+            ++written;
+            continue;
         }
         const DofKind kind = tmpl.dofKind(c.node, c.dof);
         const int width = dofValueCount(kind);
