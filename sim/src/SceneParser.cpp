@@ -285,10 +285,85 @@ void readTown(const Reader& root, SceneDescription& s, const std::string& baseDi
     s.town = town;
 }
 
-// "effects": avoidance, gaze and far updates, each only where declared.
+// "effects.face", "effects.blink", "effects.phrase": faces, each only where declared.
+void readFaces(const Reader& e, SceneDescription& s) {
+    FaceLayer::Settings& f = s.effects.faces;
+    // `true` (the defaults) or an object of the given keys.
+    const auto declared = [&](const char* key, std::initializer_list<const char*> keys) {
+        if (!e.has(key)) return false;
+        const Reader r = e.at(key);
+        if (r.value().is_boolean()) return r.boolean();
+        r.object(keys);
+        return true;
+    };
+    f.face = declared("face", {"levels", "transition", "expressions"});
+    if (f.face && e.at("face").value().is_object()) {
+        const Reader r = e.at("face");
+        if (r.has("levels")) f.faceLevels = levelEnds(r.at("levels"), "effects", "face.levels");
+        if (r.has("transition")) f.transition = r.at("transition").within("effects", "face.transition");
+        if (r.has("expressions")) {
+            const Reader list = r.at("expressions");
+            if (list.array() == 0) list.fail("must list at least one expression (leave it out for one per morph target)");
+            std::set<std::string> names;
+            for (std::size_t i = 0; i < list.array(); ++i) {
+                const Reader x = list.at(i);
+                x.object({"name", "duration", "weights"});
+                FaceLayer::Expression ex;
+                ex.name = x.at("name").name();
+                if (!names.insert(ex.name).second) x.at("name").fail("'" + ex.name + "' is already an expression");
+                if (x.has("duration")) ex.duration = x.at("duration").within("effects", "face.expressions.duration");
+                if (x.has("weights")) {
+                    const Reader w = x.at("weights");
+                    w.anyObject();
+                    for (auto it = w.value().begin(); it != w.value().end(); ++it) {
+                        const Reader one = w.at(it.key().c_str());
+                        Reader::checkName(one, it.key());
+                        ex.weights[it.key()] = float(one.within("effects", "face.expressions.weights"));
+                    }
+                }
+                f.expressions.push_back(std::move(ex));
+            }
+        }
+    }
+    f.blink = declared("blink", {"levels", "mean", "spread", "duration"});
+    if (f.blink && e.at("blink").value().is_object()) {
+        const Reader r = e.at("blink");
+        if (r.has("levels")) f.blinkLevels = levelEnds(r.at("levels"), "effects", "blink.levels");
+        if (r.has("mean")) f.blinkMean = r.at("mean").within("effects", "blink.mean");
+        if (r.has("spread")) f.blinkSpread = r.at("spread").within("effects", "blink.spread");
+        if (r.has("duration")) f.blinkDuration = r.at("duration").within("effects", "blink.duration");
+        if (!(f.blinkSpread < f.blinkMean)) r.at(r.has("spread") ? "spread" : "mean").fail("the spread must be below the mean");
+        if (!(f.blinkDuration < f.blinkMean - f.blinkSpread))
+            r.at(r.has("duration") ? "duration" : "mean").fail("a blink must be shorter than the shortest interval (mean - spread)");
+    }
+    f.phrase = declared("phrase", {"levels", "phrases", "lettersPerSecond", "pause", "groupSize", "mouthTargets"});
+    if (f.phrase) {
+        f.phrases = {"Good morning!", "Lovely weather today.", "Have you seen the market?", "See you later!"};
+        if (e.at("phrase").value().is_object()) {
+            const Reader r = e.at("phrase");
+            if (r.has("levels")) f.phraseLevels = levelEnds(r.at("levels"), "effects", "phrase.levels");
+            if (r.has("phrases")) {
+                const Reader list = r.at("phrases");
+                if (list.array() == 0) list.fail("must list at least one phrase (leave it out for the defaults)");
+                f.phrases.clear();
+                for (std::size_t i = 0; i < list.array(); ++i) f.phrases.push_back(list.at(i).name());
+            }
+            if (r.has("lettersPerSecond")) f.lettersPerSecond = r.at("lettersPerSecond").within("effects", "phrase.lettersPerSecond");
+            if (r.has("pause")) f.pause = r.at("pause").within("effects", "phrase.pause");
+            if (r.has("groupSize")) s.effects.phraseGroupSize = int(r.at("groupSize").wholeWithin("effects", "phrase.groupSize"));
+            if (r.has("mouthTargets")) {
+                const Reader list = r.at("mouthTargets");
+                for (std::size_t i = 0; i < list.array(); ++i) f.mouthTargets.push_back(list.at(i).name());
+            }
+        }
+    }
+}
+
+// "effects": avoidance, gaze, far updates and faces, each only where declared.
 void readEffects(const Reader& root, SceneDescription& s) {
     const Reader e = root.at("effects");
-    e.object({"avoidance", "gaze", "farUpdate"});
+    e.object({"avoidance", "gaze", "farUpdate", "face", "blink", "phrase"});
+    readFaces(e, s);
     if (e.has("avoidance")) {
         const Reader av = e.at("avoidance");
         if (av.value().is_boolean()) {

@@ -142,6 +142,8 @@ struct Placement {
     std::shared_ptr<IdleGroups> idlers;
     std::shared_ptr<GazeLayer> walkGaze, idleGaze;
     GazeLayer::Settings gazeSettings;
+    std::shared_ptr<FaceLayer> walkFace, idleFace;  // when faces, blinks or phrases are declared
+    FaceLayer::Settings faceSettings;
     std::uint64_t stream = 0;
     CounterRng rng;
 
@@ -151,6 +153,20 @@ struct Placement {
         gazeSettings.levels = d.effects.gazeLevels;
         gazeSettings.range = d.effects.gazeRange;
         gazeSettings.seed = d.seed;
+        faceSettings = d.effects.faces;
+        faceSettings.seed = d.seed;
+    }
+
+    bool facesDeclared() const { return faceSettings.face || faceSettings.blink || faceSettings.phrase; }
+
+    // The outermost layer of `base` (with its gaze layer `gaze` when declared): a face layer when
+    // faces are declared (made once, into `face`), else the gaze layer, else the base.
+    std::shared_ptr<Behaviour> outermost(const std::shared_ptr<Behaviour>& base, const std::shared_ptr<GazeLayer>& gaze,
+                                         std::shared_ptr<FaceLayer>& face) {
+        const std::shared_ptr<Behaviour> inner = gaze ? std::shared_ptr<Behaviour>(gaze) : base;
+        if (!facesDeclared()) return inner;
+        if (!face) face = std::make_shared<FaceLayer>(inner, faceSettings, &effects);
+        return face;
     }
 
     // Walkways are narrow and their scenarios start people side by side: a point of the area itself,
@@ -232,7 +248,12 @@ struct Placement {
             a.stream = stream;
             std::uint32_t slot = walkers->addActor(a);
             if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
-            ids.push_back(crowd.add(t.tmpl, walkGaze ? std::shared_ptr<Behaviour>(walkGaze) : walkers, slot, t.lookFor(look, stream)));
+            const std::shared_ptr<Behaviour> outer = outermost(walkers, walkGaze, walkFace);
+            if (walkFace) {  // walkers talk in groups of consecutive streams
+                const auto size = std::uint64_t(d.effects.phraseGroupSize);
+                slot = walkFace->wrap(slot, t.tmpl, stream, stream / size, std::uint32_t(stream % size), std::uint32_t(size));
+            }
+            ids.push_back(crowd.add(t.tmpl, outer, slot, t.lookFor(look, stream)));
         }
     }
 
@@ -263,7 +284,10 @@ struct Placement {
                 a.timeOffset = rng.uniform(stream * 3 + 1, 0.0, t.tmpl->clips()[std::size_t(clip)]->duration());
                 std::uint32_t slot = idlers->addPerson(a);
                 if (idleGaze) slot = idleGaze->wrap(slot, t.tmpl, stream);
-                ids.push_back(crowd.add(t.tmpl, idleGaze ? std::shared_ptr<Behaviour>(idleGaze) : idlers, slot, t.lookFor(look, stream)));
+                const std::shared_ptr<Behaviour> outer = outermost(idlers, idleGaze, idleFace);
+                // A standing group is a conversation: its members take turns.
+                if (idleFace) slot = idleFace->wrap(slot, t.tmpl, stream, (1ull << 62) + groupStream, std::uint32_t(k), std::uint32_t(size));
+                ids.push_back(crowd.add(t.tmpl, outer, slot, t.lookFor(look, stream)));
             }
         }
     }
@@ -498,8 +522,11 @@ void Simulation::buildActors(const BuildProgress& progress) {
     }
     walkers_ = place.walkers;
     for (const auto& b : {std::shared_ptr<Behaviour>(place.walkers), std::shared_ptr<Behaviour>(place.idlers),
-                          std::shared_ptr<Behaviour>(place.walkGaze), std::shared_ptr<Behaviour>(place.idleGaze)})
+                          std::shared_ptr<Behaviour>(place.walkGaze), std::shared_ptr<Behaviour>(place.idleGaze),
+                          std::shared_ptr<Behaviour>(place.walkFace), std::shared_ptr<Behaviour>(place.idleFace)})
         if (b) behaviours_.push_back(b);
+    for (const auto& f : {place.walkFace, place.idleFace})
+        if (f) faceLayers_.push_back(f);
 }
 
 void Simulation::setGatherView(std::optional<Frustum> view) {

@@ -15,6 +15,7 @@
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/BodyLook.h"
 #include "throng/scenegraph/OcclusionCulling.h"
+#include "throng/sim/FaceLayer.h"
 
 namespace throng::sim {
 
@@ -113,6 +114,10 @@ struct EffectsDescription {
     bool gaze = false;                     ///< heads and necks turn to look at things
     std::vector<double> gazeLevels{12.0, 40.0};  ///< gaze bands: eyes-and-neck precise, then neck only
     double gazeRange = 10.0;               ///< how far people notice others, m
+    /// Faces: expressions, blinks and phrases, each on only where declared (faces.face,
+    /// faces.blink, faces.phrase), with their bands and settings (the seed is the scene's).
+    FaceLayer::Settings faces;
+    int phraseGroupSize = 3;               ///< walkers take turns speaking in groups of this many (standing groups are their own)
 };
 
 /// A key of the camera path.

@@ -18,6 +18,7 @@
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CameraPath.h"
 #include "throng/sim/EffectCounters.h"
+#include "throng/sim/FaceLayer.h"
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/SceneDescription.h"
 #include "throng/sim/SimulationClock.h"
@@ -97,6 +98,9 @@ public:
     const Crowd& crowd() const { return crowd_; }
     /// Construction and tick counts of every effect.
     const EffectCounters& effects() const { return effects_; }
+    /// The face layers (walkers', standing people's) when the scene declares faces, blinks or
+    /// phrases; empty otherwise. For captions (FaceLayer::speechAt) and the faces' cost.
+    const std::vector<std::shared_ptr<FaceLayer>>& faceLayers() const { return faceLayers_; }
     /// What was built.
     const SceneDescription& description() const { return description_; }
     /// The camera path.
@@ -147,6 +151,7 @@ private:
     std::vector<ActorGroupInfo> groups_;
     std::vector<TemplateInUse> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    std::vector<std::shared_ptr<FaceLayer>> faceLayers_;
     std::shared_ptr<Locomotion> walkers_;
     NavGeometry navGeometry_;
     std::unique_ptr<SimulationClock> clock_;
