@@ -51,6 +51,12 @@ void declare(support::CommandLine& cl, TownOptions& o) {
         ->type_name("on|off")
         ->check(oneOf({"on", "off"}))
         ->default_str("on");
+    app.add_option("--faces", o.faces,
+                   "the faces the scene declares: effects face (expressions), blink and phrase (spoken, captioned above near "
+                   "speakers), each within its distance bands (off: none is made, every face neutral)")
+        ->type_name("on|off")
+        ->check(oneOf({"on", "off"}))
+        ->default_str("on");
     app.add_option("--lod-scale", o.lodScale, "multiplies every LOD distance")
         ->type_name("X")
         ->check(positiveNumber())

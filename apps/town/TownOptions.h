@@ -25,6 +25,7 @@ struct TownOptions {
     bool occlusion = true;                  ///< occlusion culling when the scene declares it (off: never)
     bool keyPoseCache = true;               ///< key-pose caches when the scene declares them (off: never)
     bool looks = true;                      ///< the scene's looks (crowd diversity; off: every actor as modelled)
+    bool faces = true;                      ///< the scene's faces, blinks and phrases (off: undeclared, every face neutral)
     double lodScale = 0.0;                  ///< overrides the scene's LOD scale when > 0
     double impostorDistance = -1.0;         ///< overrides the scene's impostor distance when >= 0 (0: none)
     int morphBudget = 2;                    ///< new morphed impostor cells per template and frame (0: none)

@@ -15,7 +15,8 @@ const char* kCsvHeader =
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
     "occlusion_cells_hidden,occlusion_tests,nodes_occluded,occlusion_rested,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
     "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred,"
-    "draw_cpu_ms,draw_gpu_ms,gpu_town_ms,gpu_meshes_ms,gpu_impostors_ms,gpu_finish_ms,gpu_frames_behind";
+    "draw_cpu_ms,draw_gpu_ms,gpu_town_ms,gpu_meshes_ms,gpu_impostors_ms,gpu_finish_ms,gpu_frames_behind,"
+    "face_evaluations,blink_evaluations,phrase_evaluations,face_ms,morph_instances,morph_targets_read,captions";
 
 // With --frame-budget, the allocator's choice and its measure follow (app_cull_draw_ms is what it
 // keeps under budget_ms).
@@ -54,6 +55,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     // frame it has (gpu_frames_behind); "nan" before any.
     if (r.gpu.frame < 0) o << ",nan,nan,nan,nan,nan,-1";
     else o << ',' << r.gpu.totalMs() << ',' << r.gpu.ms[0] << ',' << r.gpu.ms[1] << ',' << r.gpu.ms[2] << ',' << r.gpu.ms[3] << ',' << r.gpuFramesBehind;
+    o << ',' << f.faceEvaluations[0] << ',' << f.faceEvaluations[1] << ',' << f.faceEvaluations[2] << ',' << f.faceMs << ','
+      << r.meshes.morphInstances << ',' << r.meshes.morphTargetsRead << ',' << f.captions.size();
     if (budget) {
         const double cost = s.appCullMs() + drawMs;
         const sim::BudgetSettings& b = budget->ladder()[std::size_t(f.rung)].settings;
@@ -90,6 +93,10 @@ void Sums::add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistic
     items += double(s.drawItems);
     primitives += double(s.primitives);
     impostors += double(s.impostors);
+    faceEvaluations += double(f.faceEvaluations[0] + f.faceEvaluations[1] + f.faceEvaluations[2]);
+    faceMs += f.faceMs;
+    morphTargetsRead += double(drawn.meshes.morphTargetsRead);
+    captions += double(f.captions.size());
     ++frames;
 }
 
@@ -132,7 +139,9 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
                                     {"sent", double(r.sent) / n}, {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n}});
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
-    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders", "key-pose cache"}) {
+    j["faces"] = {{"evaluations", sums.faceEvaluations / n}, {"ms", sums.faceMs / n}, {"morphTargetsRead", sums.morphTargetsRead / n},
+                  {"captions", sums.captions / n}};  // per frame: what the declared faces cost
+    for (const char* effect : {"locomotion", "avoidance", "gaze", "idle", "flight", "occluders", "key-pose cache", "face", "blink", "phrase"}) {
         const auto c = world.effects().of(effect);
         j["effects"][effect] = {{"constructed", c.constructed}, {"ticks", c.ticks}};
     }

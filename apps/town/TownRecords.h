@@ -10,6 +10,7 @@
 
 #include "TownOptions.h"
 #include "throng/actors/ActorFrameStatistics.h"
+#include "throng/render/Caption.h"
 #include "throng/render/CrowdRenderer.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawList.h"
@@ -34,6 +35,9 @@ struct PreparedFrame {
     Image occlusion;                   // its occlusion buffer as a picture, when the window shows it
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // each rank's share of the step, when distributed
     int rung = -1;                     // --frame-budget: the ladder rung it was processed and drawn with
+    std::uint64_t faceEvaluations[3] = {0, 0, 0};  // actors whose expression, blink, phrase was evaluated in its CULL
+    double faceMs = 0.0;               // the face layers' time in its CULL (all threads)
+    std::vector<Caption> captions;     // what near speakers say, shown above their heads
 };
 
 /// The header line of stats.csv: the frame's columns, the allocator's with --frame-budget, then each
@@ -49,6 +53,7 @@ struct Sums {
     double drawCpu = 0, drawGpu = 0;  // DRAW's CPU side, and its GPU time over the gpuFrames that have it
     std::int64_t gpuFrames = 0;
     double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
+    double faceEvaluations = 0, faceMs = 0, morphTargetsRead = 0, captions = 0;
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // distributed: each rank's share, summed
     std::int64_t frames = 0;
     /// Adds frame `f`, drawn in `drawMs` with the renderer's statistics `r`.

@@ -90,6 +90,10 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     rungFrames_.assign(budget_ ? budget_->ladder().size() : 0, 0);
     caches_ = !processor.keyPoseCaches().empty();
     hysteresis_ = world.description().representation.hysteresis;
+    for (const auto& layer : world.faceLayers())
+        for (ActorId id = 0; id < world.crowd().size(); ++id)
+            if (world.crowd().state().behaviour[id] == layer.get())
+                faceActors_.push_back({id, layer.get(), world.crowd().state().slot[id]});
     start_ = std::chrono::steady_clock::now();
     // The other ranks wait for rank 0's set-up (impostors, GL) before the first step.
     if (ranks.size() > 1) ranks.broadcast({}, kStartTag, "start");
@@ -128,6 +132,7 @@ void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camer
     f.camera = camera;
     f.stats = processor_->processFrame(world_.root(), camera, f.time);
     f.list = &processor_->drawList();
+    countFaces(f, camera);
     if (recorder_) try {
         recorder_->record(world_.crowd(), *processor_);
     } catch (const std::exception& e) {
@@ -135,6 +140,49 @@ void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camer
         recorder_.reset();  // finishes what was written
     }
     f.occlusion = showOcclusion_ && processor_->occlusion() ? occlusionPicture(processor_->occlusion()->buffer(), f.stats.occlusionRested) : Image{};
+}
+
+// The face layers' evaluations and time in this frame's CULL, and the captions of the speakers
+// within the phrase effect's first band.
+void TownRun::countFaces(PreparedFrame& f, const Camera& camera) {
+    double seconds = 0.0;
+    for (const auto& layer : world_.faceLayers()) seconds += layer->flushCounts();
+    const char* effects[3] = {"face", "blink", "phrase"};
+    for (int k = 0; k < 3; ++k) {
+        const std::uint64_t ticks = world_.effects().of(effects[k]).ticks;
+        f.faceEvaluations[k] = ticks - faceTicksSeen_[k];
+        faceTicksSeen_[k] = ticks;
+    }
+    f.faceMs = 1000.0 * (seconds - faceSecondsSeen_);
+    faceSecondsSeen_ = seconds;
+    f.captions.clear();
+    if (faceActors_.empty()) return;
+    // Captions for speakers drawn as meshes this frame: near, in view and not occluded.
+    // Each such speaker's highest point as drawn (the top of its parts' spheres) is where its
+    // caption stands.
+    drawnAsMesh_.assign(world_.crowd().size(), 0);
+    captionAt_.resize(world_.crowd().size());
+    for (const FaceActor& a : faceActors_) drawnAsMesh_[a.id] = 1;  // 1: has a face; 2: drawn
+    for (const DrawItem& item : f.list->items()) {
+        if (item.actor == kNoActor || item.representation == Representation::Impostor || !drawnAsMesh_[item.actor]) continue;
+        // Part spheres are loose (they hold every shape a morph can make): a little above the
+        // highest part's centre rather than its sphere's top.
+        const BoundingSphere b = item.drawable->localBound().transformed(item.world.toMat4());
+        const Vec3 top = b.center() + Vec3(0.0, 0.5 * b.radius(), 0.0);
+        Vec3& at = captionAt_[item.actor];
+        if (drawnAsMesh_[item.actor] == 1 || top.y > at.y) at = top;
+        drawnAsMesh_[item.actor] = 2;
+    }
+    for (const FaceActor& a : faceActors_) {
+        if (drawnAsMesh_[a.id] != 2) continue;
+        const sim::FaceLayer::Settings& settings = a.layer->settings();
+        if (!settings.phrase || settings.phrases.empty()) continue;
+        const Vec3 at = captionAt_[a.id];
+        if (glm::length(at - camera.eye()) > settings.phraseLevels[0] * lodScale_) continue;
+        const sim::FaceLayer::Speech speech = a.layer->speechAt(a.slot, f.time);
+        if (speech.phrase < 0) continue;
+        f.captions.push_back({at, settings.phrases[std::size_t(speech.phrase)]});
+    }
 }
 
 // DRAW from the prepared frame's own data, then its statistics.
@@ -147,7 +195,9 @@ void TownRun::draw(const PreparedFrame& f, const std::function<void()>& beforePr
     Stopwatch watch;
     renderer_->beginFrame(f.camera);
     renderer_->setOverlayImage(f.occlusion);
+    renderer_->setCaptions(f.captions);
     renderer_->draw(*f.list);
+    renderer_->finishImage();  // saved frames show the captions as the window does
     if (beforePresent) beforePresent();
     renderer_->endFrame();
     const double drawMs = watch.elapsedMs();

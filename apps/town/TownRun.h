@@ -87,6 +87,18 @@ private:
     bool caches_ = false;
     double hysteresis_ = 0.0;
     FramePipeline pipeline_;
+    // Actors with a face layer (captions), and the face counts already put in a frame's row.
+    struct FaceActor {
+        ActorId id;
+        sim::FaceLayer* layer;
+        std::uint32_t slot;
+    };
+    std::vector<FaceActor> faceActors_;
+    std::vector<char> drawnAsMesh_;  // per actor: 1 has a face, 2 and drawn as a mesh in the frame being counted
+    std::vector<Vec3> captionAt_;    // per actor: the top of its drawn parts (valid where drawnAsMesh_ is 2)
+    std::uint64_t faceTicksSeen_[3] = {0, 0, 0};
+    double faceSecondsSeen_ = 0.0;
+    void countFaces(PreparedFrame& f, const Camera& camera);
 };
 
 }  // namespace throng::town

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
         if (o.actors) sim::scaleActors(scene, *o.actors);  // refuses a crowd the town cannot hold
         if (!o.looks)
             for (auto& [name, t] : scene.templates) t.looks.clear();
+        if (!o.faces) scene.effects.faces.face = scene.effects.faces.blink = scene.effects.faces.phrase = false;
         // A crowd the machine cannot hold stops here, before allocating, not in the kernel's hands.
         if (const auto problem = town::memoryProblem(scene, town::availableMemory())) throw std::invalid_argument(*problem);
     } catch (const sim::SceneError& e) {

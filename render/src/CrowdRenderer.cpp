@@ -1,6 +1,7 @@
 #include "throng/render/CrowdRenderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "throng/render/ImageOverlay.h"
 
@@ -148,6 +149,23 @@ void CrowdRenderer::setRenderScale(float scale) {
 
 void CrowdRenderer::endFrame() {
     Stopwatch watch;
+    finishImage();
+    gpuTimer_->end();
+    Stopwatch present;
+    meshes_->endFrame();
+    stats_.presentMs = present.elapsedMs();
+    gpuTimer_->collect();
+    stats_.gpu = gpuTimer_->latest();
+    stats_.gpuFramesBehind = stats_.gpu.frame < 0 ? -1 : gpuTimer_->frame() - stats_.gpu.frame;
+    stats_.endFrameMs = watch.elapsedMs() + finishMs_;
+    finished_ = false;
+    finishMs_ = 0.0;
+}
+
+void CrowdRenderer::finishImage() {
+    if (finished_) return;
+    finished_ = true;
+    Stopwatch watch;
     gpuTimer_->begin(GpuPass::Finish);
     if (scaledFrame_) {  // the overlays below are drawn at full resolution, over the scaled-up frame
         scaled_->end();
@@ -159,18 +177,25 @@ void CrowdRenderer::endFrame() {
         const int w = context_->width() / 3, h = w * overlayImage_.height / std::max(overlayImage_.width, 1);
         imageOverlay_->draw(overlayImage_, context_->width() - w - 12, context_->height() - h - 12, w, h);
     }
+    if (!captions_.empty()) {
+        if (!overlay_) overlay_ = std::make_unique<TextOverlay>(*context_);
+        const Mat4 viewProjection = camera_.projection() * camera_.view();
+        const double w = context_->width(), h = context_->height();
+        constexpr float kScale = 1.5f;  // the font's 6 x 12 pixels, times this
+        for (const Caption& c : captions_) {
+            const Vec4 clip = viewProjection * Vec4(c.position, 1.0);
+            if (!(clip.w > 0.0)) continue;  // behind the eye
+            const double x = (0.5 + 0.5 * clip.x / clip.w) * w, y = (0.5 - 0.5 * clip.y / clip.w) * h;
+            const double width = 6.0 * kScale * double(c.text.size());
+            if (x + 0.5 * width < 0.0 || x - 0.5 * width > w || y < 0.0 || y > h) continue;
+            overlay_->draw(c.text, int(std::lround(x - 0.5 * width)), int(std::lround(y - 14.0 * kScale)), kScale);
+        }
+    }
     if (!overlayText_.empty()) {
         if (!overlay_) overlay_ = std::make_unique<TextOverlay>(*context_);
         overlay_->draw(overlayText_, 12, 12, 1.6f);
     }
-    gpuTimer_->end();
-    Stopwatch present;
-    meshes_->endFrame();
-    stats_.presentMs = present.elapsedMs();
-    gpuTimer_->collect();
-    stats_.gpu = gpuTimer_->latest();
-    stats_.gpuFramesBehind = stats_.gpu.frame < 0 ? -1 : gpuTimer_->frame() - stats_.gpu.frame;
-    stats_.endFrameMs = watch.elapsedMs();
+    finishMs_ = watch.elapsedMs();
 }
 
 std::size_t CrowdRenderer::impostorTextureBytes() const { return quads_ ? quads_->textureBytes() : 0; }

@@ -64,8 +64,7 @@ double letterOpen(char c) {
 }  // namespace
 
 FaceLayer::FaceLayer(std::shared_ptr<Behaviour> base, Settings settings, EffectCounters* counters)
-    : base_(std::move(base)), settings_(std::move(settings)), counters_(counters) {
-    if (!base_) throw std::invalid_argument("FaceLayer: argument 'base' is null");
+    : BehaviourLayer(std::move(base), "FaceLayer"), settings_(std::move(settings)), counters_(counters) {
     const Settings& s = settings_;
     checkLevels(s.faceLevels, "face");
     checkLevels(s.blinkLevels, "blink");
@@ -83,17 +82,8 @@ FaceLayer::FaceLayer(std::shared_ptr<Behaviour> base, Settings settings, EffectC
     checkPositive(s.lettersPerSecond, "letters per second");
     if (!(s.pause >= 0.0) || !std::isfinite(s.pause)) throw std::invalid_argument("FaceLayer: pause must be >= 0 and finite");
     // The base's bands and the declared effects' bands, merged; each merged band's level of each.
-    ends_.assign(base_->levelEnds().begin(), base_->levelEnds().end());
-    if (s.face) ends_.insert(ends_.end(), s.faceLevels.begin(), s.faceLevels.end());
-    if (s.blink) ends_.insert(ends_.end(), s.blinkLevels.begin(), s.blinkLevels.end());
-    if (s.phrase) ends_.insert(ends_.end(), s.phraseLevels.begin(), s.phraseLevels.end());
-    std::sort(ends_.begin(), ends_.end());
-    ends_.erase(std::unique(ends_.begin(), ends_.end()), ends_.end());
-    for (std::size_t i = 0; i <= ends_.size(); ++i) {
-        const double lo = i == 0 ? 0.0 : ends_[i - 1];
-        const double hi = i < ends_.size() ? ends_[i] : std::numeric_limits<double>::infinity();
-        const double mid = std::isinf(hi) ? 2.0 * lo + 1.0 : 0.5 * (lo + hi);
-        baseLevel_.push_back(base_->levelFor(mid));
+    const std::vector<double> none;
+    for (const double mid : mergeBands({s.face ? s.faceLevels : none, s.blink ? s.blinkLevels : none, s.phrase ? s.phraseLevels : none})) {
         faceLevel_.push_back(s.face ? bandOf(s.faceLevels, mid) : int(s.faceLevels.size()));
         blinkLevel_.push_back(s.blink ? bandOf(s.blinkLevels, mid) : int(s.blinkLevels.size()));
         phraseLevel_.push_back(s.phrase ? bandOf(s.phraseLevels, mid) : int(s.phraseLevels.size()));
@@ -142,6 +132,10 @@ const FaceLayer::FaceRig& FaceLayer::rigOf(const ActorTemplate& tmpl) {
                 rig->durations.push_back(2.5);
             }
     }
+    // A template none of whose morph channels an expression names has no face to move.
+    bool anyChannel = false;
+    for (const auto& list : rig->expressions) anyChannel = anyChannel || !list.empty();
+    if (!anyChannel) rig->expressions.clear(), rig->durations.clear();
     return *rigs_.emplace(&tmpl, std::move(rig)).first->second;
 }
 
@@ -274,7 +268,14 @@ double FaceLayer::mouthOpen(const std::string& phrase, double progress) const {
 
 void FaceLayer::pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl, std::span<const std::uint8_t> active,
                      std::span<float> dofs, OpTally* ops) {
-    base_->pose(slot, time, baseLevel_[std::size_t(level)], tmpl, active, dofs, ops);
+    if (slot < state_.size() && state_[slot].rig) {  // last frame's face does not carry over
+        const FaceRig& rig = *state_[slot].rig;
+        const auto rest = tmpl.restDofs().subspan(tmpl.morphWeightOffset());
+        std::copy(rest.begin(), rest.end(), dofs.begin() + std::ptrdiff_t(tmpl.morphWeightOffset()));
+        for (int j : rig.eyeJoints) restNode(tmpl, j, dofs);
+        restNode(tmpl, rig.jawJoint, dofs);
+    }
+    base_->pose(slot, time, baseLevel(level), tmpl, active, dofs, ops);
     if (slot >= state_.size() || !state_[slot].rig) return;
     State& s = state_[slot];
     const FaceRig& rig = *s.rig;

@@ -42,23 +42,14 @@ glm::dquat rotationOf(const Affine& a) {
 }  // namespace
 
 GazeLayer::GazeLayer(std::shared_ptr<Behaviour> base, Settings settings, EffectCounters* counters)
-    : base_(std::move(base)), settings_(std::move(settings)), counters_(counters) {
-    if (!base_) throw std::invalid_argument("GazeLayer: argument 'base' is null");
+    : BehaviourLayer(std::move(base), "GazeLayer"), settings_(std::move(settings)), counters_(counters) {
     const auto& g = settings_.levels;
     for (std::size_t i = 0; i < g.size(); ++i)
         if (std::isnan(g[i]) || g[i] <= 0.0 || (i > 0 && g[i] <= g[i - 1]))
             throw std::invalid_argument("GazeLayer: gaze level ends must be positive and increasing");
     if (!(settings_.range > 0.0)) throw std::invalid_argument("GazeLayer: range must be positive");
-    // Merge the base's bands with the gaze's, and remember which level of each a merged band is.
-    ends_.assign(base_->levelEnds().begin(), base_->levelEnds().end());
-    ends_.insert(ends_.end(), g.begin(), g.end());
-    std::sort(ends_.begin(), ends_.end());
-    ends_.erase(std::unique(ends_.begin(), ends_.end()), ends_.end());
-    for (std::size_t i = 0; i <= ends_.size(); ++i) {
-        const double lo = i == 0 ? 0.0 : ends_[i - 1];
-        const double hi = i < ends_.size() ? ends_[i] : std::numeric_limits<double>::infinity();
-        const double mid = std::isinf(hi) ? (std::isinf(lo) ? lo : 2.0 * lo + 1.0) : 0.5 * (lo + hi);
-        baseLevel_.push_back(base_->levelFor(mid));
+    // The base's bands merged with the gaze's; the gaze's level of each merged band.
+    for (const double mid : mergeBands({g})) {
         int gl = 0;
         while (gl < int(g.size()) && !(mid < g[std::size_t(gl)])) ++gl;
         gazeLevel_.push_back(gl);
@@ -207,7 +198,11 @@ void GazeLayer::turn(const ActorTemplate& tmpl, int node, const glm::dquat& q, s
 
 void GazeLayer::pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
                      std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) {
-    base_->pose(slot, time, baseLevel_[std::size_t(level)], tmpl, active, dofs, ops);
+    if (slot < state_.size() && state_[slot].tmpl) {  // last frame's turn does not carry over
+        restNode(tmpl, state_[slot].joints.neck, dofs);
+        restNode(tmpl, state_[slot].joints.head, dofs);
+    }
+    base_->pose(slot, time, baseLevel(level), tmpl, active, dofs, ops);
     const int gazeLevel = gazeLevel_[std::size_t(level)];
     if (slot >= state_.size() || !state_[slot].tmpl) return;
     const State& s = state_[slot];
@@ -216,7 +211,7 @@ void GazeLayer::pose(std::uint32_t slot, double time, int level, const ActorTemp
     // Where to look, in the Skeleton Root frame.
     const FrameContext none{time, 0.0, 0, nullptr};
     const Mat4 ref = base_->referencePoint(slot, none, ops);
-    const RootPose root = base_->skeletonRoot(slot, time, baseLevel_[std::size_t(level)], ops);
+    const RootPose root = base_->skeletonRoot(slot, time, baseLevel(level), ops);
     const Mat4 skeletonRoot = ref * rootPoseMatrix(root);
     const glm::dvec3 target = glm::dvec3(glm::inverse(skeletonRoot) * glm::dvec4(s.lookAt, 1.0));
     const glm::dvec3 neck(modelOf(tmpl, s.joints.neck, dofs, ops).translation);

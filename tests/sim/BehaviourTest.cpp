@@ -276,3 +276,50 @@ TEST(Gaze, TheChoiceDependsOnlyOnWhoIsNear) {
     EXPECT_GT(changes, 400u) << "choices change from period to period";
     EXPECT_GT(held, 20u * changes) << "and hold within a period (2.5-5 s)";
 }
+
+// An actor's DOF values persist from frame to frame, and a clip that does not key the neck leaves it
+// as it was: the turn of the frame before must not carry over (RobotExpressive's Idle keys no
+// neck). Posing the same actor at the same time twice, on the values it kept, gives the same pose.
+TEST(Gaze, ATurnDoesNotCarryOverWhenTheClipDoesNotKeyTheNeck) {
+    ActorTemplateBuilder b("unkeyed neck");
+    SkeletonNode body;
+    body.name = "body";
+    body.dofs = {Dof::rotation(glm::vec3(0, 1, 0), -1.0f, 1.0f)};
+    b.addNode(body);
+    SkeletonNode neck;
+    neck.name = "neck";
+    neck.parent = 0;
+    neck.restTranslation = glm::vec3(0, 1.4f, 0);
+    neck.dofs = {Dof::rotation(glm::vec3(0, 1, 0), -1.2f, 1.2f), Dof::rotation(glm::vec3(1, 0, 0), -0.5f, 0.5f)};
+    b.addNode(neck);
+    ClipChannel c;  // keys the body only
+    c.times = {0.0f, 1.0f};
+    c.values = {0.0f, 0.1f};
+    b.addClip(std::make_shared<const AnimationClip>("sway", std::vector<ClipChannel>{c}));
+    const auto tmpl = b.build();
+    auto idle = std::make_shared<IdleGroups>(std::vector<double>{60.0, 1e9}, nullptr);
+    GazeLayer gaze(idle, GazeLayer::Settings{}, nullptr);
+    std::vector<std::uint32_t> slots;
+    for (int k = 0; k < 2; ++k) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = tmpl;
+        a.position = Vec3(1.5 * k, 0.0, 0.0);
+        a.heading = k == 0 ? 0.3 : -2.0;
+        slots.push_back(gaze.wrap(idle->addPerson(a), tmpl, std::uint64_t(k)));
+    }
+    const FrameContext context{0.5, 1.0 / 30.0, 15, nullptr};
+    gaze.advance(context);
+    ASSERT_EQ(gaze.lookingAt(slots[0]), int(slots[1]));
+    std::vector<float> kept(tmpl->restDofs().begin(), tmpl->restDofs().end());
+    gaze.pose(slots[0], 0.5, 0, *tmpl, {}, kept, nullptr);
+    const std::vector<float> first = kept;
+    EXPECT_NE(first, std::vector<float>(tmpl->restDofs().begin(), tmpl->restDofs().end())) << "the neck turns";
+    for (int again = 0; again < 3; ++again) {
+        gaze.pose(slots[0], 0.5, 0, *tmpl, {}, kept, nullptr);
+        EXPECT_EQ(kept, first) << "pose " << again + 2 << " turned further";
+    }
+    // Beyond the gaze's bands the neck is back at the base's pose.
+    gaze.pose(slots[0], 0.5, gaze.levelFor(1000.0), *tmpl, {}, kept, nullptr);
+    const std::uint32_t yaw = tmpl->dofValueOffset(1, 0);
+    EXPECT_EQ(kept[yaw], tmpl->restDofs()[yaw]);
+}

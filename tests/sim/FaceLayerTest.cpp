@@ -126,6 +126,27 @@ TEST(FaceLayer, AnActorBackInTheBandShowsExactlyWhatItWouldHaveShown) {
     EXPECT_EQ(f.counters.of("phrase").constructed, 1u);
 }
 
+// The crowd keeps an actor's DOF values from frame to frame: the face of one frame does not carry
+// into the next (posing twice at one time gives one pose), nor beyond the bands (neutral again).
+TEST(FaceLayer, AFaceDoesNotCarryOverInTheValuesAnActorKeeps) {
+    Faces f;
+    const std::uint32_t slot = f.add(5, 1, 0, 1);
+    std::vector<float> kept(f.tmpl->restDofs().begin(), f.tmpl->restDofs().end());
+    const auto morph = [&] { return std::vector<float>(kept.begin() + f.tmpl->morphWeightOffset(), kept.end()); };
+    int moved = 0;
+    for (int i = 0; i < 600; ++i) {
+        const double t = 0.1 * i;
+        f.layer->pose(slot, t, f.layer->levelFor(2.0), *f.tmpl, {}, kept, nullptr);
+        const std::vector<float> once = kept;
+        f.layer->pose(slot, t, f.layer->levelFor(2.0), *f.tmpl, {}, kept, nullptr);
+        EXPECT_EQ(kept, once) << "at " << t << " s";
+        moved += morph() != std::vector<float>(4, 0.0f);
+    }
+    EXPECT_GT(moved, 100);
+    f.layer->pose(slot, 61.0, f.layer->levelFor(500.0), *f.tmpl, {}, kept, nullptr);
+    EXPECT_EQ(morph(), std::vector<float>(4, 0.0f)) << "beyond the bands the face is neutral again";
+}
+
 TEST(FaceLayer, ExpressionsBlendAndBlinksNeverStep) {
     Faces f;
     const std::uint32_t slot = f.add(21);
@@ -193,6 +214,53 @@ TEST(FaceLayer, GroupMembersTakeTurnsAndMouthsMoveOnlyWhenSpeaking) {
         EXPECT_LE(speaking, 1) << "two members speak at once at " << t << " s";
     }
     for (int k = 0; k < 4; ++k) EXPECT_GT(spoke[k], 0) << "member " << k << " never speaks";
+}
+
+// A character without an eyelid target blinks with its eye joints' scale DOFs: squashed to a tenth
+// in y at the middle of a blink, untouched between blinks.
+TEST(FaceLayer, WithoutAnEyelidTargetEyeJointsWithAScaleBlink) {
+    auto mesh = std::make_shared<MeshData>();
+    mesh->name = "eye";
+    mesh->positions = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}};
+    mesh->indices = {0, 1, 2};
+    ActorTemplateBuilder b("eyes");
+    SkeletonNode head;
+    head.name = "head";
+    head.dofs = {Dof::rotation(glm::vec3(0, 1, 0), -1.0f, 1.0f)};
+    b.addNode(head);
+    SkeletonNode eye;
+    eye.name = "LeftEye";
+    eye.parent = 0;
+    eye.dofs = {Dof{DofKind::Scale, glm::vec3(0), -INFINITY, INFINITY, {1, 1, 1, 0}}};
+    eye.geometry.addLevel(std::numeric_limits<double>::infinity(), std::make_shared<MeshDrawable>(mesh));
+    b.addNode(eye);
+    ClipChannel c;
+    c.times = {0.0f};
+    c.values = {0.0f};
+    b.addClip(std::make_shared<const AnimationClip>("still", std::vector<ClipChannel>{c}));
+    const auto tmpl = b.build();
+    FaceLayer::Settings s;
+    s.blink = true;
+    s.blinkMean = 1.0;
+    s.blinkSpread = 0.5;
+    auto base = std::make_shared<KeyframeBehaviour>();
+    FaceLayer layer(base, s);
+    ASSERT_EQ(layer.rigOf(*tmpl).eyeJoints, std::vector<int>{1});
+    KeyframeBehaviour::Actor a;
+    a.tmpl = tmpl;
+    const std::uint32_t slot = layer.wrap(base->addActor(a), tmpl, 3, 0, 0, 1);
+    const std::uint32_t yScale = tmpl->dofValueOffset(1, 0) + 1;
+    double least = 1.0;
+    for (int i = 0; i < 3000; ++i) {
+        const double t = i / 300.0;
+        std::vector<float> dofs(tmpl->restDofs().begin(), tmpl->restDofs().end());
+        layer.pose(slot, t, layer.levelFor(2.0), *tmpl, {}, dofs, nullptr);
+        const double w = layer.blinkAt(slot, t);
+        EXPECT_NEAR(dofs[yScale], 1.0 - 0.9 * w, 1e-6) << "at " << t << " s";
+        EXPECT_EQ(dofs[yScale - 1], 1.0f) << "only y is squashed";
+        least = std::min(least, double(dofs[yScale]));
+    }
+    EXPECT_LT(least, 0.15) << "no blink closed the eyes";
 }
 
 TEST(FaceLayer, BadSettingsAreNamed) {

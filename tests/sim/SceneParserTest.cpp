@@ -423,6 +423,33 @@ INSTANTIATE_TEST_SUITE_P(
                  "at least one distance"},
         BadScene{"gaze across a town", scene(kActors, R"(, "effects": {"gaze": {"range": 5000}})"), "/effects/gaze/range",
                  "must be above 0, up to 1000 m"},
+        BadScene{"face levels decreasing", scene(kActors, R"(, "effects": {"face": {"levels": [20, 10]}})"), "/effects/face/levels/1",
+                 "level ends must increase"},
+        BadScene{"an expression without a name", scene(kActors, R"(, "effects": {"face": {"expressions": [{"duration": 2}]}})"),
+                 "/effects/face/expressions/0/name", "is missing"},
+        BadScene{"two expressions of one name",
+                 scene(kActors, R"(, "effects": {"face": {"expressions": [{"name": "a"}, {"name": "a"}]}})"),
+                 "/effects/face/expressions/1/name", "already an expression"},
+        BadScene{"an expression weight of 2",
+                 scene(kActors, R"(, "effects": {"face": {"expressions": [{"name": "a", "weights": {"Angry": 2}}]}})"),
+                 "/effects/face/expressions/0/weights/Angry", "must be from -1 to 1"},
+        BadScene{"an expression held 0 s", scene(kActors, R"(, "effects": {"face": {"expressions": [{"name": "a", "duration": 0}]}})"),
+                 "/effects/face/expressions/0/duration", "must be above 0, up to 3600 s"},
+        BadScene{"no expressions", scene(kActors, R"(, "effects": {"face": {"expressions": []}})"), "/effects/face/expressions",
+                 "at least one expression"},
+        BadScene{"an unknown face key", scene(kActors, R"(, "effects": {"face": {"smile": 1}})"), "/effects/face/smile",
+                 "is not a known field"},
+        BadScene{"a blink spread over its mean", scene(kActors, R"(, "effects": {"blink": {"mean": 2, "spread": 3}})"),
+                 "/effects/blink/spread", "below the mean"},
+        BadScene{"a blink longer than its intervals", scene(kActors, R"(, "effects": {"blink": {"mean": 1, "spread": 0.9, "duration": 0.5}})"),
+                 "/effects/blink/duration", "shorter than the shortest interval"},
+        BadScene{"no phrases", scene(kActors, R"(, "effects": {"phrase": {"phrases": []}})"), "/effects/phrase/phrases",
+                 "at least one phrase"},
+        BadScene{"an empty phrase", scene(kActors, R"(, "effects": {"phrase": {"phrases": [""]}})"), "/effects/phrase/phrases/0",
+                 "must not be empty"},
+        BadScene{"phrases in groups of 0", scene(kActors, R"(, "effects": {"phrase": {"groupSize": 0}})"), "/effects/phrase/groupSize",
+                 "must be from 1 to 1000"},
+        BadScene{"phrase as a number", scene(kActors, R"(, "effects": {"phrase": 3})"), "/effects/phrase", "must be an object"},
         BadScene{"far update at 1e9 m", scene(kActors, R"(, "effects": {"farUpdate": {"distance": 1e9, "every": 4}})"),
                  "/effects/farUpdate/distance", "must be above 0, up to 100000 m"},
         BadScene{"impostors from 1e9 m", scene(kActors, R"(, "representation": {"impostorDistance": 1e9})"),
@@ -589,15 +616,55 @@ TEST(SceneParser, LooksAreGeneratedOrRead) {
     EXPECT_EQ(worn.size(), 8u) << "40 actors should wear all 8 looks";
 }
 
-// The default scene dresses every glTF template in at least four looks (issue 37's diversity).
+// The default scene dresses every glTF template with a skinned body in at least four looks (issue
+// 37's diversity). RobotExpressive's body is rigid parts, which carry no body regions to recolour.
 TEST(SceneParser, TheDefaultSceneHasFourLooksPerCharacter) {
     const SceneDescription d = parseSceneFile((repositoryRoot() / "apps/town/scenes/default.json").string());
     for (const auto& [name, t] : d.templates) {
-        if (t.gltf.empty()) continue;
+        if (t.gltf.empty() || t.gltf.find("RobotExpressive") != std::string::npos) continue;
         std::set<std::array<std::uint32_t, 4>> distinct;
         for (const throng::BodyLook& l : t.looks) distinct.insert(l.rgba);
         EXPECT_GE(distinct.size(), 4u) << name;
     }
+}
+
+// Faces: the three effects declared with their settings, `true` giving the defaults, and none by default.
+TEST(SceneParser, FacesAreDeclaredEffectByEffect) {
+    const SceneDescription none = parseScene(scene(kActors), kAssets);
+    EXPECT_FALSE(none.effects.faces.face || none.effects.faces.blink || none.effects.faces.phrase);
+    const SceneDescription all = parseScene(scene(kActors, R"(, "effects": {
+        "face": {"levels": [10, 20], "transition": 0.3, "expressions": [{"name": "calm"}, {"name": "cross", "duration": 2, "weights": {"Angry": 0.9}}]},
+        "blink": {"levels": [8], "mean": 3, "spread": 1, "duration": 0.2},
+        "phrase": {"levels": [9], "phrases": ["Hi"], "lettersPerSecond": 10, "pause": 2, "groupSize": 4, "mouthTargets": ["Surprised"]}})"),
+                                            kAssets);
+    const auto& f = all.effects.faces;
+    EXPECT_TRUE(f.face && f.blink && f.phrase);
+    EXPECT_EQ(f.faceLevels, (std::vector<double>{10, 20}));
+    EXPECT_DOUBLE_EQ(f.transition, 0.3);
+    ASSERT_EQ(f.expressions.size(), 2u);
+    EXPECT_EQ(f.expressions[1].name, "cross");
+    EXPECT_DOUBLE_EQ(f.expressions[1].duration, 2.0);
+    EXPECT_FLOAT_EQ(f.expressions[1].weights.at("Angry"), 0.9f);
+    EXPECT_TRUE(f.expressions[0].weights.empty());
+    EXPECT_DOUBLE_EQ(f.blinkMean, 3.0);
+    EXPECT_DOUBLE_EQ(f.blinkDuration, 0.2);
+    EXPECT_EQ(f.phrases, (std::vector<std::string>{"Hi"}));
+    EXPECT_EQ(all.effects.phraseGroupSize, 4);
+    EXPECT_EQ(f.mouthTargets, (std::vector<std::string>{"Surprised"}));
+    const SceneDescription defaults = parseScene(scene(kActors, R"(, "effects": {"face": true, "blink": false, "phrase": true})"), kAssets);
+    EXPECT_TRUE(defaults.effects.faces.face);
+    EXPECT_FALSE(defaults.effects.faces.blink);
+    EXPECT_TRUE(defaults.effects.faces.expressions.empty()) << "true: the character's own targets";
+    EXPECT_FALSE(defaults.effects.faces.phrases.empty()) << "true: stock phrases";
+}
+
+// The default scene gives RobotExpressive characters all three face effects (issue 38).
+TEST(SceneParser, TheDefaultSceneDeclaresFaces) {
+    const SceneDescription d = parseSceneFile((repositoryRoot() / "apps/town/scenes/default.json").string());
+    EXPECT_TRUE(d.effects.faces.face && d.effects.faces.blink && d.effects.faces.phrase);
+    bool expressive = false;
+    for (const auto& g : d.actors) expressive = expressive || g.templateName == "expressive";
+    EXPECT_TRUE(expressive);
 }
 
 TEST(SceneParser, TheSceneGuideStatesEveryRange) {

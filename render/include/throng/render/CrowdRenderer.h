@@ -10,7 +10,9 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "throng/render/Caption.h"
 #include "throng/render/GpuPassTimer.h"
 #include "throng/render/ImpostorBatcher.h"
 #include "throng/render/ImpostorRenderer.h"
@@ -104,7 +106,12 @@ public:
     /// Draws `list` in three passes: the generic scene's meshes, the actors' meshes (key-pose items
     /// included), the impostors.
     void draw(const DrawList& list) override;
+    /// Finishes the image (scales a scaled frame up, draws the overlays and captions) unless
+    /// finishImage() did, then presents it.
     void endFrame() override;
+    /// Finishes the frame's image before endFrame(): scaled up, with its overlays and captions, so
+    /// that readFrame() sees what the window will show. Once per frame; endFrame() then presents.
+    void finishImage();
 
     /// Uploads these impostors' stored cells now rather than at their first frame (a steady start).
     void preloadImpostors(std::span<const std::shared_ptr<const ImpostorDrawable>> drawables);
@@ -112,6 +119,9 @@ public:
     void setOverlayText(std::string text) { overlayText_ = std::move(text); }
     /// An image drawn over the next frames in the bottom-right corner (empty: none).
     void setOverlayImage(Image image) { overlayImage_ = std::move(image); }
+    /// Lines of text shown over the next frames, each centred just above its point of the world as
+    /// the frame's camera sees it (points behind the eye are skipped): a speaker's caption.
+    void setCaptions(std::vector<Caption> captions) { captions_ = std::move(captions); }
     /// New morphed impostor cells per atlas and frame from the next frame on (-1: no limit; see
     /// ImpostorRendererOptions::morphBudget). Throws std::invalid_argument below -1.
     void setMorphBudget(int budget);
@@ -142,8 +152,11 @@ private:
     std::unique_ptr<ImageOverlay> imageOverlay_;
     std::unique_ptr<ScaledFrame> scaled_;
     bool scaledFrame_ = false;  // this frame is drawn into scaled_
+    bool finished_ = false;     // finishImage() ran this frame
+    double finishMs_ = 0.0;     // its time, counted in endFrameMs
     std::string overlayText_;
     Image overlayImage_;
+    std::vector<Caption> captions_;
     Camera camera_;
     CrowdRenderStatistics stats_;
     DrawList sceneItems_, actorItems_;  // this frame's mesh items, split by pass (pointers kept)

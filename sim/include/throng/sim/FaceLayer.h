@@ -24,13 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "throng/actors/Behaviour.h"
+#include "throng/sim/BehaviourLayer.h"
 #include "throng/sim/EffectCounters.h"
 
 namespace throng::sim {
 
 /// Expression, blink and phrase control over a base behaviour.
-class FaceLayer : public Behaviour {
+class FaceLayer : public BehaviourLayer {
 public:
     /// One expression: morph weights by channel name, held for `duration` seconds.
     struct Expression {
@@ -106,27 +106,9 @@ public:
     /// (advance() calls it; call it once more after the last frame).
     double flushCounts();
 
-    std::span<const double> levelEnds() const override { return ends_; }
     void advance(const FrameContext& context) override;
-    Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override {
-        return base_->referencePoint(slot, context, ops);
-    }
-    /// The base behaviour's, batched as it batches them.
-    void referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
-                         std::span<Mat4> out) override {
-        base_->referencePoints(slots, context, ops, out);
-    }
-    RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override {
-        return base_->skeletonRoot(slot, time, baseLevel_[std::size_t(level)], ops);
-    }
     void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
-    BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return base_->skeletonRootExtent(slot); }
-    bool posesFromTemplateClips() const override { return base_->posesFromTemplateClips(); }
-    bool present(std::uint32_t slot) const override { return base_->present(slot); }
-    double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot); }
-    double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }
-    int mainClip(std::uint32_t slot) const override { return base_->mainClip(slot); }
     std::size_t bytesPerSlot() const override { return base_->bytesPerSlot() + sizeof(State); }
 
 private:
@@ -152,11 +134,9 @@ private:
     void writeExpression(State& s, double time, bool strongestOnly, std::span<float> weights);
     double mouthOpen(const std::string& phrase, double progress) const;
 
-    std::shared_ptr<Behaviour> base_;
     Settings settings_;
     EffectCounters* counters_;
-    std::vector<double> ends_;
-    std::vector<int> baseLevel_, faceLevel_, blinkLevel_, phraseLevel_;  // per merged level
+    std::vector<int> faceLevel_, blinkLevel_, phraseLevel_;  // per merged level
     std::vector<State> state_;
     std::map<const ActorTemplate*, std::unique_ptr<FaceRig>> rigs_;
     // Counted by pose() (called in parallel), handed over by flushCounts().

@@ -15,13 +15,13 @@
 #include <memory>
 #include <vector>
 
-#include "throng/actors/Behaviour.h"
+#include "throng/sim/BehaviourLayer.h"
 #include "throng/sim/EffectCounters.h"
 
 namespace throng::sim {
 
 /// Head and neck look-at over a base behaviour.
-class GazeLayer : public Behaviour {
+class GazeLayer : public BehaviourLayer {
 public:
     /// How people look.
     struct Settings {
@@ -42,27 +42,10 @@ public:
     /// The slot `slot` is looking at, or -1.
     int lookingAt(std::uint32_t slot) const { return state_[slot].target; }
 
-    std::span<const double> levelEnds() const override { return ends_; }
     void advance(const FrameContext& context) override;
-    Mat4 referencePoint(std::uint32_t slot, const FrameContext& context, OpTally* ops) override {
-        return base_->referencePoint(slot, context, ops);
-    }
-    /// The base behaviour's, batched as it batches them.
-    void referencePoints(std::span<const std::uint32_t> slots, const FrameContext& context, OpTally* ops,
-                         std::span<Mat4> out) override {
-        base_->referencePoints(slots, context, ops, out);
-    }
-    RootPose skeletonRoot(std::uint32_t slot, double time, int level, OpTally* ops) override {
-        return base_->skeletonRoot(slot, time, baseLevel_[std::size_t(level)], ops);
-    }
     void pose(std::uint32_t slot, double time, int level, const ActorTemplate& tmpl,
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
-    BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return base_->skeletonRootExtent(slot); }
-    bool posesFromTemplateClips() const override { return base_->posesFromTemplateClips(); }
-    bool present(std::uint32_t slot) const override { return base_->present(slot); }
     double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot) + state_[slot].margin; }
-    double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }
-    int mainClip(std::uint32_t slot) const override { return base_->mainClip(slot); }
     std::size_t bytesPerSlot() const override { return base_->bytesPerSlot() + sizeof(State); }
 
 private:
@@ -82,11 +65,8 @@ private:
     void turn(const ActorTemplate& tmpl, int node, const glm::dquat& rotation, std::span<float> dofs,
               std::span<const std::uint8_t> active, OpTally* ops) const;
 
-    std::shared_ptr<Behaviour> base_;
     Settings settings_;
     EffectCounters* counters_;
-    std::vector<double> ends_;        // the base's band ends and the gaze's, merged
-    std::vector<int> baseLevel_;      // per merged level: the base's level
     std::vector<int> gazeLevel_;      // per merged level: the gaze's level
     std::vector<State> state_;
     std::map<const ActorTemplate*, Joints> joints_;
