@@ -153,7 +153,6 @@ struct GlRenderer::Impl {
     std::vector<glm::mat4> palette;
     std::vector<glm::vec3> cpuPositions, cpuNormals;
     std::vector<glm::vec2> morphWeights;  // this draw's (target, weight) pairs, item after item
-    std::vector<glm::vec3> morphedPositions, morphedNormals;  // CPU path: one item's morphed shape
     std::vector<KeyPoseFill> fills;   // rows to skin this draw
     std::uint32_t keyPoseCaches = 0;  // caches met this draw
     const MeshData* lastMesh = nullptr;  // shortcut for runs of clones sharing a mesh
