@@ -2,6 +2,8 @@
 #include "TownRecords.h"
 
 #include <algorithm>
+
+#include "throng/sim/PeakMemory.h"
 #include <sstream>
 
 namespace throng::town {
@@ -29,7 +31,7 @@ std::string csvHeader(int ranks, bool budget) {
     std::string header = kCsvHeader;
     if (budget) header += kBudgetCsvHeader;
     for (int r = 0; r < ranks; ++r)
-        for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "sent", "state_bytes", "work_ms", "wait_ms"})
+        for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "sent", "state_bytes", "work_ms", "wait_ms", "peak_bytes"})
             header += ",rank" + std::to_string(r) + "_" + column;
     return header + "\n";
 }
@@ -66,7 +68,8 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
     }
     for (const auto& share : f.ranks)
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
-          << share.borderBytes << ',' << share.sent << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs;
+          << share.borderBytes << ',' << share.sent << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs << ','
+          << share.peakBytes;
     return o.str() + '\n';
 }
 
@@ -81,6 +84,7 @@ void Sums::add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistic
         into.handedToRanks += from.handedToRanks, into.borderBytes += from.borderBytes, into.stateBytes += from.stateBytes;
         into.sent += from.sent;
         into.workMs += from.workMs, into.waitMs += from.waitMs;
+        into.peakBytes = std::max(into.peakBytes, from.peakBytes);  // a peak, not a sum
     }
     const ActorFrameStatistics& s = f.stats;
     app += s.appCullMs();
@@ -124,6 +128,7 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
         j["gatherMargin"] = world.gatherMargin();  // metres beyond the view walkers are gathered within (under mpirun)
     }
     const double n = double(std::max<std::int64_t>(sums.frames, 1));
+    j["peakMemoryBytes"] = sim::peakResidentBytes();  // this process's (rank 0's); each rank's in meanPerRank
     j["wallSeconds"] = wallSeconds;
     j["fps"] = sums.frames > 1 ? double(sums.frames - 1) / std::max(1e-9, wallSeconds - firstFrameSeconds) : 0.0;
     const char* names[9] = {"app", "refpoint", "matricesBounds", "cull", "skeletonRoot", "cull2", "pose", "cull3", "drawList"};
@@ -136,7 +141,8 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
     for (const auto& r : sums.ranks)  // distributed: each rank's share of a step, on average
         j["meanPerRank"].push_back({{"agents", double(r.agents) / n}, {"ghosts", double(r.ghosts) / n}, {"handovers", double(r.handovers) / n},
                                     {"handedToRanks", double(r.handedToRanks) / n}, {"borderBytes", double(r.borderBytes) / n},
-                                    {"sent", double(r.sent) / n}, {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n}});
+                                    {"sent", double(r.sent) / n}, {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n},
+                                    {"peakBytes", r.peakBytes}});  // the largest resident memory any step reported
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     j["faces"] = {{"evaluations", sums.faceEvaluations / n}, {"ms", sums.faceMs / n}, {"morphTargetsRead", sums.morphTargetsRead / n},

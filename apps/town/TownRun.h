@@ -28,6 +28,8 @@ namespace throng::town {
 
 /// Message tag of the start signal rank 0 sends the other ranks when it is ready to step.
 inline constexpr int kStartTag = 1;
+/// Message tag of the navigation mesh rank 0 builds and sends the other ranks.
+inline constexpr int kNavMeshTag = 2;
 
 /// Rank 0's run of the town.
 class TownRun {

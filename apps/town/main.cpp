@@ -8,10 +8,12 @@
 // then impostors). With --pipeline on, DRAW of frame N runs while frame N+1 is stepped and culled,
 // from frame N's own draw list; the frames written are the same either way.
 //
-// Under mpirun -np N every rank builds the same world and steps its share of the walkers' regions;
-// rank 0 gathers the walkers near the frame's view after each step (the others cannot be seen),
-// then culls, draws and writes as one process would (stats.csv adds each rank's share of the step).
-// The files are the same with any number of ranks.
+// Under mpirun -np N every rank steps its share of the walkers' regions; rank 0 builds the whole
+// world and sends the others its navigation mesh, from which they build only what stepping walkers
+// needs (the walkers' templates and Locomotion).
+// Rank 0 gathers the walkers near the frame's view after each step (the others cannot be seen),
+// then culls, draws and writes as one process would (stats.csv adds each rank's share of the step
+// and its peak memory). The files are the same with any number of ranks.
 //
 // With --frame-budget MS, a FrameBudgetAllocator picks each frame's rung of a ladder (LOD scale,
 // impostor distance, key-pose distance, morph budget) from the APP+CULL+DRAW measured so far: a
@@ -53,13 +55,32 @@ std::string rankLabel(const sim::Ranks& ranks) { return ranks.size() > 1 ? " (ra
 
 // A rank other than 0: waits for rank 0's set-up, then steps its share of the regions as often as
 // rank 0 steps (once per frame), writing nothing. A failure stops every rank.
+// Runs `wait` with the ranks' timeout raised to at least 30 minutes: rank 0 builds the world and
+// bakes impostors meanwhile.
+template <class Wait>
+auto waitLong(sim::Ranks& ranks, Wait&& wait) {
+    const auto timeout = ranks.timeout();
+    ranks.setTimeout(std::max<std::chrono::milliseconds>(timeout, std::chrono::minutes(30)));
+    auto result = wait();
+    ranks.setTimeout(timeout);
+    return result;
+}
+
+// A rank other than 0: rank 0's navigation mesh (none when nothing walks), once rank 0 has built it.
+std::shared_ptr<const sim::NavMesh> receiveNavMesh(sim::Ranks& ranks) {
+    const sim::Bytes bytes = waitLong(ranks, [&] { return ranks.broadcast({}, town::kNavMeshTag, "navigation mesh"); });
+    if (bytes.empty()) return nullptr;
+    try {
+        return sim::NavMesh::fromBytes(bytes);
+    } catch (const std::invalid_argument& e) {
+        throw sim::RankError(0, std::string("rank 0 sent a navigation mesh that cannot be read: ") + e.what());
+    }
+}
+
 int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions& o) {
     try {
         world.setThreads(unsigned(o.threads));
-        const auto timeout = ranks.timeout();
-        ranks.setTimeout(std::max<std::chrono::milliseconds>(timeout, std::chrono::minutes(30)));  // baking impostors takes a while
-        ranks.broadcast({}, town::kStartTag, "start");
-        ranks.setTimeout(timeout);
+        waitLong(ranks, [&] { return ranks.broadcast({}, town::kStartTag, "start"); });  // baking impostors takes a while
         for (std::int64_t f = 0; f < o.frames; ++f) world.step();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "throng-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
@@ -127,10 +148,16 @@ int main(int argc, char** argv) {
     std::unique_ptr<sim::Simulation> world;
     try {
         support::ProgressBar bar("building", 100, ranks.rank() == 0);
+        // Ranks other than 0 draw nothing: they build what stepping their walkers needs, on rank 0's
+        // navigation mesh (built once, not once per rank).
+        sim::Simulation::BuildOptions options;
+        if (distributed && ranks.rank() != 0) options = {sim::Simulation::Scope::Walkers, receiveNavMesh(ranks)};
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) {
             support::StopSignals::throwIfStopped();
             bar.phase(std::size_t(f * 100), stage);
-        });
+        }, options);
+        if (distributed && ranks.size() > 1 && ranks.rank() == 0)
+            ranks.broadcast(world->navMesh() ? world->navMesh()->toBytes() : sim::Bytes{}, town::kNavMeshTag, "navigation mesh");
         bar.finish(std::to_string(world->crowd().size()) + " actors");
         if (recorder) recorder->writeScene(world->root());
     } catch (const std::bad_alloc&) {  // the estimate was wrong for this scene or another process took the memory

@@ -16,6 +16,7 @@
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/ClipBlend.h"
 #include "throng/sim/CounterRng.h"
+#include "throng/sim/PeakMemory.h"
 #include "throng/sim/Ranks.h"
 #include "locomotion/RankExchange.h"
 #include "locomotion/RegionStepper.h"
@@ -224,6 +225,7 @@ void Locomotion::advance(const FrameContext& context) {
     });
     mine.agents = ownSlots_.size();
     mine.workMs = watch.elapsedMs() - mine.waitMs;
+    mine.peakBytes = peakResidentBytes();
     lastAdvanceMs_ = watch.elapsedMs();
     const locomotion::RankExchange::Totals totals = exchange_->gather(mine, ownSlots_, gatherView_, gatherMargin_);
     if (exchange_->rank() == 0) lastGhosts_ = totals.ghosts, lastHandovers_ = totals.handovers, lastDeferred_ = totals.deferred;

@@ -7,7 +7,9 @@
 #include <Recast.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -244,6 +246,112 @@ std::shared_ptr<NavMesh> NavMesh::build(const NavGeometry& g, const NavMeshSetti
     }
     nav->query_ = dtAllocNavMeshQuery();
     if (!nav->query_ || dtStatusFailed(nav->query_->init(nav->mesh_, 4096))) fail("initialising the navigation query");
+    nav->indexPolygons();
+    return nav;
+}
+
+namespace {
+
+constexpr char kBytesMagic[4] = {'T', 'N', 'A', 'V'};
+constexpr std::uint32_t kBytesVersion = 1;
+
+// Appends `n` bytes from `p` to `out`.
+void putBytes(std::vector<std::byte>& out, const void* p, std::size_t n) {
+    const std::size_t at = out.size();
+    out.resize(at + n);
+    if (n) std::memcpy(out.data() + at, p, n);
+}
+
+// Appends the raw bytes of `value` (trivially copyable) to `out`.
+template <class T>
+void put(std::vector<std::byte>& out, const T& value) {
+    putBytes(out, &value, sizeof(T));
+}
+
+// Reads what put() wrote, checking that the bytes hold it.
+struct ByteReader {
+    std::span<const std::byte> bytes;
+    std::size_t at = 0;
+    void read(void* into, std::size_t n, const char* what) {
+        if (bytes.size() - at < n)
+            throw std::invalid_argument("NavMesh::fromBytes: the bytes end at " + std::to_string(bytes.size()) + " inside " + what);
+        std::memcpy(into, bytes.data() + at, n);
+        at += n;
+    }
+    template <class T>
+    T get(const char* what) {
+        T value;
+        read(&value, sizeof(T), what);
+        return value;
+    }
+};
+
+}  // namespace
+
+std::vector<std::byte> NavMesh::toBytes() const {
+    std::vector<std::byte> out;
+    putBytes(out, kBytesMagic, sizeof kBytesMagic);
+    put(out, kBytesVersion);
+    put(out, settings_);
+    put(out, *mesh_->getParams());
+    const dtNavMesh* m = mesh_;
+    std::uint32_t tiles = 0;
+    for (int t = 0; t < m->getMaxTiles(); ++t)
+        if (const dtMeshTile* tile = m->getTile(t); tile && tile->header) ++tiles;
+    put(out, tiles);
+    for (int t = 0; t < m->getMaxTiles(); ++t) {
+        const dtMeshTile* tile = m->getTile(t);
+        if (!tile || !tile->header) continue;
+        put(out, std::uint64_t(m->getTileRef(tile)));
+        put(out, std::uint32_t(tile->dataSize));
+        putBytes(out, tile->data, std::size_t(tile->dataSize));
+    }
+    return out;
+}
+
+std::shared_ptr<NavMesh> NavMesh::fromBytes(std::span<const std::byte> bytes) {
+    ByteReader in{bytes};
+    char magic[4];
+    in.read(magic, 4, "the header");
+    if (!std::equal(magic, magic + 4, kBytesMagic)) throw std::invalid_argument("NavMesh::fromBytes: not a navigation mesh's bytes");
+    if (const auto version = in.get<std::uint32_t>("the header"); version != kBytesVersion)
+        throw std::invalid_argument("NavMesh::fromBytes: version " + std::to_string(version) + ", this build reads version " +
+                                    std::to_string(kBytesVersion));
+    std::shared_ptr<NavMesh> nav(new NavMesh());
+    nav->settings_ = in.get<NavMeshSettings>("the settings");
+    const dtNavMeshParams params = in.get<dtNavMeshParams>("Detour's parameters");
+    const auto tiles = in.get<std::uint32_t>("the tile count");
+    if (tiles == 0 || tiles > std::uint32_t(std::max(params.maxTiles, 1)))
+        throw std::invalid_argument("NavMesh::fromBytes: " + std::to_string(tiles) + " tiles for a mesh of at most " +
+                                    std::to_string(params.maxTiles));
+    nav->mesh_ = dtAllocNavMesh();
+    if (!nav->mesh_) throw std::runtime_error("NavMesh::fromBytes: Detour could not allocate a navigation mesh");
+    if (dtStatusFailed(nav->mesh_->init(&params))) throw std::invalid_argument("NavMesh::fromBytes: Detour refuses the mesh's parameters");
+    for (std::uint32_t k = 0; k < tiles; ++k) {
+        const std::string what = "tile " + std::to_string(k) + " of " + std::to_string(tiles);
+        const auto ref = in.get<std::uint64_t>(what.c_str());
+        const auto size = in.get<std::uint32_t>(what.c_str());
+        if (size < sizeof(dtMeshHeader) || size > std::uint32_t(INT_MAX))
+            throw std::invalid_argument("NavMesh::fromBytes: " + what + " holds " + std::to_string(size) + " bytes, not a Detour tile");
+        auto* data = static_cast<unsigned char*>(dtAlloc(size, DT_ALLOC_PERM));
+        if (!data) throw std::runtime_error("NavMesh::fromBytes: out of memory for " + what);
+        try {
+            in.read(data, size, what.c_str());
+        } catch (...) {
+            dtFree(data);
+            throw;
+        }
+        // The same slot and salt as in the original: every polygon keeps its reference.
+        if (dtStatusFailed(nav->mesh_->addTile(data, int(size), DT_TILE_FREE_DATA, dtTileRef(ref), nullptr))) {
+            dtFree(data);
+            throw std::invalid_argument("NavMesh::fromBytes: Detour refuses " + what + " (not tile data of this Detour, or its place is taken)");
+        }
+    }
+    if (in.at != bytes.size())
+        throw std::invalid_argument("NavMesh::fromBytes: " + std::to_string(bytes.size() - in.at) + " bytes follow the last tile");
+    nav->query_ = dtAllocNavMeshQuery();
+    if (!nav->query_ || dtStatusFailed(nav->query_->init(nav->mesh_, 4096)))
+        throw std::runtime_error("NavMesh::fromBytes: Detour could not initialise a navigation query");
     nav->indexPolygons();
     return nav;
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -144,12 +146,14 @@ struct Placement {
     GazeLayer::Settings gazeSettings;
     std::shared_ptr<FaceLayer> walkFace, idleFace;  // when faces, blinks or phrases are declared
     FaceLayer::Settings faceSettings;
+    bool walkersOnly;  // Scope::Walkers: walkers join their Locomotion only (no layer, no crowd)
     std::uint64_t stream = 0;
     CounterRng rng;
 
     Placement(const SceneDescription& description, const std::string& sceneFile, Crowd& c, EffectCounters& e,
-              std::shared_ptr<const NavMesh> mesh)
-        : d(description), file(sceneFile), crowd(c), effects(e), nav(std::move(mesh)), rng(description.seed, 0x5ce7e) {
+              std::shared_ptr<const NavMesh> mesh, bool walkersOnlyScope)
+        : d(description), file(sceneFile), crowd(c), effects(e), nav(std::move(mesh)), walkersOnly(walkersOnlyScope),
+          rng(description.seed, 0x5ce7e) {
         gazeSettings.levels = d.effects.gazeLevels;
         gazeSettings.range = d.effects.gazeRange;
         gazeSettings.seed = d.seed;
@@ -230,7 +234,7 @@ struct Placement {
                     s.destinationRange = 8.0 * (d.town->blockTiles + 1) * d.town->tileSize;
             }
             walkers = std::make_shared<Locomotion>(nav, s, levels, &effects);
-            if (d.effects.gaze) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects);
+            if (d.effects.gaze && !walkersOnly) walkGaze = std::make_shared<GazeLayer>(walkers, gazeSettings, &effects);
         }
         const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
         const SpeedProfile* profile = g.speedProfile.empty() ? nullptr : findSpeedProfile(g.speedProfile);
@@ -247,6 +251,7 @@ struct Placement {
             if (g.period) a.period = glm::vec3(float(g.period->x), 0.0f, float(g.period->y));
             a.stream = stream;
             std::uint32_t slot = walkers->addActor(a);
+            if (walkersOnly) continue;
             if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
             const std::shared_ptr<Behaviour> outer = outermost(walkers, walkGaze, walkFace);
             if (walkFace) {  // walkers talk in groups of consecutive streams
@@ -307,6 +312,19 @@ struct Placement {
     }
 };
 
+// A navigation mesh's settings that a scene chooses, in words.
+std::string describe(const NavMeshSettings& s) {
+    char text[128];
+    std::snprintf(text, sizeof text, "cell %g m, agent radius %g m, climb %g m, tiles of %g m", s.cellSize, s.agentRadius,
+                  s.agentMaxClimb, s.tileSize);
+    return text;
+}
+
+// A group's behaviour level bands (declared, or the default two).
+std::vector<double> levelsOf(const ActorGroupDescription& g) {
+    return g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
+}
+
 }  // namespace
 
 Simulation::~Simulation() = default;
@@ -319,7 +337,7 @@ const FrameContext& Simulation::step() {
     if (walkers_ && walkers_->settings().farEvery > 1) walkers_->setViewpoint(glm::vec3(camera_->at(now_.time, 1.0).eye()));
     if (walkersOnly_) {  // a rank other than 0: its share of the walkers is all it steps
         const Stopwatch watch;
-        team_->run([&] { walkers_->advance(now_); });
+        if (walkers_) team_->run([&] { walkers_->advance(now_); });
         walkersOnlyMs_ = watch.elapsedMs();
     } else {
         team_->run([&] { crowd_.step(now_); });
@@ -333,14 +351,21 @@ void Simulation::setThreads(unsigned threads) {
 }
 
 std::unique_ptr<Simulation> Simulation::build(SceneDescription description, const BuildProgress& progress) {
+    return build(std::move(description), progress, BuildOptions{});
+}
+
+std::unique_ptr<Simulation> Simulation::build(SceneDescription description, const BuildProgress& progress, BuildOptions options) {
     std::unique_ptr<Simulation> sim(new Simulation());
     sim->description_ = std::move(description);
+    sim->scope_ = options.scope;
+    sim->walkersOnly_ = options.scope == Scope::Walkers;
+    sim->navGiven_ = options.navMesh != nullptr;
     sim->root_ = std::make_shared<Group>();
     sim->root_->setName(sim->description_.name.empty() ? "scene" : sim->description_.name);
     const BuildProgress report = progress ? progress : [](const std::string&, double) {};
     sim->buildTown(report);
     if (const auto& town = sim->description_.town; town && town->lodScale > 0.0) sim->setTownLodScale(town->lodScale);
-    sim->buildActors(report);
+    sim->buildActors(report, std::move(options.navMesh));
     double extent = 100.0;
     if (sim->town_) extent = std::max(sim->town_->extent().x, sim->town_->extent().y);
     sim->camera_ = std::make_unique<CameraPath>(sim->description_.camera, extent);
@@ -365,21 +390,26 @@ void Simulation::buildTown(const BuildProgress& progress) {
         for (std::size_t i = 0; i < d.walkways->floors.size(); ++i) {
             const AreaDescription& f = d.walkways->floors[i];
             const glm::vec3 c(float(f.center.x), -0.05f, float(f.center.y)), half(float(0.5 * f.size.x), 0.05f, float(0.5 * f.size.y));
-            auto slab = makeBox("floor " + std::to_string(i), c, half, glm::vec4(0.72f, 0.7f, 0.66f, 1.0f));
-            root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(slab)));
+            if (!walkersOnly_) {
+                auto slab = makeBox("floor " + std::to_string(i), c, half, glm::vec4(0.72f, 0.7f, 0.66f, 1.0f));
+                root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(slab)));
+            }
             navGeometry_.addBox(c - glm::vec3(half.x, 0.45f, half.z), c + glm::vec3(half.x, 0.05f, half.z), true);
         }
         return;
     }
     if (!d.town) {
         // A plain ground to stand and fly over.
-        auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
-        root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(ground)));
+        if (!walkersOnly_) {
+            auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
+            root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(ground)));
+        }
         navGeometry_.addBox(glm::vec3(-250.0f, -0.5f, -250.0f), glm::vec3(250.0f, 0.0f, 250.0f), true);
         return;
     }
     progress("laying out the town", 0.0);
     town_ = layoutTown(*d.town);
+    if (walkersOnly_ && navGiven_) return;  // the layout is all a walkers' world needs of the town then
     // One model per kind of tile, shared by every tile of that kind.
     std::map<TileKind, std::vector<std::shared_ptr<const MeshDrawable>>> models;
     for (const TilePlacement& t : town_->tiles) {
@@ -397,7 +427,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
     }
     // Occluders, when the scene asks: boxes fitted inside each kind of building, once per kind.
     std::map<TileKind, std::pair<std::vector<AxisBox>, AxisBox>> occluderOf;  // boxes and shell
-    if (d.town->occluders) {
+    if (d.town->occluders && !walkersOnly_) {
         for (const auto& [kind, list] : models) {
             if (tileWalkable(kind)) continue;
             std::vector<const MeshData*> meshes;
@@ -410,6 +440,15 @@ void Simulation::buildTown(const BuildProgress& progress) {
             if (!boxes.empty()) occluderOf[kind] = {std::move(boxes), shell};
         }
         progress("fitting occluders", 0.5);
+    }
+    if (walkersOnly_) {  // the tiles' surfaces for the navigation mesh, no scene graph
+        for (const TilePlacement& t : town_->tiles) {
+            const Mat4 m = tileTransform(*town_, t);
+            for (const auto& model : models[t.kind]) navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
+            blockTile(t);
+        }
+        progress("town laid out", 0.5);
+        return;
     }
     // Tiles grouped by chunks of 4 x 4 so that CULL rejects whole chunks.
     auto town = std::make_shared<Group>();
@@ -432,11 +471,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
             navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
             townTriangles_ += model->primitiveCount();
         }
-        // Recast sees surfaces: block the inside of what stands on the tile.
-        const glm::vec3 c(town_->centre(t.x, t.z));
-        const float h = float(0.5 * town_->tileSize);
-        if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
-        if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
+        blockTile(t);
         if (const auto it = occluderOf.find(t.kind); it != occluderOf.end()) {
             node->addChild(std::make_shared<Occluder>(it->second.first, it->second.second));
             effects_.constructed("occluders");
@@ -448,7 +483,15 @@ void Simulation::buildTown(const BuildProgress& progress) {
     progress("town laid out", 0.5);
 }
 
-void Simulation::buildActors(const BuildProgress& progress) {
+// Recast sees surfaces: blocks the inside of what stands on tile `t`.
+void Simulation::blockTile(const TilePlacement& t) {
+    const glm::vec3 c(town_->centre(t.x, t.z));
+    const float h = float(0.5 * town_->tileSize);
+    if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
+    if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
+}
+
+void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<const NavMesh> given) {
     const SceneDescription& d = description_;
     const std::string file = d.file.empty() ? "scene" : d.file;
     // A group's template copy: standing groups whose idle clip is not the walk clip get their own.
@@ -459,7 +502,7 @@ void Simulation::buildActors(const BuildProgress& progress) {
     std::map<std::string, ResolvedTemplate> templates;
     for (const ActorGroupDescription& g : d.actors) {
         const std::string key = copyKey(g);
-        if (g.count == 0 || templates.count(key)) continue;
+        if (g.count == 0 || templates.count(key) || (walkersOnly_ && g.behaviour != "walk")) continue;
         const ResolvedTemplate& r = templates[key] = resolve(g.templateName, d.templates.at(g.templateName), file);
         const bool standing = key != g.templateName || (g.behaviour == "idle" && r.idleClip >= 0);
         templates_.push_back({key, r.tmpl, standing && r.idleClip >= 0 ? r.idleClip : r.walkClip});
@@ -468,7 +511,6 @@ void Simulation::buildActors(const BuildProgress& progress) {
     const bool anyWalk = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "walk" && g.count > 0; });
     const bool anyIdle = std::any_of(d.actors.begin(), d.actors.end(), [](const auto& g) { return g.behaviour == "idle" && g.count > 0; });
     if (anyWalk || anyIdle) {
-        progress("building the navigation mesh", 0.55);
         NavMeshSettings settings;
         settings.agentMaxClimb = 0.45f;  // kerbs of the tiles at 8 m are 0.4 m
         // One Recast tile numbers its vertices with 16 bits: beyond 16 x 16 blocks, Detour tiles of
@@ -479,11 +521,20 @@ void Simulation::buildActors(const BuildProgress& progress) {
             settings.cellSize = float(d.walkways->cellSize);
             settings.agentRadius = float(d.walkways->bodyRadius);
         }
-        nav_ = NavMesh::build(navGeometry_, settings);
+        if (given) {  // another process's (rank 0's): it must be this scene's
+            if (std::memcmp(&given->settings(), &settings, sizeof settings) != 0)
+                throw std::invalid_argument("Simulation::build: the navigation mesh given was built with other settings than scene '" + file +
+                                            "' asks for (" + describe(given->settings()) + ", not " + describe(settings) +
+                                            "): do all ranks read the same scene file?");
+            nav_ = std::move(given);
+        } else {
+            progress("building the navigation mesh", 0.55);
+            nav_ = NavMesh::build(navGeometry_, settings);
+        }
     }
     navGeometry_ = NavGeometry{};
 
-    Placement place(d, file, crowd_, effects_, nav_);
+    Placement place(d, file, crowd_, effects_, nav_, walkersOnly_);
     for (std::size_t gi = 0; gi < d.actors.size(); ++gi) {
         const ActorGroupDescription& g = d.actors[gi];
         ActorGroupInfo info{g.name, g.behaviour, {}};
@@ -491,9 +542,16 @@ void Simulation::buildActors(const BuildProgress& progress) {
             groups_.push_back(info);
             continue;
         }
+        if (walkersOnly_) {  // walkers join their Locomotion; the others only use up their streams
+            if (g.behaviour == "walk") place.walk(g, templates.at(copyKey(g)), {}, levelsOf(g), info.actors);
+            else place.stream += std::uint64_t(g.count);
+            groups_.push_back(std::move(info));
+            progress("placing walkers", 0.6 + 0.4 * double(gi + 1) / double(d.actors.size()));
+            continue;
+        }
         const ResolvedTemplate& t = templates.at(copyKey(g));
         const ActorLook look{float(g.priority), glm::vec4(1.0f), {}};
-        const std::vector<double> levels = g.levels.empty() ? std::vector<double>{60.0, std::numeric_limits<double>::infinity()} : g.levels;
+        const std::vector<double> levels = levelsOf(g);
         if (g.behaviour == "walk") place.walk(g, t, look, levels, info.actors);
         else if (g.behaviour == "idle") place.stand(g, t, look, levels, info.actors);
         else behaviours_.push_back(place.fly(g, gi, t, look, levels, info.actors));
@@ -535,11 +593,13 @@ void Simulation::setGatherView(std::optional<Frustum> view) {
 
 void Simulation::distribute(Ranks& ranks) {
     if (started_) throw std::logic_error("Simulation::distribute: the simulation has already started");
+    if (scope_ == Scope::Walkers && ranks.rank() == 0)
+        throw std::logic_error("Simulation::distribute: rank 0 draws and gathers, but this world was built for walkers only");
     if (!walkers_) return;
     walkers_->distribute(ranks);
     // Only rank 0 draws: elsewhere the behaviours of the other actors (standing, gazing, flying)
     // would be computed for nothing.
-    walkersOnly_ = ranks.rank() != 0;
+    walkersOnly_ = walkersOnly_ || ranks.rank() != 0;
 }
 
 void Simulation::attachKeyPoseCaches(ActorProcessor& processor) {

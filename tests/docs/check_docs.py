@@ -123,12 +123,20 @@ for path in pages(SOURCE):
         if lang in ("sh", "bash", "shell"):
             for start, command in shell_commands(first, body):
                 for words in simple_commands(command):
-                    if words[0] in ("mpirun", "xvfb-run", "time", "env", "sudo"):
-                        # the program the wrapper runs: its first word that is a Throng program or a path
-                        runs = [i for i, w in enumerate(words) if i > 0 and
-                                (os.path.basename(w).startswith("throng-") or w.startswith("./"))]
-                        words = words[runs[0]:] if runs else []
-                    check_command(path, start, words)
+                    # mpirun's app contexts (separated by ':'), each with launcher options of its own
+                    contexts = [[]]
+                    for w in words:
+                        if w == ":" and words[0] == "mpirun":
+                            contexts.append(["mpirun"])
+                        else:
+                            contexts[-1].append(w)
+                    for words in contexts:
+                        if words and words[0] in ("mpirun", "xvfb-run", "time", "env", "sudo"):
+                            # the program the wrapper runs: its first word that is a Throng program or a path
+                            runs = [i for i, w in enumerate(words) if i > 0 and
+                                    (os.path.basename(w).startswith("throng-") or w.startswith("./"))]
+                            words = words[runs[0]:] if runs else []
+                        check_command(path, start, words)
 
 for p in problems:
     print(p)

@@ -49,6 +49,8 @@ SKIPPED = [
      "its run step small with the suite's throng-town"),
     (r"^paraview\b", "ParaView is a desktop program, not installed here; the command that writes what it opens runs"),
     (r"--hostfile|^cat > hosts", "the two-host example needs two machines"),
+    (r"--wdir run/rank", "ranks in working folders of their own over TCP: test town.mpi runs these options with the suite's "
+                         "throng-town (tests/town/check_town.py, run_ranks); the folders the command makes are made here"),
 ]
 
 # Count options and how small they get (the page's value when smaller).

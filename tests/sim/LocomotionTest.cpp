@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <span>
+#include <string>
 
 #include "throng/actors/Actor.h"
 #include "throng/actors/ActorProcessor.h"
@@ -82,6 +84,65 @@ TEST(Navigation, BuildsAroundObstaclesAndGivesDeterministicRandomPoints) {
     NavGeometry onlyObstacles;
     onlyObstacles.addBox(glm::vec3(0), glm::vec3(5), false);
     EXPECT_THROW(NavMesh::build(onlyObstacles), std::runtime_error);
+}
+
+// A mesh sent as bytes to another process (rank 0's to the other ranks) is the same mesh there: the
+// same polygons under the same references, so the same random points, nearest points and walkers.
+TEST(Navigation, AMeshReadFromItsBytesIsTheSameMesh) {
+    NavMeshSettings tiled;
+    tiled.tileSize = 16.0f;  // several Detour tiles, each put back in its own slot
+    for (const NavMeshSettings& settings : {NavMeshSettings{}, tiled}) {
+        const std::shared_ptr<const NavMesh> nav = NavMesh::build(plaza(), settings);
+        const std::vector<std::byte> bytes = nav->toBytes();
+        const std::shared_ptr<const NavMesh> copy = NavMesh::fromBytes(bytes);
+        EXPECT_EQ(copy->polygonCount(), nav->polygonCount());
+        EXPECT_EQ(copy->bounds(), nav->bounds());
+        EXPECT_EQ(0, std::memcmp(&copy->settings(), &settings, sizeof settings));
+        EXPECT_EQ(copy->toBytes(), bytes) << "written again, the same bytes";
+        const CounterRng rng(5, 2);
+        for (std::uint64_t k = 0; k < 100; ++k) {
+            EXPECT_EQ(copy->randomPoint(rng, k), nav->randomPoint(rng, k));
+            const glm::vec3 probe(float(k % 10) * 6.0f - 30.0f, 1.0f, float(k / 10) * 6.0f - 30.0f);
+            EXPECT_EQ(copy->nearestPoint(probe), nav->nearestPoint(probe));
+        }
+        // Walkers on the copy walk as on the original, bit for bit.
+        auto a = walkers(nav, 30, true), b = walkers(copy, 30, true);
+        SimulationClock clock;
+        for (int f = 0; f < 60; ++f, clock.advance()) a->crowd.step(clock.context()), b->crowd.step(clock.context());
+        for (std::uint32_t slot = 0; slot < 30; ++slot) {
+            EXPECT_EQ(a->locomotion->position(slot), b->locomotion->position(slot)) << "walker " << slot;
+            EXPECT_EQ(a->locomotion->destination(slot), b->locomotion->destination(slot)) << "walker " << slot;
+        }
+    }
+}
+
+// Bytes that are not a mesh's are refused, naming what is wrong; none is read past its end.
+TEST(Navigation, BytesThatAreNotAMeshAreRefusedSayingWhy) {
+    NavMeshSettings tiled;
+    tiled.tileSize = 16.0f;
+    const std::vector<std::byte> bytes = NavMesh::build(plaza(), tiled)->toBytes();
+    auto refusal = [](std::span<const std::byte> b) {
+        try {
+            NavMesh::fromBytes(b);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("(read)");
+    };
+    EXPECT_NE(refusal({}).find("the bytes end at 0 inside the header"), std::string::npos) << refusal({});
+    for (std::size_t cut : {std::size_t(6), std::size_t(40), bytes.size() / 2, bytes.size() - 1}) {
+        const std::string why = refusal(std::span(bytes).first(cut));
+        EXPECT_NE(why.find("the bytes end at " + std::to_string(cut) + " inside"), std::string::npos) << why;
+    }
+    std::vector<std::byte> other = bytes;
+    other[0] = std::byte{'X'};
+    EXPECT_NE(refusal(other).find("not a navigation mesh's bytes"), std::string::npos) << refusal(other);
+    other = bytes;
+    other[4] = std::byte{9};  // the version
+    EXPECT_NE(refusal(other).find("version 9, this build reads version 1"), std::string::npos) << refusal(other);
+    other = bytes;
+    other.push_back(std::byte{0});
+    EXPECT_NE(refusal(other).find("1 bytes follow the last tile"), std::string::npos) << refusal(other);
 }
 
 TEST(Locomotion, ActorsWalkTheMeshNeverThroughObstaclesAndOnlyAvoidWhenAsked) {

@@ -8,6 +8,8 @@
 
 #include "throng/testkit/Assets.h"
 #include "throng/actors/ActorProcessor.h"
+#include "throng/sim/Locomotion.h"
+#include "throng/sim/NavMesh.h"
 #include "throng/sim/SceneError.h"
 #include "throng/sim/SceneParser.h"
 #include "throng/sim/Simulation.h"
@@ -143,5 +145,59 @@ TEST(SimulationKeyPoseCaches, OnePerDeclaredTemplateInUseAndNoneUndeclared) {
     } catch (const sim::SceneError& e) {
         EXPECT_NE(std::string(e.what()).find("/representation/keyPoseCache/rows/person"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("no skinned actor-level mesh"), std::string::npos) << e.what();
+    }
+}
+
+// A rank that draws nothing builds only what stepping the walkers needs (Scope::Walkers), on the
+// navigation mesh rank 0 sent it: no crowd, no scene graph, no other behaviour, and its walkers,
+// placed slot for slot as in the whole world, walk exactly as there.
+TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
+    const std::string text = R"({
+      "seed": 8,
+      "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
+      "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"},
+                    "bird": {"procedural": "bird"}},
+      "actors": [{"template": "person", "count": 12, "behaviour": "idle"}, {"template": "cesium", "count": 40, "behaviour": "walk"},
+                 {"template": "bird", "count": 10, "behaviour": "flight", "area": {"center": [0, 0], "size": [40, 40]}},
+                 {"template": "person", "count": 30, "behaviour": "walk"}],
+      "effects": {"avoidance": true, "gaze": true, "face": true}
+    })";
+    auto whole = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
+    const auto mesh = sim::NavMesh::fromBytes(whole->navMesh()->toBytes());  // as a rank receives it
+    auto walkers = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()), {},
+                                          {sim::Simulation::Scope::Walkers, mesh});
+    EXPECT_EQ(walkers->scope(), sim::Simulation::Scope::Walkers);
+    EXPECT_EQ(walkers->crowd().size(), 0u);
+    EXPECT_EQ(walkers->root().childCount(), 0u) << "no town, no group nodes";
+    ASSERT_EQ(walkers->templates().size(), 2u) << "the walkers' templates only";
+    for (const char* effect : {"idle", "flight", "gaze", "face"})
+        EXPECT_EQ(walkers->effects().of(effect).constructed, 0u) << effect;
+    ASSERT_NE(walkers->locomotion(), nullptr);
+    const std::size_t n = whole->locomotion()->size();
+    ASSERT_EQ(walkers->locomotion()->size(), n);
+    for (int f = 0; f < 90; ++f) whole->step(), walkers->step();
+    EXPECT_EQ(walkers->now().time, whole->now().time);
+    double moved = 0.0;
+    for (std::uint32_t slot = 0; slot < n; ++slot) {
+        ASSERT_EQ(walkers->locomotion()->position(slot), whole->locomotion()->position(slot)) << "walker " << slot;
+        ASSERT_EQ(walkers->locomotion()->speed(slot), whole->locomotion()->speed(slot)) << "walker " << slot;
+        moved += walkers->locomotion()->speed(slot);
+    }
+    EXPECT_GT(moved / double(n), 0.5) << "they walk: the comparison proves something";
+}
+
+// A mesh built for another scene (other settings) is refused, asking whether the ranks read the same
+// file; rank 0 never builds for walkers only.
+TEST(SimulationScope, AMeshOfAnotherSceneIsRefused) {
+    const char* text = R"({"seed": 1, "walkways": {"floors": [{"center": [0, 0], "size": [20, 20]}], "cellSize": 0.2, "bodyRadius": 0.25},
+      "templates": {"person": {"procedural": "seed-humanoid", "walkClip": "walk"}},
+      "actors": [{"template": "person", "count": 4, "behaviour": "walk", "area": {"center": [0, 0], "size": [10, 10]}}]})";
+    auto small = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
+    auto town = walkers();
+    try {
+        sim::Simulation::build(town->description(), {}, {sim::Simulation::Scope::Walkers, small->sharedNavMesh()});
+        FAIL() << "another scene's mesh was taken";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("do all ranks read the same scene file?"), std::string::npos) << e.what();
     }
 }

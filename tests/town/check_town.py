@@ -8,8 +8,10 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   effects      a scene that declares no avoidance, gaze or flight never constructs or ticks them;
                declaring them turns them on; declared occlusion rests on some frames, testing nothing there
   window       with a display (the test runs under xvfb-run) a window opens and closes after --frames
-  mpi          under $THRONG_MPIEXEC with 1 and 2 ranks: the same stats.csv (timing and per-rank columns
-               aside) and the same frames as the plain program, with walkers crossing between ranks
+  mpi          under $THRONG_MPIEXEC with 1, 2, 3 and 4 ranks, over TCP only, each rank in a working folder
+               of its own, oversubscribed: the same stats.csv (timing and per-rank columns aside) and the
+               same frames as the plain program, with walkers crossing between ranks; only rank 0 writes,
+               every rank reports its peak memory and those that draw nothing hold less than rank 0
   mpiHang      under $THRONG_MPIEXEC with 2 ranks, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
   signals      SIGINT and SIGTERM end a long run after the frame in progress: exit 130 / 143, one line
@@ -153,46 +155,88 @@ def determinism(exe, scenes, work):
     print(f"ORCA: 1 and 2 threads agree: {len(orca_reference)} rows of stats.csv")
 
 
+# Open MPI restricted to TCP, as between two hosts: the ob1 layer with TCP and self only (no shared
+# memory, no UCX, which could bypass the BTLs), over the loopback interface, oversubscribed (the
+# ranks may outnumber the cores).
+TCP_ONLY = ["--oversubscribe", "--mca", "pml", "ob1", "--mca", "btl", "tcp,self", "--mca", "btl_tcp_if_include", "lo",
+            "--mca", "oob_tcp_if_include", "lo"]
+
+
+def run_ranks(exe, mpiexec, ranks, folder, args):
+    """`ranks` ranks of throng-town over TCP only, each in a working folder of its own (rank0, rank1, ...
+    under `folder`), rank 0 writing to rank0/out. Returns rank 0's output folder."""
+    if os.path.exists(folder):
+        shutil.rmtree(folder)
+    cmd = [mpiexec, *TCP_ONLY]
+    for r in range(ranks):
+        wdir = os.path.join(folder, f"rank{r}")
+        os.makedirs(wdir)
+        cmd += ([":"] if r else []) + ["-np", "1", "--wdir", wdir, exe, "--out", "out", *args]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
+    # No rank but 0 writes anything: its working folder stays empty.
+    for r in range(1, ranks):
+        left = os.listdir(os.path.join(folder, f"rank{r}"))
+        if left:
+            sys.exit(f"{ranks} ranks: rank {r} wrote {left} into its working folder")
+    return os.path.join(folder, "rank0", "out")
+
+
 def mpi(exe, scenes, work):
     mpiexec = os.environ.get("THRONG_MPIEXEC")
     if not mpiexec:
         sys.exit("THRONG_MPIEXEC names no MPI launcher")
-    # 500 walkers in 16 regions: within 120 frames some cross from one rank's regions to the other's.
-    common = ["--scene", os.path.join(scenes, "effects.json"), "--headless", "--frames", "120", "--every", "40",
+    # 500 walkers in 16 regions: within 120 frames some cross from one rank's regions to another's.
+    # The scene by its absolute path: each rank starts in a folder of its own.
+    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "120", "--every", "40",
               "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
-    variants = {"plain": (), "one-rank": (mpiexec, "-np", "1"), "two-ranks": (mpiexec, "-np", "2", "--oversubscribe")}
-    runs = {name: os.path.join(work, name) for name in variants}
-    for name, launcher in variants.items():
-        run(exe, runs[name], *common, launcher=launcher)
-    reference = stats_without_timing(runs["plain"])
-    reference_frames = frames(runs["plain"])
-    for name in list(variants)[1:]:
-        other = stats_without_timing(runs[name])
+    plain = os.path.join(work, "plain")
+    run(exe, plain, *common)
+    runs = {n: run_ranks(exe, mpiexec, n, os.path.join(work, f"ranks-{n}"), common) for n in (1, 2, 3, 4)}
+    reference = stats_without_timing(plain)
+    reference_frames = frames(plain)
+    for n, out in runs.items():
+        other = stats_without_timing(out)
         if other != reference:
-            sys.exit(f"stats.csv of run '{name}' differs from the plain run: {first_difference(reference, other)}")
-        other_frames = frames(runs[name])
+            sys.exit(f"stats.csv of {n} rank(s) differs from the plain run: {first_difference(reference, other)}")
+        other_frames = frames(out)
         if other_frames != reference_frames:
-            sys.exit(f"run '{name}' wrote other frames than the plain run ({sorted(other_frames)} against {sorted(reference_frames)})")
-    # Each rank's share: both step walkers, every walker is stepped by one rank, and some cross.
-    rows = list(csv.DictReader(open(os.path.join(runs["two-ranks"], "stats.csv"))))
-    actors = json.load(open(os.path.join(runs["plain"], "summary.json")))["actors"]
-    for r in rows[1:]:
-        shares = [int(r["rank0_agents"]), int(r["rank1_agents"])]
-        if min(shares) == 0 or sum(shares) > actors:
-            sys.exit(f"frame {r['frame']}: the ranks stepped {shares} walkers of {actors} actors")
-    # Rank 1 sends rank 0 only the walkers near the view: some frames leave some out, and some
-    # send some (the comparison above then covers walkers left out and walkers coming back).
-    left_out = sum(1 for r in rows[1:] if int(r["rank1_sent"]) < int(r["rank1_agents"]))
-    sent = sum(1 for r in rows[1:] if int(r["rank1_sent"]) > 0)
-    if left_out == 0 or sent == 0:
-        sys.exit(f"rank 1 left walkers out in {left_out} frames and sent some in {sent}: the view's gather is not covered")
-    across = sum(int(r["rank0_handed_to_ranks"]) + int(r["rank1_handed_to_ranks"]) for r in rows)
-    border = sum(int(r["rank0_border_bytes"]) + int(r["rank1_border_bytes"]) for r in rows)
-    if across == 0 or border == 0:
-        sys.exit(f"{across} walkers crossed between the ranks and {border} bytes of ghosts and handovers travelled: "
-                 "the comparison would not cover the exchange")
-    print(f"plain, 1 and 2 ranks agree: {len(reference)} rows, {len(reference_frames)} frames; "
-          f"{across} walkers crossed between ranks, {border} border bytes; rank 1 left walkers out in {left_out} frames")
+            sys.exit(f"{n} rank(s) wrote other frames than the plain run ({sorted(other_frames)} against {sorted(reference_frames)})")
+    actors = json.load(open(os.path.join(plain, "summary.json")))["actors"]
+    crossed = {}
+    for n, out in runs.items():
+        if n == 1:
+            continue
+        rows = list(csv.DictReader(open(os.path.join(out, "stats.csv"))))
+        # Each rank's share: every rank steps walkers, every walker is stepped by one rank.
+        for r in rows[1:]:
+            shares = [int(r[f"rank{k}_agents"]) for k in range(n)]
+            if min(shares) == 0 or sum(shares) > actors:
+                sys.exit(f"{n} ranks, frame {r['frame']}: the ranks stepped {shares} walkers of {actors} actors")
+        # The other ranks send rank 0 only the walkers near the view: some frames leave some out, and
+        # some send some (the comparison above then covers walkers left out and walkers coming back).
+        left_out = sum(1 for r in rows[1:] if any(int(r[f"rank{k}_sent"]) < int(r[f"rank{k}_agents"]) for k in range(1, n)))
+        sent = sum(1 for r in rows[1:] if any(int(r[f"rank{k}_sent"]) > 0 for k in range(1, n)))
+        if left_out == 0 or sent == 0:
+            sys.exit(f"{n} ranks: walkers were left out in {left_out} frames and sent in {sent}: the view's gather is not covered")
+        across = sum(int(r[f"rank{k}_handed_to_ranks"]) for r in rows for k in range(n))
+        border = sum(int(r[f"rank{k}_border_bytes"]) for r in rows for k in range(n))
+        if across == 0 or border == 0:
+            sys.exit(f"{n} ranks: {across} walkers crossed between the ranks and {border} bytes of ghosts and handovers travelled: "
+                     "the comparison would not cover the exchange")
+        # Every rank reports its peak memory; ranks that build only their walkers' world hold less.
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        peaks = [r["peakBytes"] for r in summary["meanPerRank"]]
+        if len(peaks) != n or min(peaks) <= 0 or summary["peakMemoryBytes"] <= 0:
+            sys.exit(f"{n} ranks: summary.json gives peak memory {peaks} per rank, {summary.get('peakMemoryBytes')} for rank 0")
+        if max(peaks[1:]) >= peaks[0]:
+            sys.exit(f"{n} ranks: a rank that draws nothing held as much memory as rank 0: {peaks}")
+        crossed[n] = (across, border, left_out, [p >> 20 for p in peaks])
+    print(f"plain and 1 to 4 ranks over TCP (separate working folders) agree: {len(reference)} rows, {len(reference_frames)} frames")
+    for n, (across, border, left_out, peaks) in crossed.items():
+        print(f"  {n} ranks: {across} walkers crossed between ranks, {border} border bytes, walkers left out of the gather in "
+              f"{left_out} frames; peak MiB per rank {peaks}")
 
 
 def process_of_rank(launcher_pid, rank):

@@ -90,6 +90,7 @@ public:
         std::uint64_t sent = 0;            ///< walkers it sent rank 0 (all its own unless a view is set)
         double workMs = 0.0;               ///< milliseconds stepping its regions and walkers
         double waitMs = 0.0;               ///< milliseconds in exchanges with the other ranks
+        std::uint64_t peakBytes = 0;       ///< the rank's largest resident memory so far (its whole process)
     };
     /// One actor.
     struct Actor {

@@ -2,9 +2,11 @@
 // A navigation mesh built with Recast from NavGeometry and queried with Detour: nearest points,
 // deterministic random points, and the Detour objects DetourCrowd needs.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -44,6 +46,14 @@ public:
     /// Builds from `geometry`. Throws std::runtime_error naming the Recast or Detour step that
     /// failed (or std::invalid_argument if the geometry is empty or not finite).
     static std::shared_ptr<NavMesh> build(const NavGeometry& geometry, const NavMeshSettings& settings = {});
+    /// The mesh as bytes (its settings, Detour's parameters, every tile's data and reference), for a
+    /// process that did not build it: the ranks of a run receive rank 0's (fromBytes).
+    std::vector<std::byte> toBytes() const;
+    /// The mesh toBytes() wrote, with the same polygons under the same references, so that nearest
+    /// and random points, paths and crowds on it are those of the original, bit for bit. Throws
+    /// std::invalid_argument naming what is wrong: truncated, not such bytes, or a tile Detour refuses.
+    /// Trusted input (the sender is a process of the same build): Detour reads tiles unchecked.
+    static std::shared_ptr<NavMesh> fromBytes(std::span<const std::byte> bytes);
     ~NavMesh();
     NavMesh(const NavMesh&) = delete;
     NavMesh& operator=(const NavMesh&) = delete;

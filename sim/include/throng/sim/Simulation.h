@@ -56,8 +56,30 @@ public:
         std::vector<ActorId> actors;   ///< its actors in the crowd
     };
 
-    /// Builds the world of `description`. Throws SceneError (with the JSON path) or
-    /// std::runtime_error (a navigation mesh that cannot be built).
+    /// How much of a scene a process builds.
+    enum class Scope {
+        /// Everything: the town's scene graph, every actor in the crowd with its behaviours and effects.
+        Everything,
+        /// What stepping the walkers needs, for a rank that draws nothing: the navigation mesh (from
+        /// the town's tiles, with no scene graph made of them), the walkers' templates and their
+        /// Locomotion. No crowd, no standing people, flocks, gaze or faces; groups list no actors.
+        Walkers,
+    };
+
+    /// How to build a world.
+    struct BuildOptions {
+        Scope scope = Scope::Everything;  ///< all of it, or what stepping the walkers needs
+        /// The navigation mesh this scene builds, made by another process (rank 0's, sent to the
+        /// others): used as it is instead of being built again. Null: built here.
+        std::shared_ptr<const NavMesh> navMesh;
+    };
+
+    /// Builds the world of `description` (all of it, or for Scope::Walkers what a rank stepping
+    /// walkers needs: the walkers are placed as in the whole world, slot for slot). Throws
+    /// SceneError (with the JSON path), std::runtime_error (a navigation mesh that cannot be built)
+    /// or std::invalid_argument (a given navigation mesh built with other settings than the scene's).
+    static std::unique_ptr<Simulation> build(SceneDescription description, const BuildProgress& progress, BuildOptions options);
+    /// Builds the whole world of `description` (Scope::Everything, its own navigation mesh).
     static std::unique_ptr<Simulation> build(SceneDescription description, const BuildProgress& progress = {});
     ~Simulation();
     Simulation(const Simulation&) = delete;
@@ -77,9 +99,10 @@ public:
     void setThreads(unsigned threads);
 
     /// Steps the walkers' regions split over the ranks of the run (see Locomotion::distribute):
-    /// every rank builds the same world and calls step() as often, and rank 0's world is then that
-    /// of one process; the other ranks step their walkers only. Call before the first step; `ranks` must outlive the stepping. Throws
-    /// std::logic_error after the first step.
+    /// every rank builds the world of one scene (rank 0 all of it, the others Scope::Walkers is
+    /// enough) and calls step() as often, and rank 0's world is then that of one process; the other
+    /// ranks step their walkers only. Call before the first step; `ranks` must outlive the stepping.
+    /// Throws std::logic_error after the first step, or on rank 0 of a world built for walkers only.
     void distribute(Ranks& ranks);
     /// Distributed, on rank 0, before step(): the frustum the coming frame will cull against. The
     /// other ranks then send only the walkers that could pass CULL 1 or be looked at by one that
@@ -103,12 +126,16 @@ public:
     const std::vector<std::shared_ptr<FaceLayer>>& faceLayers() const { return faceLayers_; }
     /// What was built.
     const SceneDescription& description() const { return description_; }
+    /// How much of it was built.
+    Scope scope() const { return scope_; }
     /// The camera path.
     const CameraPath& camera() const { return *camera_; }
     /// The walkers' locomotion (its regions, ghosts and handovers), or null when nothing walks.
     const Locomotion* locomotion() const { return walkers_.get(); }
     /// The navigation mesh, or null when nothing walks.
     const NavMesh* navMesh() const { return nav_.get(); }
+    /// The same, shared (for another world built from the same scene: BuildOptions::navMesh).
+    std::shared_ptr<const NavMesh> sharedNavMesh() const { return nav_; }
     /// The town's layout, or null when there is none.
     const TownLayout* town() const { return town_ ? &*town_ : nullptr; }
     /// The actor groups, in file order.
@@ -139,7 +166,8 @@ public:
 private:
     Simulation() = default;
     void buildTown(const BuildProgress& progress);
-    void buildActors(const BuildProgress& progress);
+    void buildActors(const BuildProgress& progress, std::shared_ptr<const NavMesh> given);
+    void blockTile(const TilePlacement& t);
 
     SceneDescription description_;
     EffectCounters effects_;
@@ -158,6 +186,8 @@ private:
     std::unique_ptr<ThreadTeam> team_;
     FrameContext now_;
     bool started_ = false;
+    Scope scope_ = Scope::Everything;
+    bool navGiven_ = false;        // BuildOptions::navMesh was given: the town's tiles are not read for it
     bool walkersOnly_ = false;     // distributed, on a rank other than 0: steps its walkers only
     double walkersOnlyMs_ = 0.0;
     double gatherMargin_ = 0.0;  // setGatherView's margin, from the walkers and the gaze range
