@@ -12,7 +12,7 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                of its own, oversubscribed: the same stats.csv (timing and per-rank columns aside) and the
                same frames as the plain program, with walkers crossing between ranks; only rank 0 writes,
                every rank reports its peak memory and those that draw nothing hold less than rank 0
-  mpiHang      under $THRONG_MPIEXEC with 2 ranks, rank 1 stopped mid-run: the run ends within the
+  mpiHang      under $THRONG_MPIEXEC with 2 ranks over TCP, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
   signals      SIGINT and SIGTERM end a long run after the frame in progress: exit 130 / 143, one line
                saying so, stats.csv whole and summary.json "completed": false with the frames done; a
@@ -20,7 +20,7 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   fileLimit    a file-size limit (as a full disk would) mid-run: exit 3 naming stats.csv, the file ends
                at its last whole line and summary.json says why; a PNG over the limit is absent, whole
                or not at all, and no temporary file is left
-  mpiKill      under $THRONG_MPIEXEC with 2 ranks, rank 1 killed (SIGKILL) mid-run: every process gone
+  mpiKill      under $THRONG_MPIEXEC with 2 ranks over TCP, rank 1 killed (SIGKILL) mid-run: every process gone
                within the rank timeout plus 10 s, the message names rank 1, rank 0's stats.csv parses
   scale        50k and 100k actors: a progress line per phase of building (town, navigation mesh,
                actors, impostors), both frames done; prints the time to frame 1 and the peak memory
@@ -254,13 +254,13 @@ def process_of_rank(launcher_pid, rank):
 
 
 def start_two_ranks(exe, scenes, out, timeout):
-    """A long run of plain.json on 2 ranks under $THRONG_MPIEXEC, each rank marked with this process's id."""
+    """A long run of plain.json on 2 ranks under $THRONG_MPIEXEC over TCP only, each rank marked with this process's id."""
     mpiexec = os.environ.get("THRONG_MPIEXEC")
     if not mpiexec:
         sys.exit("THRONG_MPIEXEC names no MPI launcher")
     if os.path.exists(out):
         shutil.rmtree(out)
-    cmd = [mpiexec, "-np", "2", "--oversubscribe", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
+    cmd = [mpiexec, *TCP_ONLY, "-np", "2", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
            "--headless", "--frames", "100000", "--every", "0", "--width", "64", "--height", "36", "--rank-timeout", str(timeout)]
     env = dict(os.environ)
     env["THRONG_HANG_TEST"] = str(os.getpid())
