@@ -30,6 +30,8 @@ namespace throng::town {
 inline constexpr int kStartTag = 1;
 /// Message tag of the navigation mesh rank 0 builds and sends the other ranks.
 inline constexpr int kNavMeshTag = 2;
+/// Message tag of rank 0's WorldKey, which the other ranks compare with their own before building.
+inline constexpr int kWorldKeyTag = 3;
 
 /// Rank 0's run of the town.
 class TownRun {

@@ -32,6 +32,7 @@
 
 #include "CrowdRecording.h"
 #include "MemoryNeed.h"
+#include "RankAgreement.h"
 #include "TownOptions.h"
 #include "TownRun.h"
 #include "throng/render/ContextFactory.h"
@@ -129,6 +130,18 @@ int main(int argc, char** argv) {
     // that `mpirun -np 1` takes the distributed path); rank 0 draws and writes.
     sim::Ranks ranks(std::chrono::milliseconds(std::llround(o.rankTimeout * 1000.0)));
     const bool distributed = sim::Ranks::launchedByMpi();
+    // Every rank reads its own scene file and command line (on two hosts, two copies): one whose
+    // world would differ from rank 0's says what differs and stops the run before anything is built.
+    if (ranks.size() > 1) try {
+        const town::WorldKey mine = town::worldKey(o);
+        const std::vector<town::WorldKey> root = sim::unpackRecords<town::WorldKey>(
+            ranks.broadcast(sim::packRecords(std::span(&mine, 1)), town::kWorldKeyTag, "world key"), 0, "world key");
+        if (root.size() != 1) throw sim::RankError(0, "rank 0 sent " + std::to_string(root.size()) + " world keys, not one");
+        if (const auto problem = town::disagreement(mine, root[0], o.scene)) throw std::invalid_argument(*problem);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "throng-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
+        ranks.abort(2);
+    }
     // Only rank 0 writes, --vtk files too.
     if (!o.vtk.empty() && ranks.rank() == 0) try {
         recorder = town::openCrowdRecording(o.vtk, o.vtkEvery);

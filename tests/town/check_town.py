@@ -11,7 +11,9 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
   mpi          under $THRONG_MPIEXEC with 1, 2, 3 and 4 ranks, over TCP only, each rank in a working folder
                of its own, oversubscribed: the same stats.csv (timing and per-rank columns aside) and the
                same frames as the plain program, with walkers crossing between ranks; only rank 0 writes,
-               every rank reports its peak memory and those that draw nothing hold less than rank 0
+               every rank reports its peak memory and those that draw nothing hold less than rank 0; a
+               rank reading another scene with other --actors, --seed and --frames stops the run, saying so,
+               nothing written
   mpiHang      under $THRONG_MPIEXEC with 2 ranks over TCP, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
   signals      SIGINT and SIGTERM end a long run after the frame in progress: exit 130 / 143, one line
@@ -162,17 +164,23 @@ TCP_ONLY = ["--oversubscribe", "--mca", "pml", "ob1", "--mca", "btl", "tcp,self"
             "--mca", "oob_tcp_if_include", "lo"]
 
 
-def run_ranks(exe, mpiexec, ranks, folder, args):
+def start_ranks(exe, mpiexec, ranks, folder, args, rank_args=None):
     """`ranks` ranks of throng-town over TCP only, each in a working folder of its own (rank0, rank1, ...
-    under `folder`), rank 0 writing to rank0/out. Returns rank 0's output folder."""
+    under `folder`), rank 0 writing to rank0/out; rank r's options are `rank_args[r]` when given.
+    Returns the finished process."""
     if os.path.exists(folder):
         shutil.rmtree(folder)
     cmd = [mpiexec, *TCP_ONLY]
     for r in range(ranks):
         wdir = os.path.join(folder, f"rank{r}")
         os.makedirs(wdir)
-        cmd += ([":"] if r else []) + ["-np", "1", "--wdir", wdir, exe, "--out", "out", *args]
-    p = subprocess.run(cmd, capture_output=True, text=True)
+        cmd += ([":"] if r else []) + ["-np", "1", "--wdir", wdir, exe, "--out", "out", *(rank_args[r] if rank_args else args)]
+    return cmd, subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+
+
+def run_ranks(exe, mpiexec, ranks, folder, args):
+    """start_ranks with the same options on every rank, which must succeed. Returns rank 0's output folder."""
+    cmd, p = start_ranks(exe, mpiexec, ranks, folder, args)
     if p.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stderr}")
     # No rank but 0 writes anything: its working folder stays empty.
@@ -233,7 +241,23 @@ def mpi(exe, scenes, work):
         if max(peaks[1:]) >= peaks[0]:
             sys.exit(f"{n} ranks: a rank that draws nothing held as much memory as rank 0: {peaks}")
         crossed[n] = (across, border, left_out, [p >> 20 for p in peaks])
-    print(f"plain and 1 to 4 ranks over TCP (separate working folders) agree: {len(reference)} rows, {len(reference_frames)} frames")
+    # A rank reading another scene, or given other --actors, --seed and --frames, stops the run before anything is built,
+    # saying what differs; nothing is written.
+    other_scene = os.path.abspath(os.path.join(scenes, "plain.json"))
+    other = [a if a != common[1] else other_scene for a in common]
+    other[other.index("--actors") + 1] = "400"
+    other[other.index("--seed") + 1] = "5"
+    other[other.index("--frames") + 1] = "100"
+    cmd, p = start_ranks(exe, mpiexec, 2, os.path.join(work, "disagree"), common, [common, other])
+    said = re.search(r"throng-town \(rank 1\): this rank would build or step another world than rank 0: its scene file .*plain\.json "
+                     r".* is not rank 0's .*; --actors 400 here, 500 on rank 0; --seed 5 here, 4 on rank 0; --frames 100 here, 120 on rank 0", p.stderr)
+    if p.returncode == 0 or not said:
+        sys.exit(f"rank 1 with another scene, --actors, --seed and --frames: exit {p.returncode}, not the error expected:\n{p.stderr}")
+    written = [os.path.join(d, f) for d in ("rank0", "rank1") for f in os.listdir(os.path.join(work, "disagree", d))]
+    if written:
+        sys.exit(f"the run whose ranks disagree wrote {written}")
+    print(f"plain and 1 to 4 ranks over TCP (separate working folders) agree: {len(reference)} rows, {len(reference_frames)} frames; "
+          f"a rank with another scene, --actors, --seed and --frames stops the run (exit {p.returncode}), nothing written")
     for n, (across, border, left_out, peaks) in crossed.items():
         print(f"  {n} ranks: {across} walkers crossed between ranks, {border} border bytes, walkers left out of the gather in "
               f"{left_out} frames; peak MiB per rank {peaks}")
