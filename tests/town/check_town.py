@@ -195,9 +195,9 @@ def mpi(exe, scenes, work):
     mpiexec = os.environ.get("THRONG_MPIEXEC")
     if not mpiexec:
         sys.exit("THRONG_MPIEXEC names no MPI launcher")
-    # 500 walkers in 16 regions: within 120 frames some cross from one rank's regions to another's.
+    # 500 walkers in 16 regions: within 80 frames some cross from one rank's regions to another's.
     # The scene by its absolute path: each rank starts in a folder of its own.
-    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "120", "--every", "40",
+    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "80", "--every", "40",
               "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
     plain = os.path.join(work, "plain")
     run(exe, plain, *common)
@@ -250,7 +250,7 @@ def mpi(exe, scenes, work):
     other[other.index("--frames") + 1] = "100"
     cmd, p = start_ranks(exe, mpiexec, 2, os.path.join(work, "disagree"), common, [common, other])
     said = re.search(r"throng-town \(rank 1\): this rank would build or step another world than rank 0: its scene file .*plain\.json "
-                     r".* is not rank 0's .*; --actors 400 here, 500 on rank 0; --seed 5 here, 4 on rank 0; --frames 100 here, 120 on rank 0", p.stderr)
+                     r".* is not rank 0's .*; --actors 400 here, 500 on rank 0; --seed 5 here, 4 on rank 0; --frames 100 here, 80 on rank 0", p.stderr)
     if p.returncode == 0 or not said:
         sys.exit(f"rank 1 with another scene, --actors, --seed and --frames: exit {p.returncode}, not the error expected:\n{p.stderr}")
     written = [os.path.join(d, f) for d in ("rank0", "rank1") for f in os.listdir(os.path.join(work, "disagree", d))]
