@@ -54,8 +54,6 @@ namespace {
 // " (rank N)" in messages of a run of several ranks.
 std::string rankLabel(const sim::Ranks& ranks) { return ranks.size() > 1 ? " (rank " + std::to_string(ranks.rank()) + ")" : ""; }
 
-// A rank other than 0: waits for rank 0's set-up, then steps its share of the regions as often as
-// rank 0 steps (once per frame), writing nothing. A failure stops every rank.
 // Runs `wait` with the ranks' timeout raised to at least 30 minutes: rank 0 builds the world and
 // bakes impostors meanwhile.
 template <class Wait>
@@ -78,6 +76,8 @@ std::shared_ptr<const sim::NavMesh> receiveNavMesh(sim::Ranks& ranks) {
     }
 }
 
+// A rank other than 0: waits for rank 0's set-up, then steps its share of the regions as often as
+// rank 0 steps (once per frame), writing nothing. A failure stops every rank.
 int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions& o) {
     try {
         world.setThreads(unsigned(o.threads));

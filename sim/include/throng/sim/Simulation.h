@@ -60,9 +60,10 @@ public:
     enum class Scope {
         /// Everything: the town's scene graph, every actor in the crowd with its behaviours and effects.
         Everything,
-        /// What stepping the walkers needs, for a rank that draws nothing: the navigation mesh (from
-        /// the town's tiles, with no scene graph made of them), the walkers' templates and their
-        /// Locomotion. No crowd, no standing people, flocks, gaze or faces; groups list no actors.
+        /// What stepping the walkers needs, for a rank that draws nothing: the navigation mesh (the
+        /// one given, else built from the town's tiles with no scene graph made of them), the
+        /// walkers' templates and their Locomotion. No crowd, no standing people, flocks, gaze or
+        /// faces; groups list no actors.
         Walkers,
     };
 
