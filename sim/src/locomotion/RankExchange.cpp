@@ -155,9 +155,12 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
         rankSteps_[std::size_t(ranks_.rank())] = mine;
         return totals;
     }
-    // Rank 0: its own walkers are present, and those the others sent; the rest only with no view.
+    // Rank 0: with a view, the walkers near it are present, its own as those the others sent; its
+    // own far from it are left out too, so that what rank 0 shows of the walkers depends on the
+    // view only, never on which rank steps whom. Without a view every walker is present.
     present_.assign(state_.size(), view.on ? 0 : 1);
-    for (std::uint32_t slot : own) present_[slot] = 1;
+    if (view.on)
+        for (std::uint32_t slot : own) present_[slot] = nearView(view, state_[slot].position);
     for (std::size_t r = 0; r < gathered.size(); ++r) {
         const Bytes& bytes = gathered[r];
         if (bytes.size() < sizeof(Locomotion::RankStepRecord) ||

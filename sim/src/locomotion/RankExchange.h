@@ -54,9 +54,10 @@ public:
     /// within `margin` of it are sent). On rank 0, takes in every rank's; returns rank 0's totals.
     Totals gather(Locomotion::RankStepRecord mine, std::span<const std::uint32_t> own, const std::optional<Frustum>& view,
                   double margin);
-    /// Whether rank 0 holds this step's state of walker `slot`.
+    /// Whether walker `slot` is present on rank 0 this step: near the view (whoever steps it), or
+    /// any walker without a view.
     bool present(std::uint32_t slot) const { return present_.empty() || present_[slot] != 0; }
-    /// Walkers rank 0 holds this step's state of, or `all` when no view left any out.
+    /// Walkers present on rank 0 this step, or `all` when no view left any out.
     std::size_t presentCount(std::size_t all) const { return present_.empty() ? all : presentCount_; }
     /// Each rank's share of the last step (see Locomotion::rankSteps).
     std::span<const Locomotion::RankStepRecord> rankSteps() const { return rankSteps_; }
@@ -71,7 +72,7 @@ private:
     std::uint32_t firstRegion_ = 0, endRegion_ = 0;
     std::vector<int> regionRank_;
     std::vector<Locomotion::RankStepRecord> rankSteps_;
-    // On rank 0, which walkers' state is this step's (empty: all of them).
+    // On rank 0, which walkers are present this step (empty: all of them).
     std::vector<std::uint8_t> present_;
     std::size_t presentCount_ = 0;
 };

@@ -164,7 +164,8 @@ public:
     bool distributed() const { return ranks_ != nullptr; }
     /// Distributed, set on rank 0 before a step: the other ranks then send rank 0 only the walkers
     /// standing within `margin` metres of `view` (the frustum the frame will cull against, sent to
-    /// them in the step), and the others are not present() on rank 0 until they come near it again.
+    /// them in the step), and the others, rank 0's own included, are not present() on rank 0 until
+    /// they come near it again: what rank 0 holds depends on the view, not on who steps whom.
     /// The margin must cover how far a walker's Refpoint Bsphere reaches from where it stands, and
     /// how far away anyone who matters to a visible walker may be (whom it looks at). Without a view
     /// (the default) every walker is sent. Throws std::invalid_argument for a margin that is

@@ -108,7 +108,8 @@ public:
     /// Distributed, on rank 0, before step(): the frustum the coming frame will cull against. The
     /// other ranks then send only the walkers that could pass CULL 1 or be looked at by one that
     /// does (Locomotion::setGatherView, with a margin from the walkers' Refpoint Bspheres and the
-    /// gaze range); the rest are absent this frame and rejected by CULL 1 unread. Null: every
+    /// gaze range); the rest, rank 0's own walkers included, are absent this frame and rejected by
+    /// CULL 1 unread. Null: every
     /// walker is sent (what a recorder of every actor needs). No effect unless distributed.
     void setGatherView(std::optional<Frustum> view);
     /// Metres beyond the view within which walkers are still sent (see setGatherView).
