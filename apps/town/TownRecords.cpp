@@ -2,9 +2,9 @@
 #include "TownRecords.h"
 
 #include <algorithm>
+#include <sstream>
 
 #include "throng/sim/PeakMemory.h"
-#include <sstream>
 
 namespace throng::town {
 namespace {

@@ -441,37 +441,34 @@ void Simulation::buildTown(const BuildProgress& progress) {
         }
         progress("fitting occluders", 0.5);
     }
-    if (walkersOnly_) {  // the tiles' surfaces for the navigation mesh, no scene graph
-        for (const TilePlacement& t : town_->tiles) {
-            const Mat4 m = tileTransform(*town_, t);
-            for (const auto& model : models[t.kind]) navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
-            blockTile(t);
-        }
-        progress("town laid out", 0.5);
-        return;
-    }
-    // Tiles grouped by chunks of 4 x 4 so that CULL rejects whole chunks.
+    // Tiles grouped by chunks of 4 x 4 so that CULL rejects whole chunks (a walkers' world makes no
+    // scene graph: only the tiles' surfaces for the navigation mesh).
     auto town = std::make_shared<Group>();
     town->setName("town");
     std::map<std::pair<int, int>, std::shared_ptr<Group>> chunks;
     TownLevels levels;
     for (const TilePlacement& t : town_->tiles) {
+        const Mat4 m = tileTransform(*town_, t);
+        for (const auto& model : models[t.kind]) navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
+        // Recast sees surfaces: block the inside of what stands on the tile.
+        const glm::vec3 c(town_->centre(t.x, t.z));
+        const float h = float(0.5 * town_->tileSize);
+        if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
+        if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
+        if (walkersOnly_) continue;
         auto& chunk = chunks[{t.x / 4, t.z / 4}];
         if (!chunk) {
             chunk = std::make_shared<Group>();
             chunk->setName("chunk");
         }
         auto node = std::make_shared<Transform>();
-        const Mat4 m = tileTransform(*town_, t);
         node->setMatrix(m);
         for (const auto& model : models[t.kind]) {
             auto tile = tileModelNode(model, d.town->lod, levels);
             if (auto lod = std::dynamic_pointer_cast<LOD>(tile)) townLods_.push_back(std::move(lod));
             node->addChild(std::move(tile));
-            navGeometry_.add(model->mesh(), glm::mat4(m), tileWalkable(t.kind));
             townTriangles_ += model->primitiveCount();
         }
-        blockTile(t);
         if (const auto it = occluderOf.find(t.kind); it != occluderOf.end()) {
             node->addChild(std::make_shared<Occluder>(it->second.first, it->second.second));
             effects_.constructed("occluders");
@@ -479,16 +476,8 @@ void Simulation::buildTown(const BuildProgress& progress) {
         chunk->addChild(node);
     }
     for (auto& [key, chunk] : chunks) town->addChild(chunk);
-    root_->addChild(town);
+    if (!walkersOnly_) root_->addChild(town);
     progress("town laid out", 0.5);
-}
-
-// Recast sees surfaces: blocks the inside of what stands on tile `t`.
-void Simulation::blockTile(const TilePlacement& t) {
-    const glm::vec3 c(town_->centre(t.x, t.z));
-    const float h = float(0.5 * town_->tileSize);
-    if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
-    if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
 }
 
 void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<const NavMesh> given) {

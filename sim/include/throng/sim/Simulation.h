@@ -169,7 +169,6 @@ private:
     Simulation() = default;
     void buildTown(const BuildProgress& progress);
     void buildActors(const BuildProgress& progress, std::shared_ptr<const NavMesh> given);
-    void blockTile(const TilePlacement& t);
 
     SceneDescription description_;
     EffectCounters effects_;
