@@ -266,8 +266,22 @@ void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor&
     // a group's members are decided when they are inside every plane the group crosses.
     const bool decided = boundIsMemberSphere || mask == 0;
     const std::uint8_t stage = !decided ? cascade::kPending : mask == 0 ? cascade::kInside : cascade::kCrossing;
-    for (std::uint32_t member = 0; member < ids.size(); ++member)
-        cascade_->candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
+    // An actor another process simulates and did not send this step lies outside the view (that is
+    // why it was not sent): rejected here, unread, so that CULL costs what this process shows.
+    // (Without a branch: who is present is random.)
+    Crowd::State& s = crowd_.state();
+    std::vector<cascade::Candidate>& candidates = cascade_->candidates;
+    std::size_t n = candidates.size();
+    candidates.resize(n + ids.size());
+    for (std::uint32_t member = 0; member < ids.size(); ++member) {
+        const ActorId id = ids[member];
+        const bool present = s.present[id] != 0;
+        candidates[n] = cascade::Candidate{id, &node, member, mask, stage};
+        n += present;
+        stats_.a += !present;
+        s.actorClass[id] = present ? s.actorClass[id] : ActorClass::A;
+    }
+    candidates.resize(n);
 }
 
 void ActorProcessor::culledOut(Node&, std::span<const ActorId> ids, CullVisitor& visitor) {

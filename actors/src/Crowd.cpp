@@ -58,6 +58,7 @@ ActorId Crowd::add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Be
     s.member.push_back(0);
     s.held.push_back(-1);
     s.actorClass.push_back(ActorClass::NotInScene);
+    s.present.push_back(1);
 
     if (std::find(templates_.begin(), templates_.end(), tmpl) == templates_.end()) templates_.push_back(std::move(tmpl));
     if (std::find(behaviours_.begin(), behaviours_.end(), behaviour) == behaviours_.end())
@@ -142,7 +143,7 @@ std::size_t Crowd::bytesPerActor(const ActorTemplate& tmpl) const {
     std::size_t bytes = sizeof(const ActorTemplate*) + sizeof(Behaviour*) + sizeof(std::uint32_t) + 3 * sizeof(Mat4) +
                         2 * sizeof(BoundingSphere) + sizeof(RootPose) + 2 * sizeof(double) + sizeof(float) +
                         sizeof(glm::vec4) + 2 * sizeof(std::uint32_t) + sizeof(Node*) + sizeof(std::uint32_t) +
-                        sizeof(std::int32_t) + sizeof(ActorClass) + tmpl.dofValueCount() * sizeof(float);
+                        sizeof(std::int32_t) + sizeof(ActorClass) + sizeof(std::uint8_t) + tmpl.dofValueCount() * sizeof(float);
     // The behaviour's slot, counted with the first behaviour seen (they are similar in size).
     if (!state_.behaviour.empty()) bytes += state_.behaviour.front()->bytesPerSlot();
     return bytes;

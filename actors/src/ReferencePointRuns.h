@@ -5,18 +5,22 @@
 // work between them; every actor gets the bits a call of its own would give.
 
 #include <cstddef>
+#include <cstdint>
 
 #include "throng/actors/Crowd.h"
 
 namespace throng::detail {
 
-/// Writes the local Reference Point of actors idOf(begin) … idOf(end - 1) into s.refLocal.
+/// Writes the local Reference Point of actors idOf(begin) … idOf(end - 1) into s.refLocal, and
+/// whether each is present into s.present; an absent actor's is not computed (its state here is
+/// stale, and nothing of this frame reads it).
 template <class IdOf>
 void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t end, IdOf&& idOf, const FrameContext& context,
                                OpTally* ops) {
     constexpr std::size_t kRun = 32;
     std::uint32_t slots[kRun];
     ActorId ids[kRun];
+    std::uint8_t present[kRun];
     Mat4 out[kRun];
     for (std::size_t k = begin; k < end;) {
         Behaviour* behaviour = s.behaviour[idOf(k)];
@@ -29,13 +33,26 @@ void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t e
             slots[n] = s.slot[id];
             consecutive = consecutive && id == ids[0] + n;
         }
+        k += n;
+        if (behaviour->presence({slots, n}, {present, n})) {
+            for (std::size_t j = 0; j < n; ++j) s.present[ids[j]] = 1;
+        } else {  // only the present ones, packed (without a branch: who is present is random)
+            std::size_t m = 0;
+            for (std::size_t j = 0; j < n; ++j) {
+                s.present[ids[j]] = present[j];
+                ids[m] = ids[j], slots[m] = slots[j];
+                m += present[j] != 0;
+            }
+            consecutive = consecutive && m == n;
+            n = m;
+        }
+        if (n == 0) continue;
         if (consecutive) {
             behaviour->referencePoints({slots, n}, context, ops, {s.refLocal.data() + ids[0], n});
         } else {
             behaviour->referencePoints({slots, n}, context, ops, {out, n});
             for (std::size_t j = 0; j < n; ++j) s.refLocal[ids[j]] = out[j];
         }
-        k += n;
     }
 }
 

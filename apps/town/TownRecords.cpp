@@ -126,6 +126,7 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
     if (const auto* walkers = world.locomotion()) {
         j["regions"] = walkers->regionCount();
         j["gatherMargin"] = world.gatherMargin();  // metres beyond the view walkers are gathered within (under mpirun)
+        j["shownMargin"] = world.shownMargin();    // of those, metres beyond the view walkers may be seen within
     }
     const double n = double(std::max<std::int64_t>(sums.frames, 1));
     j["peakMemoryBytes"] = sim::peakResidentBytes();  // this process's (rank 0's); each rank's in meanPerRank

@@ -119,8 +119,10 @@ void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camer
     f.ranks.assign(distributed_ ? std::size_t(ranks_.size()) : 0, {});
     if (step) {
         // Distributed, the other ranks send only the walkers near this frame's view (a recorder of
-        // every actor needs them all).
-        if (distributed_) world_.setGatherView(recorder_ || o_.gather == "all" ? std::nullopt : std::optional<Frustum>(camera.frustum()));
+        // every actor needs them all, and traditional processing, which culls no actor before it
+        // reads its state, does too).
+        const bool all = recorder_ || o_.gather == "all" || o_.processing == "traditional";
+        if (distributed_) world_.setGatherView(all ? std::nullopt : std::optional<Frustum>(camera.frustum()));
         world_.step();
         f.stepMs = world_.lastStepMs();
         if (const sim::Locomotion* walk = world_.locomotion()) {

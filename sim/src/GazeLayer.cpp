@@ -99,12 +99,12 @@ void GazeLayer::advance(const FrameContext& context) {
     base_->advance(context);  // the layer owns its base: the crowd only knows the layer
     const std::size_t n = state_.size();
     if (n == 0) return;
-    // Positions of the actors present in this process (every one, unless another process steps
+    // Positions of the actors known in this process (every one, unless another process steps
     // some of them and sent only those near the view).
     present_.resize(n);
     forEachChunk(n, 512, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
-            present_[i] = state_[i].tmpl && base_->present(std::uint32_t(i));
+            present_[i] = state_[i].tmpl && base_->known(std::uint32_t(i));
             if (present_[i]) state_[i].position = Vec3(base_->referencePoint(std::uint32_t(i), context, nullptr)[3]);
         }
     });

@@ -151,11 +151,15 @@ void Locomotion::distribute(Ranks& ranks) {
     ranks_ = &ranks;
 }
 
-void Locomotion::setGatherView(std::optional<Frustum> view, double margin) {
+void Locomotion::setGatherView(std::optional<Frustum> view, double margin, double shownMargin) {
     if (!std::isfinite(margin) || margin < 0.0)
         throw std::invalid_argument("Locomotion::setGatherView: argument 'margin' must be finite and >= 0, not " + std::to_string(margin));
+    if (!std::isfinite(shownMargin) || shownMargin < 0.0 || shownMargin > margin)
+        throw std::invalid_argument("Locomotion::setGatherView: argument 'shownMargin' must be finite, >= 0 and at most the margin (" +
+                                    std::to_string(margin) + "), not " + std::to_string(shownMargin));
     gatherView_ = std::move(view);
     gatherMargin_ = margin;
+    shownMargin_ = shownMargin;
 }
 
 void Locomotion::advance(const FrameContext& context) {
@@ -227,7 +231,7 @@ void Locomotion::advance(const FrameContext& context) {
     mine.workMs = watch.elapsedMs() - mine.waitMs;
     mine.peakBytes = peakResidentBytes();
     lastAdvanceMs_ = watch.elapsedMs();
-    const locomotion::RankExchange::Totals totals = exchange_->gather(mine, ownSlots_, gatherView_, gatherMargin_);
+    const locomotion::RankExchange::Totals totals = exchange_->gather(mine, ownSlots_, gatherView_, gatherMargin_, shownMargin_);
     if (exchange_->rank() == 0) lastGhosts_ = totals.ghosts, lastHandovers_ = totals.handovers, lastDeferred_ = totals.deferred;
 }
 
@@ -265,7 +269,13 @@ std::size_t Locomotion::stepBytes() const {
 }
 
 std::size_t Locomotion::bytesPerSlot() const { return sizeof(Actor) + sizeof(WalkerState); }
-bool Locomotion::present(std::uint32_t slot) const { return !exchange_ || exchange_->present(slot); }
+bool Locomotion::presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const {
+    if (!exchange_ || exchange_->everyoneShown()) return true;
+    for (std::size_t k = 0; k < slots.size(); ++k) present[k] = exchange_->shown(slots[k]);
+    return false;
+}
+bool Locomotion::known(std::uint32_t slot) const { return !exchange_ || exchange_->known(slot); }
+std::size_t Locomotion::shownCount() const { return exchange_ ? exchange_->shownCount(actors_.size()) : actors_.size(); }
 std::size_t Locomotion::presentCount() const { return exchange_ ? exchange_->presentCount(actors_.size()) : actors_.size(); }
 std::span<const Locomotion::RankStepRecord> Locomotion::rankSteps() const {
     return exchange_ ? exchange_->rankSteps() : std::span<const RankStepRecord>();

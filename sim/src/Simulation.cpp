@@ -562,6 +562,7 @@ void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<cons
             const double height = high.y - low.y;
             const double gaze = place.walkGaze ? std::sqrt(place.gazeSettings.range * place.gazeSettings.range + height * height) : 0.0;
             gatherMargin_ = std::max(gatherMargin_, reach + gaze + 1.0);
+            shownMargin_ = std::max(shownMargin_, reach + 1.0);
         }
         root_->addChild(node);
         groups_.push_back(std::move(info));
@@ -577,7 +578,7 @@ void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<cons
 }
 
 void Simulation::setGatherView(std::optional<Frustum> view) {
-    if (walkers_ && walkers_->distributed()) walkers_->setGatherView(std::move(view), gatherMargin_);
+    if (walkers_ && walkers_->distributed()) walkers_->setGatherView(std::move(view), gatherMargin_, shownMargin_);
 }
 
 void Simulation::distribute(Ranks& ranks) {

@@ -221,11 +221,14 @@ public:
     void pose(std::uint32_t, double, int, const ActorTemplate&, std::span<const std::uint8_t>, std::span<float>, OpTally*) override {}
     BoundingSphere skeletonRootExtent(std::uint32_t) const override { return BoundingSphere(Vec3(0.0), 1.0); }
     bool posesFromTemplateClips() const override { return true; }
-    bool present(std::uint32_t slot) const override { return present_[slot] != 0; }
+    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
+        for (std::size_t k = 0; k < slots.size(); ++k) present[k] = present_[slots[k]];
+        return false;
+    }
     std::size_t bytesPerSlot() const override { return sizeof(glm::dvec3); }
 
     glm::dvec3 at(std::size_t slot) const { return at_[slot]; }
-    std::vector<std::uint8_t>& presence() { return present_; }
+    std::vector<std::uint8_t>& presentFlags() { return present_; }
 
 private:
     std::vector<double> ends_{100.0};
@@ -254,7 +257,7 @@ TEST(Gaze, TheChoiceDependsOnlyOnWhoIsNear) {
     for (int f = 0; f < 400; ++f, clock.advance()) {
         // The part holds those within 20 m of the square's centre, and everyone within 6 m of them.
         for (std::size_t i = 0; i < n; ++i)
-            part->presence()[i] = glm::length(glm::dvec2(all->at(i).x - 30.0, all->at(i).z - 30.0)) < 26.5;
+            part->presentFlags()[i] = glm::length(glm::dvec2(all->at(i).x - 30.0, all->at(i).z - 30.0)) < 26.5;
         whole.advance(clock.context());
         near.advance(clock.context());
         for (std::uint32_t i = 0; i < n; ++i) {

@@ -52,20 +52,22 @@ bool nearView(const Frustum& view, const glm::vec3& p, double margin) {
 }
 
 // Steps the plaza alone and split over the ranks (with `far`, far regions deferred), then compares.
-// With `view`, rank 0 gathers only the walkers within 1 m of it: exactly those are present there
-// (its own far from it are not either), and they are as one process has them.
+// With `view`, rank 0 gathers only the walkers within 1 m of it: exactly those are known there
+// (its own far from it are not either), and they are as one process has them; of those, exactly
+// the walkers within half a metre are present (may be seen).
 void stepsBitwiseAsOneProcess(bool far, std::optional<Frustum> view = std::nullopt) {
     const std::shared_ptr<const NavMesh> nav = test::plaza(true);
     Ranks ranks;
     const auto alone = crossing(nav, far), shared = crossing(nav, far);
     shared->distribute(ranks);
-    if (view) shared->setGatherView(view, 1.0);
+    if (view) shared->setGatherView(view, 1.0, 0.5);
     EXPECT_THROW(shared->setGatherView(view, -1.0), std::invalid_argument);
+    EXPECT_THROW(shared->setGatherView(view, 1.0, 2.0), std::invalid_argument) << "a shown margin beyond the margin";
     alone->advance(FrameContext{});  // starts it (a step of no time)
     EXPECT_THROW(alone->distribute(ranks), std::logic_error) << "distribute() after the start is refused";
     SimulationClock clock;
     ThreadTeam team(2);
-    std::size_t acrossRanks = 0, deferred = 0, leftOut = 0, cameBack = 0;
+    std::size_t acrossRanks = 0, deferred = 0, leftOut = 0, cameBack = 0, knownOnly = 0;
     std::vector<std::uint8_t> wasPresent(alone->size(), 1);
     std::string firstMismatch;  // every rank steps all frames whatever it finds: the others wait for it
     team.run([&] {
@@ -76,19 +78,24 @@ void stepsBitwiseAsOneProcess(bool far, std::optional<Frustum> view = std::nullo
             std::uint64_t agents = 0;
             for (const auto& step : shared->rankSteps()) agents += step.agents, acrossRanks += step.handedToRanks;
             deferred += shared->lastDeferredCount();
-            if (view) {  // present: the walkers near the view, whoever steps them, as one process has them
-                std::size_t present = 0;
+            if (view) {  // known: the walkers near the view, whoever steps them, as one process has them
+                std::size_t known = 0, shown = 0;
                 for (std::uint32_t slot = 0; slot < alone->size() && firstMismatch.empty(); ++slot) {
                     const bool expected = nearView(*view, alone->position(slot), 1.0);
-                    present += shared->present(slot);
-                    leftOut += !shared->present(slot), cameBack += shared->present(slot) && !wasPresent[slot];
-                    wasPresent[slot] = shared->present(slot);
-                    if (shared->present(slot) != expected)
+                    const bool seen = nearView(*view, alone->position(slot), 0.5);
+                    known += shared->known(slot), shown += shared->present(slot);
+                    knownOnly += shared->known(slot) && !shared->present(slot);
+                    leftOut += !shared->known(slot), cameBack += shared->known(slot) && !wasPresent[slot];
+                    wasPresent[slot] = shared->known(slot);
+                    if (shared->known(slot) != expected)
                         firstMismatch = "frame " + std::to_string(f) + ": actor " + std::to_string(slot) + (expected ? " missing" : " sent");
+                    else if (shared->present(slot) != seen)
+                        firstMismatch = "frame " + std::to_string(f) + ": actor " + std::to_string(slot) + (seen ? " not" : "") + " shown";
                     else if (expected && drawnState(*shared, slot) != drawnState(*alone, slot))
                         firstMismatch = "frame " + std::to_string(f) + ": actor " + std::to_string(slot) + " differs from one process";
                 }
-                if (firstMismatch.empty() && present != shared->presentCount()) firstMismatch = "presentCount() is not the walkers present";
+                if (firstMismatch.empty() && (known != shared->presentCount() || shown != shared->shownCount()))
+                    firstMismatch = "presentCount() or shownCount() is not the walkers known or shown";
             }
             if (shared->lastGhostCount() != alone->lastGhostCount() || shared->lastHandoverCount() != alone->lastHandoverCount() ||
                 shared->lastDeferredCount() != alone->lastDeferredCount() || agents != alone->size())
@@ -122,6 +129,7 @@ void stepsBitwiseAsOneProcess(bool far, std::optional<Frustum> view = std::nullo
         if (view) {
             EXPECT_GT(leftOut, 1000u) << "the view should leave walkers out";
             EXPECT_GT(cameBack, 4u) << "walkers should come back near the view (" << leftOut << " left out)";
+            EXPECT_GT(knownOnly, 4u) << "some walkers should be known but not shown (between half a metre and a metre out)";
         }
     }
 }

@@ -1,5 +1,4 @@
-// Phase 2 of actor processing, CULL 1 (see RefpointCullingJob.h). Members another process
-// simulates and did not send (not present()) were found outside the view there.
+// Phase 2 of actor processing, CULL 1 (see RefpointCullingJob.h).
 
 #include "throng/actors/cascade/RefpointCullingJob.h"
 #include "throng/scenegraph/SphereArrayCuller.h"
@@ -42,9 +41,6 @@ void RefpointCullingJob::run(PhaseLoop& loop) const {
     });
     for (std::size_t i = 0; i < w.pending.size(); ++i) {
         Candidate& cand = candidates[w.pending[i]];
-        // An actor simulated by another process that did not send it this step lies outside the
-        // view (that is why it was not sent); its state here is stale, so its test decides nothing.
-        if (!s.behaviour[cand.id]->present(s.slot[cand.id])) w.containment[i] = Containment::Outside;
         switch (w.containment[i]) {
             case Containment::Outside: cand.stage = kOutside; break;
             case Containment::Inside: cand.stage = kInside, cand.mask = 0; break;

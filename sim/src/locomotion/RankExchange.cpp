@@ -19,19 +19,25 @@ constexpr int kGhostTag = 101, kHandoverTag = 102, kWalkerTag = 103, kViewTag = 
 struct GatherViewRecord {
     double planes[6][4] = {};   // (normal, offset) of each frustum plane, inside where n·p + d >= 0
     double margin = 0.0;        // metres a walker may stand outside and still be sent
+    double shownMargin = 0.0;   // metres it may stand outside and still be seen (<= margin)
     std::uint32_t active = 0;   // planes in use (bit i: plane i)
     std::uint32_t on = 0;       // 0: send every walker
 };
 
-// Whether a walker standing at `p` is within `view.margin` of the view (always, with no view).
-bool nearView(const GatherViewRecord& view, const glm::vec3& p) {
+// Whether a walker standing at `p` is within `margin` of the view (always, with no view).
+bool nearView(const GatherViewRecord& view, const glm::vec3& p, double margin) {
     if (!view.on) return true;
     for (int i = 0; i < 6; ++i) {
         if (!(view.active & (1u << i))) continue;
         const double* q = view.planes[i];
-        if (q[0] * double(p.x) + q[1] * double(p.y) + q[2] * double(p.z) + q[3] < -view.margin) return false;
+        if (q[0] * double(p.x) + q[1] * double(p.y) + q[2] * double(p.z) + q[3] < -margin) return false;
     }
     return true;
+}
+
+// What rank 0 holds of a walker standing at `p` (see RankExchange::present_).
+std::uint8_t holding(const GatherViewRecord& view, const glm::vec3& p) {
+    return nearView(view, p, view.shownMargin) ? 2 : nearView(view, p, view.margin) ? 1 : 0;
 }
 
 }  // namespace
@@ -109,11 +115,11 @@ std::uint64_t RankExchange::routeHandovers(RegionStepper& regions) {
 }
 
 RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::span<const std::uint32_t> own,
-                                          const std::optional<Frustum>& gatherView, double margin) {
+                                          const std::optional<Frustum>& gatherView, double margin, double shownMargin) {
     // Rank 0 tells the others which walkers to send: those near the frame's view, or every one.
     GatherViewRecord view;
     if (ranks_.rank() == 0 && gatherView) {
-        view.on = 1, view.margin = margin, view.active = gatherView->activePlanes();
+        view.on = 1, view.margin = margin, view.shownMargin = std::min(shownMargin, margin), view.active = gatherView->activePlanes();
         for (int i = 0; i < 6; ++i)
             for (int k = 0; k < 4; ++k) view.planes[i][k] = gatherView->plane(i)[k];
     }
@@ -125,24 +131,31 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
         view = got[0];
         mine.waitMs += wait.elapsedMs();
     }
-    // One message per rank: its share of the step, then a record per walker it sends, written in
-    // place (a million walkers are 40 MB a step: not copied twice).
+    // One message per rank: its share of the step, then a record per walker it sends, those that
+    // may be seen first (mine.shown of them), then those that only matter to them (whom they look
+    // at), written in place (a million walkers are 40 MB a step: not copied twice).
     // Rank 0's own walkers are up to date there: it sends none (and counts them all as sent).
     const bool root = ranks_.rank() == 0;
-    std::size_t sent = 0;
+    std::size_t sent = 0, shown = 0;
+    held_.clear();
     if (!root)
-        for (std::uint32_t slot : own) sent += nearView(view, state_[slot].position);
+        for (std::uint32_t slot : own) {
+            const std::uint8_t h = holding(view, state_[slot].position);
+            held_.push_back(h);
+            sent += h != 0, shown += h == 2;
+        }
     mine.sent = root ? own.size() : sent;
+    mine.shown = root ? own.size() : shown;
     Bytes message(sizeof(Locomotion::RankStepRecord) + sent * sizeof(WalkerRecord));
     std::memcpy(message.data(), &mine, sizeof mine);
     std::size_t k = 0;
-    if (!root)
-        for (std::uint32_t slot : own) {
-            const WalkerState& s = state_[slot];
-            if (!nearView(view, s.position)) continue;
+    for (const std::uint8_t pass : {std::uint8_t(2), std::uint8_t(1)})
+        for (std::size_t i = 0; i < held_.size(); ++i) {
+            if (held_[i] != pass) continue;
+            const WalkerState& s = state_[own[i]];
             WalkerRecord w;
-            w.slot = slot, w.region = s.region;
-            for (int i = 0; i < 3; ++i) w.position[i] = s.position[i];
+            w.slot = own[i], w.region = s.region;
+            for (int c = 0; c < 3; ++c) w.position[c] = s.position[c];
             w.heading = s.heading, w.speed = s.speed, w.runWeight = s.runWeight, w.phase = s.phase;
             std::memcpy(message.data() + sizeof(Locomotion::RankStepRecord) + k++ * sizeof(WalkerRecord), &w, sizeof w);
         }
@@ -158,9 +171,12 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
     // Rank 0: with a view, the walkers near it are present, its own as those the others sent; its
     // own far from it are left out too, so that what rank 0 shows of the walkers depends on the
     // view only, never on which rank steps whom. Without a view every walker is present.
-    present_.assign(state_.size(), view.on ? 0 : 1);
-    if (view.on)
-        for (std::uint32_t slot : own) present_[slot] = nearView(view, state_[slot].position);
+    if (view.on) {
+        present_.assign(state_.size(), 0);
+        for (std::uint32_t slot : own) present_[slot] = holding(view, state_[slot].position);
+    } else {
+        present_.clear();
+    }
     for (std::size_t r = 0; r < gathered.size(); ++r) {
         const Bytes& bytes = gathered[r];
         if (bytes.size() < sizeof(Locomotion::RankStepRecord) ||
@@ -173,6 +189,9 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
         totals.ghosts += step.ghosts, totals.handovers += step.handovers, totals.deferred += step.deferred;
         if (r == 0) continue;  // rank 0's own walkers are already up to date
         const std::size_t n = (bytes.size() - sizeof(Locomotion::RankStepRecord)) / sizeof(WalkerRecord);
+        if (step.sent != n || step.shown > n)
+            throw RankError(int(r), "rank " + std::to_string(r) + " sent " + std::to_string(n) + " walker records, saying " +
+                                        std::to_string(step.sent) + " of which " + std::to_string(step.shown) + " may be seen");
         for (std::size_t i = 0; i < n; ++i) {
             WalkerRecord w;
             std::memcpy(&w, bytes.data() + sizeof(Locomotion::RankStepRecord) + i * sizeof(WalkerRecord), sizeof w);
@@ -183,11 +202,11 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             s.region = w.region;
             s.position = glm::vec3(w.position[0], w.position[1], w.position[2]);
             s.heading = w.heading, s.speed = w.speed, s.runWeight = w.runWeight, s.phase = w.phase;
-            present_[w.slot] = 1;
+            if (view.on) present_[w.slot] = i < step.shown ? 2 : 1;
         }
     }
-    presentCount_ = 0;
-    for (std::uint8_t p : present_) presentCount_ += p;
+    presentCount_ = shownCount_ = 0;
+    for (std::uint8_t p : present_) presentCount_ += p != 0, shownCount_ += p == 2;
     return totals;
 }
 

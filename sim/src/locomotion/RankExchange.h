@@ -51,14 +51,21 @@ public:
 
     /// Sends rank 0 this rank's share of the step `mine` and the state of the walkers `own` it
     /// stepped; rank 0 sends the others `view` first (see Locomotion::setGatherView: only walkers
-    /// within `margin` of it are sent). On rank 0, takes in every rank's; returns rank 0's totals.
+    /// within `margin` of it are sent, and those within `shownMargin` may be seen). On rank 0,
+    /// takes in every rank's; returns rank 0's totals.
     Totals gather(Locomotion::RankStepRecord mine, std::span<const std::uint32_t> own, const std::optional<Frustum>& view,
-                  double margin);
-    /// Whether walker `slot` is present on rank 0 this step: near the view (whoever steps it), or
-    /// any walker without a view.
-    bool present(std::uint32_t slot) const { return present_.empty() || present_[slot] != 0; }
-    /// Walkers present on rank 0 this step, or `all` when no view left any out.
+                  double margin, double shownMargin);
+    /// Whether rank 0 holds walker `slot`'s state of this step: near the view (whoever steps it),
+    /// or any walker without a view.
+    bool known(std::uint32_t slot) const { return present_.empty() || present_[slot] != 0; }
+    /// Whether walker `slot` may be seen on rank 0 this step (known, and within the shown margin).
+    bool shown(std::uint32_t slot) const { return present_.empty() || present_[slot] == 2; }
+    /// Whether every walker may be seen (no view left any out).
+    bool everyoneShown() const { return present_.empty(); }
+    /// Walkers known on rank 0 this step, or `all` when no view left any out.
     std::size_t presentCount(std::size_t all) const { return present_.empty() ? all : presentCount_; }
+    /// Walkers that may be seen on rank 0 this step, or `all` when no view left any out.
+    std::size_t shownCount(std::size_t all) const { return present_.empty() ? all : shownCount_; }
     /// Each rank's share of the last step (see Locomotion::rankSteps).
     std::span<const Locomotion::RankStepRecord> rankSteps() const { return rankSteps_; }
 
@@ -72,9 +79,11 @@ private:
     std::uint32_t firstRegion_ = 0, endRegion_ = 0;
     std::vector<int> regionRank_;
     std::vector<Locomotion::RankStepRecord> rankSteps_;
-    // On rank 0, which walkers are present this step (empty: all of them).
+    // On rank 0, what it holds of each walker this step: 0 nothing, 1 its state (it matters to
+    // someone who may be seen), 2 its state and it may be seen (empty: every walker, seen).
     std::vector<std::uint8_t> present_;
-    std::size_t presentCount_ = 0;
+    std::size_t presentCount_ = 0, shownCount_ = 0;
+    std::vector<std::uint8_t> held_;  // on the other ranks: what rank 0 holds of each walker sent
 };
 
 }  // namespace throng::sim::locomotion

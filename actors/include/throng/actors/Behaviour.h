@@ -64,11 +64,24 @@ public:
     /// actor `slot` shows at `time`. Default: `time` itself.
     virtual double clipTime(std::uint32_t slot, double time) const { (void)slot; return time; }
 
-    /// Whether actor `slot`'s state in this process is that of the last step. False only for an
-    /// actor simulated by another process of the run that did not send it this step, because it
-    /// cannot be seen (nor be looked at by anyone who can): CULL 1 rejects it without reading it.
-    /// Default true.
-    virtual bool present(std::uint32_t slot) const { (void)slot; return true; }
+    /// Which of `slots` have in this process the state of the last step. An actor is absent only
+    /// when another process of the run simulates it and did not send it this step, because it
+    /// cannot be seen (nor be looked at by anyone who can): phase 1 skips it and CULL 1 rejects it
+    /// unread, so what this process spends on it does not grow with the actors it does not show.
+    /// Returns true when every one is present (`present` is then left as it is); otherwise writes
+    /// present[k] (1 or 0) for every k < slots.size(). One call serves many actors. Default: true.
+    virtual bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const {
+        (void)slots, (void)present;
+        return true;
+    }
+    /// Whether this process holds actor `slot`'s state of the last step, absent or not: an absent
+    /// actor that someone present may look at is known. Default true.
+    virtual bool known(std::uint32_t slot) const { (void)slot; return true; }
+    /// Whether actor `slot` is present (see presence()).
+    bool present(std::uint32_t slot) const {
+        std::uint8_t here = 1;
+        return presence({&slot, 1}, {&here, 1}) || here != 0;
+    }
 
     /// Bytes of state one more actor takes in this behaviour.
     virtual std::size_t bytesPerSlot() const = 0;

@@ -90,6 +90,7 @@ public:
         std::vector<std::uint32_t> member;          ///< its index within that node
         std::vector<std::int32_t> held;             ///< index into heldObjects, or -1
         std::vector<ActorClass> actorClass;         ///< classification in the last frame
+        std::vector<std::uint8_t> present;          ///< 1 when its state is this step's (Behaviour::presence), as of phase 1
         std::vector<std::vector<HeldObject>> heldObjects;  ///< held objects, per actor that holds any
         std::uint32_t totalNodes = 0;               ///< sum of the actors' Skeleton node counts
     };

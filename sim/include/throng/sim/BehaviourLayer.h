@@ -28,7 +28,10 @@ public:
     }
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override { return base_->skeletonRootExtent(slot); }
     bool posesFromTemplateClips() const override { return base_->posesFromTemplateClips(); }
-    bool present(std::uint32_t slot) const override { return base_->present(slot); }
+    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
+        return base_->presence(slots, present);
+    }
+    bool known(std::uint32_t slot) const override { return base_->known(slot); }
     double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot); }
     double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }
     int mainClip(std::uint32_t slot) const override { return base_->mainClip(slot); }

@@ -8,7 +8,7 @@
 // The choice has no memory: in each of its periods an actor looks at whoever within range draws
 // the lowest of its random numbers for that period. So it depends only on who is within range now
 // and not on who was before, nor on the order neighbours are visited; a process that holds only
-// the actors near the view (the others are not present()) chooses as one holding everyone does.
+// the actors near the view (the others are not known()) chooses as one holding everyone does.
 
 #include <limits>
 #include <map>

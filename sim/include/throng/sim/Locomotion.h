@@ -12,7 +12,8 @@
 // handovers are flat records, so that regions owned by other processes exchange them as messages:
 // distribute() splits the regions over the ranks of an MPI run, and rank 0 gathers the walkers'
 // drawn state after each step: every walker, or, given the view the frame culls against
-// (setGatherView), only those near it; the others are not present() there. The same layout gives
+// (setGatherView), only those near it; the others are not known() there, and only those that
+// may be seen are present(). The same layout gives
 // the same trajectories with any number of threads or ranks.
 //
 // Three parts, each with its own file: this class is the walker behaviour (gait, Reference Point,
@@ -88,6 +89,7 @@ public:
         std::uint64_t borderBytes = 0;     ///< bytes of ghosts and handovers sent to other ranks
         std::uint64_t stateBytes = 0;      ///< bytes of walker records sent to rank 0
         std::uint64_t sent = 0;            ///< walkers it sent rank 0 (all its own unless a view is set)
+        std::uint64_t shown = 0;           ///< of those, walkers that may be seen (the others matter only to them)
         double workMs = 0.0;               ///< milliseconds stepping its regions and walkers
         double waitMs = 0.0;               ///< milliseconds in exchanges with the other ranks
         std::uint64_t peakBytes = 0;       ///< the rank's largest resident memory so far (its whole process)
@@ -168,11 +170,16 @@ public:
     /// they come near it again: what rank 0 holds depends on the view, not on who steps whom.
     /// The margin must cover how far a walker's Refpoint Bsphere reaches from where it stands, and
     /// how far away anyone who matters to a visible walker may be (whom it looks at). Without a view
-    /// (the default) every walker is sent. Throws std::invalid_argument for a margin that is
-    /// negative or not finite.
-    void setGatherView(std::optional<Frustum> view, double margin = 0.0);
+    /// (the default) every walker is sent. Of those sent, the walkers standing farther than
+    /// `shownMargin` outside the view (which must cover how far a Refpoint Bsphere reaches, with
+    /// room to spare) cannot be seen: they are known() on rank 0, for those who can to look at, but
+    /// not present(), so its cascade skips them unread. Throws std::invalid_argument for a margin
+    /// that is negative or not finite, or a shown margin beyond the margin.
+    void setGatherView(std::optional<Frustum> view, double margin = 0.0, double shownMargin = 0.0);
     /// Walkers rank 0 holds this step's state of: every one, unless a gather view left some out.
     std::size_t presentCount() const;
+    /// Of those, walkers that may be seen (present()).
+    std::size_t shownCount() const;
     /// Regions this rank steps, [first, second) (all of them unless distributed; valid after the
     /// first step).
     std::pair<std::uint32_t, std::uint32_t> ownRegions() const { return {firstRegion_, endRegion_}; }
@@ -191,7 +198,8 @@ public:
               std::span<const std::uint8_t> active, std::span<float> dofs, OpTally* ops) override;
     BoundingSphere skeletonRootExtent(std::uint32_t slot) const override;
     bool posesFromTemplateClips() const override { return true; }
-    bool present(std::uint32_t slot) const override;
+    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override;
+    bool known(std::uint32_t slot) const override;
     double poseMargin(std::uint32_t slot) const override;
     double clipTime(std::uint32_t slot, double time) const override;
     int mainClip(std::uint32_t slot) const override { return actors_[slot].walkClip; }
@@ -225,7 +233,7 @@ private:
     Ranks* ranks_ = nullptr;
     std::unique_ptr<locomotion::RankExchange> exchange_;
     std::optional<Frustum> gatherView_;
-    double gatherMargin_ = 0.0;
+    double gatherMargin_ = 0.0, shownMargin_ = 0.0;
     std::uint32_t firstRegion_ = 0, endRegion_ = 0;
     std::vector<std::uint32_t> ownSlots_;
 };

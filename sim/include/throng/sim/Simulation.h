@@ -108,12 +108,16 @@ public:
     /// Distributed, on rank 0, before step(): the frustum the coming frame will cull against. The
     /// other ranks then send only the walkers that could pass CULL 1 or be looked at by one that
     /// does (Locomotion::setGatherView, with a margin from the walkers' Refpoint Bspheres and the
-    /// gaze range); the rest, rank 0's own walkers included, are absent this frame and rejected by
-    /// CULL 1 unread. Null: every
-    /// walker is sent (what a recorder of every actor needs). No effect unless distributed.
+    /// gaze range); the rest, rank 0's own walkers included, are absent this frame. Only those
+    /// within shownMargin() may be seen: the cascade skips every other walker unread, so rank 0's
+    /// APP and CULL grow with the walkers in view, not with those it simulates or knows of. Null:
+    /// every walker is sent (what a recorder of every actor needs). No effect unless distributed.
     void setGatherView(std::optional<Frustum> view);
     /// Metres beyond the view within which walkers are still sent (see setGatherView).
     double gatherMargin() const { return gatherMargin_; }
+    /// Metres beyond the view within which a walker may be seen: how far its Refpoint Bsphere
+    /// reaches from where it stands, and a metre to spare (CULL 1 then finds the others outside).
+    double shownMargin() const { return shownMargin_; }
 
     /// The scene graph: the town's tiles and one node per actor group.
     Group& root() { return *root_; }
@@ -192,6 +196,7 @@ private:
     bool walkersOnly_ = false;     // distributed, on a rank other than 0: steps its walkers only
     double walkersOnlyMs_ = 0.0;
     double gatherMargin_ = 0.0;  // setGatherView's margin, from the walkers and the gaze range
+    double shownMargin_ = 0.0;   // setGatherView's shown margin, from the walkers' Refpoint Bspheres
     std::uint64_t townTriangles_ = 0;
     std::vector<std::shared_ptr<LOD>> townLods_;  // every tile's LOD node (town LOD declared)
     double townLodScale_ = 1.0;

@@ -25,7 +25,7 @@ struct RefpointCullingJob {
         std::vector<Containment> containment;///< per pending sphere: the test's result
     };
 
-    /// In: refSphereWorld, behaviour and slot (an actor another process did not send is outside).
+    /// In: refSphereWorld of the candidates (every one present: see ActorProcessor).
     const Crowd::State* crowd = nullptr;
     /// In: the culling frustum.
     const Frustum* frustum = nullptr;

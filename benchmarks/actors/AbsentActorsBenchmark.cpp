@@ -1,0 +1,148 @@
+// What the actors rank 0 of an MPI run does not show cost its APP and CULL. Rank 0 holds every
+// walker of the town, but this frame's state only of those the other ranks sent, near the view; the
+// cascade skips the rest unread (Behaviour::presence). One process stands in for rank 0 here: N
+// walking humanoids in one group with a roaming bound (as the town's walkers), of which only those
+// within a margin of the view are present, against those same walkers alone (a crowd holding nothing
+// else), and against the whole crowd present (one process of the whole town). Same camera, same
+// time, one frame of each per iteration, back to back, so noise touches the three alike.
+//
+// Counters: rank0_ms (the crowd with only the walkers near the view present), alone_ms (those
+// walkers alone), whole_ms (every walker present), rank0_over_alone, present, actors and
+// draw_items (which must be the same for rank0 and alone, or the run stops with an error).
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "throng/actors/ActorGroup.h"
+#include "throng/actors/ActorProcessor.h"
+#include "throng/actors/Crowd.h"
+#include "throng/actors/KeyframeBehaviour.h"
+#include "throng/actors/SeedHumanoid.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/scenegraph/Group.h"
+
+using namespace throng;
+
+namespace {
+
+// Key-frame walkers of which only some are present in this process (see Behaviour::presence).
+class SomePresent : public KeyframeBehaviour {
+public:
+    std::vector<std::uint8_t> here;  // per slot, 1 when present; empty: every one
+    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
+        if (here.empty()) return true;
+        for (std::size_t k = 0; k < slots.size(); ++k) present[k] = here[slots[k]];
+        return false;
+    }
+};
+
+// A crowd of walkers in one group whose roaming bound is the square they walk on.
+struct Walkers {
+    Crowd crowd;
+    std::shared_ptr<SomePresent> behaviour = std::make_shared<SomePresent>();
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+};
+
+// `actors` seed humanoids walking circles over a square of side `extent` (as testkit's town spread).
+std::vector<KeyframeBehaviour::Actor> spread(std::size_t actors, double extent) {
+    static const auto humanoid = makeSeedHumanoid();
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<KeyframeBehaviour::Actor> all(actors);
+    for (KeyframeBehaviour::Actor& a : all) {
+        a.tmpl = humanoid;
+        a.clip = std::max(humanoid->findClip("walk"), 0);
+        a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
+        a.heading = 6.283 * u(rng);
+        a.pathRadius = 3.0 + 10.0 * u(rng);
+        a.pathSpeed = 1.2 + 0.4 * u(rng);
+        a.timeOffset = 2.0 * u(rng);
+    }
+    return all;
+}
+
+std::unique_ptr<Walkers> walkers(const std::vector<KeyframeBehaviour::Actor>& actors, double extent) {
+    auto w = std::make_unique<Walkers>();
+    std::vector<ActorId> ids;
+    for (const KeyframeBehaviour::Actor& a : actors) ids.push_back(w->crowd.add(a.tmpl, w->behaviour, w->behaviour->addActor(a)));
+    auto group = w->crowd.makeGroupNode(std::move(ids));
+    group->setRoamingBound(BoundingSphere(Vec3(0.0), extent));
+    w->root->addChild(group);
+    return w;
+}
+
+// Whether `p` lies within `margin` of every plane of `view`.
+bool nearView(const Frustum& view, const Vec3& p, double margin) {
+    for (int i = 0; i < Frustum::kPlaneCount; ++i)
+        if ((view.activePlanes() & (1u << i)) && glm::dot(Vec3(view.plane(i)), p) + view.plane(i).w < -margin) return false;
+    return true;
+}
+
+void BM_AbsentActors(benchmark::State& state) {
+    const auto actors = std::size_t(state.range(0));
+    const double extent = 6.3 * std::sqrt(double(actors));  // 2 km at 100k: a view sees about a third, as in the town
+    const double time = 1.0, margin = 6.0;  // about the town's shown margin (summary.json)
+    Camera camera;
+    camera.setPerspective(1.0, 16.0 / 9.0, 0.1, 1500.0);
+    camera.setLookAt(Vec3(0, 1.7, 0), Vec3(100, 1.7, 20), Vec3(0, 1, 0));
+    const std::vector<KeyframeBehaviour::Actor> all = spread(actors, extent);
+    auto whole = walkers(all, extent);
+    ActorProcessor wholeProcessor(whole->crowd);
+    wholeProcessor.processFrame(*whole->root, camera, time);
+    // Present: the walkers standing within the margin of the view at this time, as rank 0 gets them.
+    std::vector<std::uint8_t> here(actors, 0);
+    std::vector<KeyframeBehaviour::Actor> near;
+    for (std::size_t i = 0; i < actors; ++i)
+        if (nearView(camera.frustum(), Vec3(whole->crowd.state().refWorld[i][3]), margin)) here[i] = 1, near.push_back(all[i]);
+    auto alone = walkers(near, extent);
+    ActorProcessor aloneProcessor(alone->crowd);
+
+    auto frame = [&](ActorProcessor& p, Walkers& w, bool masked, double t) {
+        whole->behaviour->here = masked ? here : std::vector<std::uint8_t>();
+        return p.processFrame(*w.root, camera, t);
+    };
+    for (int k = 0; k < 4; ++k) {  // draw lists grown, storage merged: timed frames do not allocate
+        frame(wholeProcessor, *whole, true, time);
+        frame(aloneProcessor, *alone, false, time);
+        frame(wholeProcessor, *whole, false, time);
+    }
+    double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0, refpoint = 0.0, bounds = 0.0, cull = 0.0;
+    std::int64_t frames = 0;
+    for (auto _ : state) {
+        const double t = time + double(frames % 2) * 1e-9;
+        const ActorFrameStatistics a = frame(wholeProcessor, *whole, true, t);
+        const ActorFrameStatistics b = frame(aloneProcessor, *alone, false, t);
+        if (a.drawItems != b.drawItems || a.actorsPosed != b.actorsPosed) {
+            state.SkipWithError("the crowd with only the walkers near the view present drew otherwise than those walkers alone");
+            return;
+        }
+        rank0 += a.appCullMs(), lone += b.appCullMs(), items += double(a.drawItems);
+        refpoint += a.refpointMs, bounds += a.matricesBoundsMs, cull += a.cullMs;
+        everyone += frame(wholeProcessor, *whole, false, t).appCullMs();
+        ++frames;
+    }
+    const double n = double(frames);
+    state.counters["actors"] = double(actors);
+    state.counters["present"] = double(near.size());
+    state.counters["draw_items"] = items / n;
+    state.counters["rank0_ms"] = rank0 / n;
+    state.counters["alone_ms"] = lone / n;
+    state.counters["whole_ms"] = everyone / n;
+    state.counters["rank0_over_alone"] = rank0 / lone;
+    // Where rank 0's time goes before CULL 2: every actor's phase 1 and placement, CULL 1.
+    state.counters["rank0_refpoint_ms"] = refpoint / n;
+    state.counters["rank0_bounds_ms"] = bounds / n;
+    state.counters["rank0_cull1_ms"] = cull / n;
+}
+
+BENCHMARK(BM_AbsentActors)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(2.0);
+BENCHMARK(BM_AbsentActors)->Unit(benchmark::kMillisecond)->Arg(100000)->Iterations(10);
+
+}  // namespace
+
+BENCHMARK_MAIN();
