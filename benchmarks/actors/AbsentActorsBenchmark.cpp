@@ -16,6 +16,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "throng/actors/ActorGroup.h"
@@ -111,6 +112,7 @@ void BM_AbsentActors(benchmark::State& state) {
         frame(aloneProcessor, *alone, false, time);
         frame(wholeProcessor, *whole, false, time);
     }
+    double later[2][5] = {};
     double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0, refpoint = 0.0, bounds = 0.0, cull = 0.0;
     std::int64_t frames = 0;
     for (auto _ : state) {
@@ -123,6 +125,11 @@ void BM_AbsentActors(benchmark::State& state) {
         }
         rank0 += a.appCullMs(), lone += b.appCullMs(), items += double(a.drawItems);
         refpoint += a.refpointMs, bounds += a.matricesBoundsMs, cull += a.cullMs;
+        for (int k = 0; k < 2; ++k) {
+            const ActorFrameStatistics& s = k == 0 ? a : b;
+            const double phases[5] = {s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
+            for (int i = 0; i < 5; ++i) later[k][i] += phases[i];
+        }
         everyone += frame(wholeProcessor, *whole, false, t).appCullMs();
         ++frames;
     }
@@ -138,6 +145,11 @@ void BM_AbsentActors(benchmark::State& state) {
     state.counters["rank0_refpoint_ms"] = refpoint / n;
     state.counters["rank0_bounds_ms"] = bounds / n;
     state.counters["rank0_cull1_ms"] = cull / n;
+    const char* names[5] = {"sklsroot", "cull2", "pose", "cull3", "drawlist"};
+    for (int i = 0; i < 5; ++i) {
+        state.counters[std::string("rank0_") + names[i] + "_ms"] = later[0][i] / n;
+        state.counters[std::string("alone_") + names[i] + "_ms"] = later[1][i] / n;
+    }
 }
 
 BENCHMARK(BM_AbsentActors)->Unit(benchmark::kMillisecond)->Arg(10000)->MinTime(2.0);
