@@ -256,7 +256,16 @@ BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, Matrix
     visitor.statistics().worldMatricesComposed += ids.size();
     visitor.statistics().spheresRecomputed += ids.size();
     Crowd::State& s = crowd_.state();
-    return cascade::RefpointPlacementJob{&s, ids, visitor.parentWorld(), visitor.parentIsIdentity(), roaming, s.refWorld, s.refSphereWorld}
+    std::span<const ActorId> placed = ids;
+    if (stats_.actorsAbsent > 0) {  // only the present are placed: the others are stale here and widen no bound
+        std::vector<ActorId>& present = cascade_->presentMembers;
+        present.resize(ids.size());
+        std::size_t n = 0;
+        for (const ActorId id : ids) present[n] = id, n += s.present[id] != 0;  // no branch: who is present is random
+        placed = std::span<const ActorId>(present).first(n);
+    }
+    return cascade::RefpointPlacementJob{&s, placed, visitor.parentWorld(), visitor.parentIsIdentity(), roaming, s.refWorld,
+                                         s.refSphereWorld}
         .run(cascade_->loop);
 }
 

@@ -131,6 +131,24 @@ std::shared_ptr<Node> tileModelNode(const std::shared_ptr<const MeshDrawable>& m
     return node;
 }
 
+// Where `p` lies along a Z curve (Morton order) over cells of 16 m of the ground: points near each
+// other mostly get keys near each other.
+std::uint64_t zOrder(const glm::vec3& p) {
+    constexpr float kCell = 16.0f;
+    constexpr std::int64_t kBias = std::int64_t(1) << 30;  // any ground within 17,000 km of the origin
+    const auto spread = [](std::uint64_t v) {  // the low 32 bits of v to the even bits
+        v &= 0xffffffffull;
+        v = (v | (v << 16)) & 0x0000ffff0000ffffull;
+        v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
+        v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
+        v = (v | (v << 2)) & 0x3333333333333333ull;
+        v = (v | (v << 1)) & 0x5555555555555555ull;
+        return v;
+    };
+    const auto cell = [&](float x) { return std::uint64_t(std::clamp<std::int64_t>(std::int64_t(std::floor(x / kCell)) + kBias, 0, 2 * kBias)); };
+    return spread(cell(p.x)) | (spread(cell(p.z)) << 1);
+}
+
 // Placing a scene's actor groups, group by group in scene order: one behaviour object per kind,
 // made when a group first needs it (one DetourCrowd for every walker), and the actors' random
 // streams numbered in that order, so that a scene places the same actors wherever it is built.
@@ -238,8 +256,8 @@ struct Placement {
         }
         const glm::dvec2 speed = g.speed.value_or(glm::dvec2(1.2, 1.6));
         const SpeedProfile* profile = g.speedProfile.empty() ? nullptr : findSpeedProfile(g.speedProfile);
-        for (std::int64_t i = 0; i < g.count; ++i, ++stream) {
-            Locomotion::Actor a;
+        std::vector<Locomotion::Actor> group(std::size_t(g.count));
+        for (Locomotion::Actor& a : group) {  // in order of stream: walkways place each clear of those before
             a.tmpl = t.tmpl;
             a.walkClip = t.walkClip;
             a.walkClipSpeed = t.walkClipSpeed;
@@ -249,16 +267,25 @@ struct Placement {
             a.speed = profile ? profile->draw(rng, stream) : rng.uniform(stream, speed.x, speed.y);
             if (g.goal) a.goal = glm::vec3(float(g.goal->x), 0.0f, float(g.goal->y));
             if (g.period) a.period = glm::vec3(float(g.period->x), 0.0f, float(g.period->y));
-            a.stream = stream;
+            a.stream = stream++;
+        }
+        // Walkers become slots and actors in the order of where they start along a Z curve, not of
+        // their streams (random places): those a view sees then lie side by side in every per-actor
+        // array, so that culling and posing them reads whole cache lines instead of one walker each.
+        // Each walker's randomness follows its stream, whatever its slot.
+        std::stable_sort(group.begin(), group.end(), [](const Locomotion::Actor& p, const Locomotion::Actor& q) {
+            return zOrder(p.start) < zOrder(q.start);
+        });
+        for (const Locomotion::Actor& a : group) {
             std::uint32_t slot = walkers->addActor(a);
             if (walkersOnly) continue;
-            if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, stream);
+            if (walkGaze) slot = walkGaze->wrap(slot, t.tmpl, a.stream);
             const std::shared_ptr<Behaviour> outer = outermost(walkers, walkGaze, walkFace);
             if (walkFace) {  // walkers talk in groups of consecutive streams
                 const auto size = std::uint64_t(d.effects.phraseGroupSize);
-                slot = walkFace->wrap(slot, t.tmpl, stream, stream / size, std::uint32_t(stream % size), std::uint32_t(size));
+                slot = walkFace->wrap(slot, t.tmpl, a.stream, a.stream / size, std::uint32_t(a.stream % size), std::uint32_t(size));
             }
-            ids.push_back(crowd.add(t.tmpl, outer, slot, t.lookFor(look, stream)));
+            ids.push_back(crowd.add(t.tmpl, outer, slot, t.lookFor(look, a.stream)));
         }
     }
 

@@ -32,6 +32,7 @@ struct CascadeFrame {
     // What the jobs pass each other, and their workspaces.
     PhaseLoop loop;                              ///< the chunked loops of every job
     std::vector<Candidate> candidates;           ///< actors reaching CULL 1 (from the generic CULL)
+    std::vector<ActorId> presentMembers;         ///< scratch: the present members of the node being placed
     std::vector<std::uint32_t> survivors;        ///< candidate indices past CULL 1 and occlusion
     SurvivorDecisions decisions;                 ///< CULL 2's, per survivor
     PosedActors posed;                           ///< the actors shown and posed

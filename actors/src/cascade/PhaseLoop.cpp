@@ -11,6 +11,7 @@ namespace throng::cascade {
 
 void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
     into.actorsInScene += from.actorsInScene;
+    into.actorsAbsent += from.actorsAbsent;
     into.culledWithGroup += from.culledWithGroup;
     into.a += from.a;
     into.b += from.b;

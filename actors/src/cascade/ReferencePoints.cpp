@@ -29,6 +29,7 @@ void ReferencePointsJob::run(PhaseLoop& loop) const {
             const bool inScene = s.owner[id] != nullptr;
             s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;
             out.counts.actorsInScene += inScene;
+            out.counts.actorsAbsent += s.present[id] == 0;
         }
     });
     for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved
@@ -46,19 +47,15 @@ void placeRange(const RefpointPlacementJob& job, std::size_t begin, std::size_t 
     OpTally* sphereOps = tallyFor(c, OpCategory::BsphereRecompute);
     for (std::size_t k = begin; k < end; ++k) {
         const ActorId id = job.ids[k];
-        // An absent actor is placed too (skipping it at random costs more than placing it), but
-        // its stale sphere widens no bound: CULL 1 rejects it unread.
-        const bool present = s.present[id] != 0;
         const Mat4& world = job.refWorld[id] = job.parentIsIdentity ? s.refLocal[id] : composeAffine(job.parent, s.refLocal[id], refOps);
         const BoundingSphere& sphere = job.refSphereWorld[id] = s.refSphereLocal[id].transformed(world, sphereOps);
         if (!grow) {  // a declared roaming bound: only a member outside it (never, if it holds) widens it
-            if (!job.roaming.clearlyContains(sphere) && present && !job.roaming.contains(sphere))
-                bound.expandBy(sphere, group ? sphereOps : nullptr);
+            if (!job.roaming.clearlyContains(sphere) && !job.roaming.contains(sphere)) bound.expandBy(sphere, group ? sphereOps : nullptr);
             continue;
         }
         // Most members lie well inside the bound grown so far: no square root for them (when
         // counting operations, every member goes through expandBy as the model prices it).
-        if ((sphereOps || !bound.clearlyContains(sphere)) && present) bound.expandBy(sphere, group ? sphereOps : nullptr);
+        if (sphereOps || !bound.clearlyContains(sphere)) bound.expandBy(sphere, group ? sphereOps : nullptr);
     }
     countOperations(c, OpCategory::RefpointMatrix, end - begin);
     countOperations(c, OpCategory::BsphereRecompute, end - begin);

@@ -38,6 +38,7 @@ struct ActorFrameStatistics {
 
     // The cascade (actor processing), as in Table 2.
     std::uint64_t actorsInScene = 0;    ///< actors held by a node of the scene
+    std::uint64_t actorsAbsent = 0;     ///< of all actors, those simulated elsewhere and not shown here (Behaviour::presence)
     std::uint64_t culledWithGroup = 0;  ///< rejected with a generic group above them
     std::uint64_t a = 0;                ///< A: Refpoint Bsphere outside (rejected by CULL 1)
     std::uint64_t b = 0;                ///< B: Refpoint Bsphere inside

@@ -12,7 +12,7 @@ namespace throng::cascade {
 struct ReferencePointsJob {
     /// In and out: reads every actor's behaviour and slot; writes refLocal, eyeDistance (infinite
     /// until CULL 2 computes it) and actorClass (CulledWithGroup, or NotInScene); marks the nodes'
-    /// bounds dirty. Counts actorsInScene.
+    /// bounds dirty. Counts actorsInScene and actorsAbsent.
     Crowd* crowd = nullptr;
     /// In: the frame's time and number (its counter is the loop's).
     FrameContext context;
