@@ -171,6 +171,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
                                    &keyPoseCaches_};
     f.loop.begin(stats_, c, &list);
     f.candidates.clear();
+    f.presentMembers.clear(), f.presentOf.clear(), f.presentCursor = 0;
     f.occlusion = nullptr;
     Crowd::State& s = crowd_.state();
 
@@ -252,17 +253,29 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     stats_.fmultTotal = c ? counter.totalFmult() : 0;
 }
 
-BoundingSphere ActorProcessor::bound(Node&, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor, const BoundingSphere& roaming) {
+BoundingSphere ActorProcessor::bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor,
+                                     const BoundingSphere& roaming) {
     visitor.statistics().worldMatricesComposed += ids.size();
     visitor.statistics().spheresRecomputed += ids.size();
     Crowd::State& s = crowd_.state();
     std::span<const ActorId> placed = ids;
-    if (stats_.actorsAbsent > 0) {  // only the present are placed: the others are stale here and widen no bound
-        std::vector<ActorId>& present = cascade_->presentMembers;
-        present.resize(ids.size());
+    if (stats_.actorsAbsent > 0) {
+        // Only the present are placed (the others are stale here and widen no bound), and only they
+        // become candidates of CULL 1 (cull() below takes this node's list). No branch per member:
+        // who is present is random.
+        cascade::CascadeFrame& f = *cascade_;
+        const std::size_t first = f.presentMembers.size();
+        f.presentMembers.resize(first + ids.size());
+        f.presentIds.resize(ids.size());
         std::size_t n = 0;
-        for (const ActorId id : ids) present[n] = id, n += s.present[id] != 0;  // no branch: who is present is random
-        placed = std::span<const ActorId>(present).first(n);
+        for (std::uint32_t member = 0; member < ids.size(); ++member) {
+            const ActorId id = ids[member];
+            f.presentMembers[first + n] = member, f.presentIds[n] = id;
+            n += s.present[id] != 0;
+        }
+        f.presentMembers.resize(first + n);
+        f.presentOf.push_back({&node, first, n});
+        placed = std::span<const ActorId>(f.presentIds).first(n);
     }
     return cascade::RefpointPlacementJob{&s, placed, visitor.parentWorld(), visitor.parentIsIdentity(), roaming, s.refWorld,
                                          s.refSphereWorld}
@@ -276,21 +289,24 @@ void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor&
     const bool decided = boundIsMemberSphere || mask == 0;
     const std::uint8_t stage = !decided ? cascade::kPending : mask == 0 ? cascade::kInside : cascade::kCrossing;
     // An actor another process simulates and did not send this step lies outside the view (that is
-    // why it was not sent): rejected here, unread, so that CULL costs what this process shows.
-    // (Without a branch: who is present is random.)
-    Crowd::State& s = crowd_.state();
-    std::vector<cascade::Candidate>& candidates = cascade_->candidates;
-    std::size_t n = candidates.size();
-    candidates.resize(n + ids.size());
-    for (std::uint32_t member = 0; member < ids.size(); ++member) {
-        const ActorId id = ids[member];
-        const bool present = s.present[id] != 0;
-        candidates[n] = cascade::Candidate{id, &node, member, mask, stage};
-        n += present;
-        stats_.a += !present;
-        s.actorClass[id] = present ? s.actorClass[id] : ActorClass::A;
+    // why it was not sent): rejected unread (phase 1 classed it A), so that CULL costs what this
+    // process shows. bound() listed this node's present members.
+    cascade::CascadeFrame& f = *cascade_;
+    if (stats_.actorsAbsent == 0) {
+        for (std::uint32_t member = 0; member < ids.size(); ++member)
+            f.candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
+        return;
     }
-    candidates.resize(n);
+    // The nodes come in the order bound() met them, but for those culled with a group above.
+    while (f.presentCursor < f.presentOf.size() && f.presentOf[f.presentCursor].node != &node) ++f.presentCursor;
+    if (f.presentCursor == f.presentOf.size())
+        throw std::logic_error("ActorProcessor: CULL met an actor node that the matrices traversal did not place");
+    const cascade::PresentMembers& present = f.presentOf[f.presentCursor++];
+    for (std::size_t k = present.first; k < present.first + present.count; ++k) {
+        const std::uint32_t member = f.presentMembers[k];
+        f.candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
+    }
+    stats_.a += ids.size() - present.count;
 }
 
 void ActorProcessor::culledOut(Node&, std::span<const ActorId> ids, CullVisitor& visitor) {

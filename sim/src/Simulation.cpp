@@ -25,6 +25,7 @@
 #include "throng/scenegraph/Occluder.h"
 #include "throng/scenegraph/OccluderFitting.h"
 #include "throng/scenegraph/Transform.h"
+#include "throng/scenegraph/ZOrder.h"
 #include "throng/sim/CounterRng.h"
 #include "throng/sim/Flock.h"
 #include "throng/sim/GazeLayer.h"
@@ -129,24 +130,6 @@ std::shared_ptr<Node> tileModelNode(const std::shared_ptr<const MeshDrawable>& m
     for (std::size_t i = 0; i < lod.size(); ++i)
         node->addChild(std::make_shared<Geometry>(meshes[i]), std::isinf(lod[i].x) ? std::numeric_limits<double>::max() : lod[i].x);
     return node;
-}
-
-// Where `p` lies along a Z curve (Morton order) over cells of 16 m of the ground: points near each
-// other mostly get keys near each other.
-std::uint64_t zOrder(const glm::vec3& p) {
-    constexpr float kCell = 16.0f;
-    constexpr std::int64_t kBias = std::int64_t(1) << 30;  // any ground within 17,000 km of the origin
-    const auto spread = [](std::uint64_t v) {  // the low 32 bits of v to the even bits
-        v &= 0xffffffffull;
-        v = (v | (v << 16)) & 0x0000ffff0000ffffull;
-        v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
-        v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
-        v = (v | (v << 2)) & 0x3333333333333333ull;
-        v = (v | (v << 1)) & 0x5555555555555555ull;
-        return v;
-    };
-    const auto cell = [&](float x) { return std::uint64_t(std::clamp<std::int64_t>(std::int64_t(std::floor(x / kCell)) + kBias, 0, 2 * kBias)); };
-    return spread(cell(p.x)) | (spread(cell(p.z)) << 1);
 }
 
 // Placing a scene's actor groups, group by group in scene order: one behaviour object per kind,
@@ -274,7 +257,7 @@ struct Placement {
         // array, so that culling and posing them reads whole cache lines instead of one walker each.
         // Each walker's randomness follows its stream, whatever its slot.
         std::stable_sort(group.begin(), group.end(), [](const Locomotion::Actor& p, const Locomotion::Actor& q) {
-            return zOrder(p.start) < zOrder(q.start);
+            return zOrder(p.start.x, p.start.z, 16.0) < zOrder(q.start.x, q.start.z, 16.0);
         });
         for (const Locomotion::Actor& a : group) {
             std::uint32_t slot = walkers->addActor(a);

@@ -21,6 +21,13 @@ class OcclusionBuffer;
 namespace throng::cascade {
 
 /// The cascade's state between its jobs, reused from frame to frame.
+/// The present members of one actor node (see CascadeFrame::presentMembers).
+struct PresentMembers {
+    const Node* node = nullptr;  ///< the node
+    std::size_t first = 0;       ///< its first entry in presentMembers
+    std::size_t count = 0;       ///< how many
+};
+
 struct CascadeFrame {
     // The frame.
     Frustum frustum;                             ///< the culling frustum
@@ -32,7 +39,12 @@ struct CascadeFrame {
     // What the jobs pass each other, and their workspaces.
     PhaseLoop loop;                              ///< the chunked loops of every job
     std::vector<Candidate> candidates;           ///< actors reaching CULL 1 (from the generic CULL)
-    std::vector<ActorId> presentMembers;         ///< scratch: the present members of the node being placed
+    // When some actors are absent (simulated elsewhere), the present members of each actor node
+    // as the matrices traversal placed them, for CULL to take as its candidates.
+    std::vector<std::uint32_t> presentMembers;   ///< member indices, node after node
+    std::vector<PresentMembers> presentOf;       ///< each node's stretch of presentMembers, in traversal order
+    std::size_t presentCursor = 0;               ///< CULL's place in presentOf
+    std::vector<ActorId> presentIds;             ///< scratch: the present members of the node being placed
     std::vector<std::uint32_t> survivors;        ///< candidate indices past CULL 1 and occlusion
     SurvivorDecisions decisions;                 ///< CULL 2's, per survivor
     PosedActors posed;                           ///< the actors shown and posed

@@ -26,10 +26,11 @@ void ReferencePointsJob::run(PhaseLoop& loop) const {
         detail::computeReferencePointRuns(s, begin, end, [](std::size_t id) { return ActorId(id); }, chunkContext, ops);
         for (std::size_t id = begin; id < end; ++id) {
             s.eyeDistance[id] = std::numeric_limits<double>::infinity();
-            const bool inScene = s.owner[id] != nullptr;
-            s.actorClass[id] = inScene ? ActorClass::CulledWithGroup : ActorClass::NotInScene;
+            const bool inScene = s.owner[id] != nullptr, present = s.present[id] != 0;
+            // An absent actor is rejected by CULL 1 unread, whatever its groups (see ActorProcessor::cull).
+            s.actorClass[id] = !inScene ? ActorClass::NotInScene : present ? ActorClass::CulledWithGroup : ActorClass::A;
             out.counts.actorsInScene += inScene;
-            out.counts.actorsAbsent += s.present[id] == 0;
+            out.counts.actorsAbsent += !present;
         }
     });
     for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved
