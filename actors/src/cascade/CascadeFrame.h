@@ -20,7 +20,6 @@ class OcclusionBuffer;
 
 namespace throng::cascade {
 
-/// The cascade's state between its jobs, reused from frame to frame.
 /// The present members of one actor node (see CascadeFrame::presentMembers).
 struct PresentMembers {
     const Node* node = nullptr;  ///< the node
@@ -28,6 +27,7 @@ struct PresentMembers {
     std::size_t count = 0;       ///< how many
 };
 
+/// The cascade's state between its jobs, reused from frame to frame.
 struct CascadeFrame {
     // The frame.
     Frustum frustum;                             ///< the culling frustum

@@ -13,8 +13,8 @@
 // distribute() splits the regions over the ranks of an MPI run, and rank 0 gathers the walkers'
 // drawn state after each step: every walker, or, given the view the frame culls against
 // (setGatherView), only those near it; the others are not known() there, and only those that
-// may be seen are present(). The same layout gives
-// the same trajectories with any number of threads or ranks.
+// may be seen are present(). The same layout gives the same trajectories with any number of
+// threads or ranks.
 //
 // Three parts, each with its own file: this class is the walker behaviour (gait, Reference Point,
 // pose); the region stepper (sim/src/locomotion/RegionStepper) moves the walkers region by region;

@@ -10,9 +10,10 @@ namespace throng::cascade {
 
 /// Computes every actor's local Reference Point and resets its frame classification.
 struct ReferencePointsJob {
-    /// In and out: reads every actor's behaviour and slot; writes refLocal, eyeDistance (infinite
-    /// until CULL 2 computes it) and actorClass (CulledWithGroup, or NotInScene); marks the nodes'
-    /// bounds dirty. Counts actorsInScene and actorsAbsent.
+    /// In and out: reads every actor's behaviour and slot; writes present, refLocal (of the present
+    /// only), eyeDistance (infinite until CULL 2 computes it) and actorClass (CulledWithGroup, A for
+    /// an absent actor, or NotInScene); marks the nodes' bounds dirty. Counts actorsInScene and
+    /// actorsAbsent.
     Crowd* crowd = nullptr;
     /// In: the frame's time and number (its counter is the loop's).
     FrameContext context;
