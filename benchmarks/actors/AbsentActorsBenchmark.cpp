@@ -112,8 +112,8 @@ void BM_AbsentActors(benchmark::State& state) {
     auto alone = walkers(near, extent);
     ActorProcessor aloneProcessor(alone->crowd);
 
-    auto frame = [&](ActorProcessor& p, Walkers& w, bool masked, double t) {
-        whole->behaviour->here = masked ? here : std::vector<std::uint8_t>();
+    auto frame = [&](ActorProcessor& p, Walkers& w, bool masked, double t) {  // masked: only `here` present
+        w.behaviour->here = masked ? here : std::vector<std::uint8_t>();
         return p.processFrame(*w.root, camera, t);
     };
     for (int k = 0; k < 4; ++k) {  // draw lists grown, storage merged: timed frames do not allocate
