@@ -16,6 +16,7 @@
 
 #include <glm/common.hpp>
 
+#include "throng/scenegraph/ByteStream.h"
 #include "throng/scenegraph/ThreadTeam.h"
 #include "throng/sim/CounterRng.h"
 
@@ -255,62 +256,32 @@ namespace {
 constexpr char kBytesMagic[4] = {'T', 'N', 'A', 'V'};
 constexpr std::uint32_t kBytesVersion = 1;
 
-// Appends `n` bytes from `p` to `out`.
-void putBytes(std::vector<std::byte>& out, const void* p, std::size_t n) {
-    const std::size_t at = out.size();
-    out.resize(at + n);
-    if (n) std::memcpy(out.data() + at, p, n);
-}
-
-// Appends the raw bytes of `value` (trivially copyable) to `out`.
-template <class T>
-void put(std::vector<std::byte>& out, const T& value) {
-    putBytes(out, &value, sizeof(T));
-}
-
-// Reads what put() wrote, checking that the bytes hold it.
-struct ByteReader {
-    std::span<const std::byte> bytes;
-    std::size_t at = 0;
-    void read(void* into, std::size_t n, const char* what) {
-        if (bytes.size() - at < n)
-            throw std::invalid_argument("NavMesh::fromBytes: the bytes end at " + std::to_string(bytes.size()) + " inside " + what);
-        std::memcpy(into, bytes.data() + at, n);
-        at += n;
-    }
-    template <class T>
-    T get(const char* what) {
-        T value;
-        read(&value, sizeof(T), what);
-        return value;
-    }
-};
-
 }  // namespace
 
 std::vector<std::byte> NavMesh::toBytes() const {
-    std::vector<std::byte> out;
-    putBytes(out, kBytesMagic, sizeof kBytesMagic);
-    put(out, kBytesVersion);
-    put(out, settings_);
-    put(out, *mesh_->getParams());
+    std::vector<std::byte> bytes;
+    ByteWriter out(bytes);
+    out.putBytes(kBytesMagic, sizeof kBytesMagic);
+    out.put(kBytesVersion);
+    out.put(settings_);
+    out.put(*mesh_->getParams());
     const dtNavMesh* m = mesh_;
     std::uint32_t tiles = 0;
     for (int t = 0; t < m->getMaxTiles(); ++t)
         if (const dtMeshTile* tile = m->getTile(t); tile && tile->header) ++tiles;
-    put(out, tiles);
+    out.put(tiles);
     for (int t = 0; t < m->getMaxTiles(); ++t) {
         const dtMeshTile* tile = m->getTile(t);
         if (!tile || !tile->header) continue;
-        put(out, std::uint64_t(m->getTileRef(tile)));
-        put(out, std::uint32_t(tile->dataSize));
-        putBytes(out, tile->data, std::size_t(tile->dataSize));
+        out.put(std::uint64_t(m->getTileRef(tile)));
+        out.put(std::uint32_t(tile->dataSize));
+        out.putBytes(tile->data, std::size_t(tile->dataSize));
     }
-    return out;
+    return bytes;
 }
 
 std::shared_ptr<NavMesh> NavMesh::fromBytes(std::span<const std::byte> bytes) {
-    ByteReader in{bytes};
+    ByteReader in(bytes, "NavMesh::fromBytes");
     char magic[4];
     in.read(magic, 4, "the header");
     if (!std::equal(magic, magic + 4, kBytesMagic)) throw std::invalid_argument("NavMesh::fromBytes: not a navigation mesh's bytes");
@@ -329,14 +300,14 @@ std::shared_ptr<NavMesh> NavMesh::fromBytes(std::span<const std::byte> bytes) {
     if (dtStatusFailed(nav->mesh_->init(&params))) throw std::invalid_argument("NavMesh::fromBytes: Detour refuses the mesh's parameters");
     for (std::uint32_t k = 0; k < tiles; ++k) {
         const std::string what = "tile " + std::to_string(k) + " of " + std::to_string(tiles);
-        const auto ref = in.get<std::uint64_t>(what.c_str());
-        const auto size = in.get<std::uint32_t>(what.c_str());
+        const auto ref = in.get<std::uint64_t>(what);
+        const auto size = in.get<std::uint32_t>(what);
         if (size < sizeof(dtMeshHeader) || size > std::uint32_t(INT_MAX))
             throw std::invalid_argument("NavMesh::fromBytes: " + what + " holds " + std::to_string(size) + " bytes, not a Detour tile");
         auto* data = static_cast<unsigned char*>(dtAlloc(size, DT_ALLOC_PERM));
         if (!data) throw std::runtime_error("NavMesh::fromBytes: out of memory for " + what);
         try {
-            in.read(data, size, what.c_str());
+            in.read(data, size, what);
         } catch (...) {
             dtFree(data);
             throw;

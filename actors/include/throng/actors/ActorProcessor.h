@@ -78,6 +78,12 @@ public:
     /// drawable must outlive its use; the backend knows how to draw it (throng::render's
     /// ImpostorDrawable).
     void setImpostor(const ActorTemplate& tmpl, std::shared_ptr<const Drawable> impostor);
+    /// The impostor shown for actors of `tmpl`, or null.
+    const Drawable* impostorOf(const ActorTemplate& tmpl) const {
+        for (const auto& [t, impostor] : impostors_)
+            if (t == &tmpl) return impostor.get();
+        return nullptr;
+    }
     /// Whether actor `id` was drawn as an impostor in the last frame.
     bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
     /// Key-pose caches (seed 004): an actor nearer than the impostor distance but beyond `distance`
