@@ -288,33 +288,46 @@ void ActorProcessor::cull(Node& node, std::span<const ActorId> ids, CullVisitor&
     // a group's members are decided when they are inside every plane the group crosses.
     const bool decided = boundIsMemberSphere || mask == 0;
     const std::uint8_t stage = !decided ? cascade::kPending : mask == 0 ? cascade::kInside : cascade::kCrossing;
-    // An actor another process simulates and did not send this step lies outside the view (that is
-    // why it was not sent): rejected unread (phase 1 classed it A), so that CULL costs what this
-    // process shows. bound() listed this node's present members.
+    // An actor absent here (another process simulates it and did not send it, or shows it itself)
+    // is rejected unread (phase 1 classed and counted it A), so that CULL costs what this process
+    // shows. bound() listed this node's present members.
     cascade::CascadeFrame& f = *cascade_;
     if (stats_.actorsAbsent == 0) {
         for (std::uint32_t member = 0; member < ids.size(); ++member)
             f.candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
         return;
     }
-    // The nodes come in the order bound() met them, but for those culled with a group above.
-    while (f.presentCursor < f.presentOf.size() && f.presentOf[f.presentCursor].node != &node) ++f.presentCursor;
-    if (f.presentCursor == f.presentOf.size())
-        throw std::logic_error("ActorProcessor: CULL met an actor node that the matrices traversal did not place");
-    const cascade::PresentMembers& present = f.presentOf[f.presentCursor++];
+    const cascade::PresentMembers& present = presentMembersOf(node);
     for (std::size_t k = present.first; k < present.first + present.count; ++k) {
         const std::uint32_t member = f.presentMembers[k];
         f.candidates.push_back(cascade::Candidate{ids[member], &node, member, mask, stage});
     }
-    stats_.a += ids.size() - present.count;
 }
 
-void ActorProcessor::culledOut(Node&, std::span<const ActorId> ids, CullVisitor& visitor) {
+void ActorProcessor::culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) {
     // Every Refpoint Bsphere lies inside the node's bound, so every one is outside (or hidden) too.
+    // The absent were classed and counted A in phase 1.
     Crowd::State& s = crowd_.state();
     const ActorClass why = visitor.rejectedByOcclusion() ? ActorClass::Occluded : ActorClass::A;
-    for (ActorId id : ids) s.actorClass[id] = why;
-    (why == ActorClass::A ? stats_.a : stats_.occludedWithGroup) += ids.size();
+    std::uint64_t& count = why == ActorClass::A ? stats_.a : stats_.occludedWithGroup;
+    if (stats_.actorsAbsent == 0) {
+        for (ActorId id : ids) s.actorClass[id] = why;
+        count += ids.size();
+        return;
+    }
+    const cascade::CascadeFrame& f = *cascade_;
+    const cascade::PresentMembers& present = presentMembersOf(node);
+    for (std::size_t k = present.first; k < present.first + present.count; ++k) s.actorClass[ids[f.presentMembers[k]]] = why;
+    count += present.count;
+}
+
+const cascade::PresentMembers& ActorProcessor::presentMembersOf(const Node& node) {
+    // CULL meets the nodes in the order bound() met them, but for those culled with a group above.
+    cascade::CascadeFrame& f = *cascade_;
+    while (f.presentCursor < f.presentOf.size() && f.presentOf[f.presentCursor].node != &node) ++f.presentCursor;
+    if (f.presentCursor == f.presentOf.size())
+        throw std::logic_error("ActorProcessor: CULL met an actor node that the matrices traversal did not place");
+    return f.presentOf[f.presentCursor++];
 }
 
 }  // namespace throng

@@ -318,8 +318,8 @@ std::shared_ptr<NavMesh> NavMesh::fromBytes(std::span<const std::byte> bytes) {
             throw std::invalid_argument("NavMesh::fromBytes: Detour refuses " + what + " (not tile data of this Detour, or its place is taken)");
         }
     }
-    if (in.at != bytes.size())
-        throw std::invalid_argument("NavMesh::fromBytes: " + std::to_string(bytes.size() - in.at) + " bytes follow the last tile");
+    if (in.remaining() != 0)
+        throw std::invalid_argument("NavMesh::fromBytes: " + std::to_string(in.remaining()) + " bytes follow the last tile");
     nav->query_ = dtAllocNavMeshQuery();
     if (!nav->query_ || dtStatusFailed(nav->query_->init(nav->mesh_, 4096)))
         throw std::runtime_error("NavMesh::fromBytes: Detour could not initialise a navigation query");

@@ -30,7 +30,8 @@ void ReferencePointsJob::run(PhaseLoop& loop) const {
             // An absent actor is rejected by CULL 1 unread, whatever its groups (see ActorProcessor::cull).
             s.actorClass[id] = !inScene ? ActorClass::NotInScene : present ? ActorClass::CulledWithGroup : ActorClass::A;
             out.counts.actorsInScene += inScene;
-            out.counts.actorsAbsent += !present;
+            out.counts.actorsAbsent += inScene && !present;
+            out.counts.a += inScene && !present;
         }
     });
     for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved

@@ -16,7 +16,8 @@ enum class Processing : std::uint8_t {
     Actor,        ///< the seven phases of seed 002 §4.2
 };
 
-/// What one frame cost and produced.
+/// What one frame cost and produced. Every actor in the scene is counted in exactly one of
+/// culledWithGroup, a, b, c1, c2, c3_1, c3_2 and the three occluded counts.
 struct ActorFrameStatistics {
     Processing processing = Processing::Actor;  ///< method used
     std::uint64_t frame = 0;                    ///< frame number
@@ -38,7 +39,9 @@ struct ActorFrameStatistics {
 
     // The cascade (actor processing), as in Table 2.
     std::uint64_t actorsInScene = 0;    ///< actors held by a node of the scene
-    std::uint64_t actorsAbsent = 0;     ///< of all actors, those simulated elsewhere and not shown here (Behaviour::presence)
+    /// Of the actors in the scene, those another process simulates or shows (Behaviour::presence):
+    /// rejected unread, and counted in `a`.
+    std::uint64_t actorsAbsent = 0;
     std::uint64_t culledWithGroup = 0;  ///< rejected with a generic group above them
     std::uint64_t a = 0;                ///< A: Refpoint Bsphere outside (rejected by CULL 1)
     std::uint64_t b = 0;                ///< B: Refpoint Bsphere inside
@@ -86,5 +89,33 @@ struct ActorFrameStatistics {
         return appMs + refpointMs + matricesBoundsMs + occlusionBufferMs + cullMs + refpointOcclusionMs + skeletonRootMs + cull2Ms + poseMs + cull3Ms + drawListMs;
     }
 };
+
+/// Adds to `whole` the counts of `share`: one frame of a process that showed some of the scene's
+/// actors, the others absent there (Behaviour::presence). Processes that between them show each
+/// actor once add up to the counts of one process showing every actor: the actors in the scene
+/// are counted once, an absent actor only where no process showed it, the other classes and the
+/// per-actor work are summed. Times, the occluders drawn and the key-pose caches' rows are left as
+/// they are (the processes ran side by side; the buffer and the caches are one process's). Exact when a group's bound
+/// does not depend on which members are present (a roaming bound); otherwise a process may cull a
+/// group whole where one process would test its members, and the classes (not the items) differ.
+inline void addShare(ActorFrameStatistics& whole, const ActorFrameStatistics& share) {
+    if (whole.actorsInScene == 0) whole.actorsInScene = whole.actorsAbsent = whole.a = share.actorsInScene;  // none shown yet
+    const std::uint64_t shown = (whole.actorsInScene - whole.actorsAbsent) + (share.actorsInScene - share.actorsAbsent);
+    const std::uint64_t shownA = (whole.a - whole.actorsAbsent) + (share.a - share.actorsAbsent);
+    whole.actorsAbsent = shown < whole.actorsInScene ? whole.actorsInScene - shown : 0;
+    whole.a = shownA + whole.actorsAbsent;
+    const auto sum = [&](std::uint64_t ActorFrameStatistics::*count) { whole.*count += share.*count; };
+    for (auto count : {&ActorFrameStatistics::culledWithGroup, &ActorFrameStatistics::b, &ActorFrameStatistics::c1,
+                       &ActorFrameStatistics::c2, &ActorFrameStatistics::c3_1, &ActorFrameStatistics::c3_2,
+                       &ActorFrameStatistics::occludedWithGroup, &ActorFrameStatistics::occludedRefpoint,
+                       &ActorFrameStatistics::occludedSklsroot, &ActorFrameStatistics::occlusionCellsTested,
+                       &ActorFrameStatistics::occlusionCellsHidden, &ActorFrameStatistics::occlusionTests,
+                       &ActorFrameStatistics::actorsPosed, &ActorFrameStatistics::impostors, &ActorFrameStatistics::keyPoseBand,
+                       &ActorFrameStatistics::keyPoseActors, &ActorFrameStatistics::keyPoseMisses,
+                       &ActorFrameStatistics::skeletonNodesEvaluated, &ActorFrameStatistics::internalSpheresComputed,
+                       &ActorFrameStatistics::spheresTested, &ActorFrameStatistics::lodDistances, &ActorFrameStatistics::eyeDistances,
+                       &ActorFrameStatistics::drawItems, &ActorFrameStatistics::primitives, &ActorFrameStatistics::fmultTotal})
+        sum(count);
+}
 
 }  // namespace throng

@@ -41,6 +41,7 @@ class Node;
 class ThreadTeam;
 namespace cascade {
 struct CascadeFrame;
+struct PresentMembers;
 }
 
 /// Frame processor for scenes with actors of one Crowd.
@@ -138,6 +139,8 @@ private:
     void cull(Node& node, std::span<const ActorId> ids, CullVisitor& visitor, bool boundIsMemberSphere) override;
     void culledOut(Node& node, std::span<const ActorId> ids, CullVisitor& visitor) override;
 
+    // This frame's present members of `node` (bound() listed them; only while some actor is absent).
+    const cascade::PresentMembers& presentMembersOf(const Node& node);
     void processActors(Node& root, const Camera& camera, double time);
     void processTraditionally(Node& root, const Camera& camera, double time);
 

@@ -12,8 +12,8 @@ namespace throng::cascade {
 struct ReferencePointsJob {
     /// In and out: reads every actor's behaviour and slot; writes present, refLocal (of the present
     /// only), eyeDistance (infinite until CULL 2 computes it) and actorClass (CulledWithGroup, A for
-    /// an absent actor, or NotInScene); marks the nodes' bounds dirty. Counts actorsInScene and
-    /// actorsAbsent.
+    /// an absent actor, or NotInScene); marks the nodes' bounds dirty. Counts actorsInScene, and
+    /// the absent in the scene in both actorsAbsent and a.
     Crowd* crowd = nullptr;
     /// In: the frame's time and number (its counter is the loop's).
     FrameContext context;
