@@ -232,7 +232,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
             .run(f.loop);
         if (f.settings.keyPoseCachesOn())
             timed(stats_.keyPoseSelectMs,
-                  [&] { cascade::KeyPoseSelectingJob{&keyPoseCaches_, frame_, &f.decisions, &f.keyPoseScratch}.run(f.loop); });
+                  [&] { cascade::KeyPoseSelectingJob{&keyPoseCaches_, frame_, &f.decisions, &f.keyPoseScratch, keyPoseArbiter_}.run(f.loop); });
         cascade::SkeletalLodJob{&s, f.candidates, f.survivors, &f.decisions, skeletalLod_, &f.posed}.run(f.loop);
     });
     // Phase 5.

@@ -73,6 +73,29 @@ void KeyPoseRows::held(std::vector<std::uint32_t>& poses) const {
         if (p != kNone) poses.push_back(p);
 }
 
+void KeyPoseRows::copyRows(std::span<const std::uint32_t> poses) {
+    if (poses.size() != rowPose_.size())
+        throw std::invalid_argument("KeyPoseRows::copyRows: " + std::to_string(poses.size()) + " poses for " + std::to_string(rowPose_.size()) +
+                                    " rows");
+    for (std::size_t r = 0; r < poses.size(); ++r) {
+        const std::uint32_t p = poses[r];
+        if (p == kNone) continue;
+        const bool twice = p < poseSeen_.size() && poseSeen_[p];
+        if (p >= poseRow_.size() || twice) {
+            for (std::size_t q = 0; q < r; ++q)
+                if (poses[q] != kNone) poseSeen_[poses[q]] = 0;  // all 0 between calls
+            throw std::invalid_argument("KeyPoseRows::copyRows: row " + std::to_string(r) + " holds pose " + std::to_string(p) +
+                                        (twice ? ", which an earlier row holds" : ", out of range (the cache knows " + std::to_string(poseRow_.size()) + " poses)"));
+        }
+        poseSeen_[p] = 1;
+    }
+    std::fill(poseRow_.begin(), poseRow_.end(), kNone);
+    for (std::size_t r = 0; r < poses.size(); ++r) {
+        rowPose_[r] = poses[r];
+        if (poses[r] != kNone) poseRow_[poses[r]] = static_cast<std::uint32_t>(r), poseSeen_[poses[r]] = 0;
+    }
+}
+
 void KeyPoseRows::clear() {
     std::fill(poseRow_.begin(), poseRow_.end(), kNone);
     std::fill(rowPose_.begin(), rowPose_.end(), kNone);

@@ -5,15 +5,19 @@
 
 #include <gtest/gtest.h>
 
+#include <barrier>
 #include <cmath>
 #include <memory>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "throng/actors/ActorDrawReferences.h"
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ActorProcessor.h"
 #include "throng/actors/Crowd.h"
+#include "throng/actors/KeyPoseArbiter.h"
+#include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/scenegraph/Camera.h"
@@ -21,6 +25,7 @@
 #include "throng/scenegraph/Geometry.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/Occluder.h"
+#include "throng/testkit/ActorTestScenes.h"
 
 using namespace throng;
 
@@ -36,6 +41,34 @@ public:
         return false;
     }
 };
+
+// Compares `merged` with `expected` item by item; numbers drawables, nodes and key-pose sources
+// by `mergedRefs` and `expectedRefs` (each process has its own). Returns the items compared.
+void expectSameList(const DrawList& merged, const DrawReferences& mergedRefs, const DrawList& expected, const DrawReferences& expectedRefs) {
+    ASSERT_EQ(merged.size(), expected.size());
+    EXPECT_EQ(merged.primitiveCount(), expected.primitiveCount());
+    auto m = merged.items().begin();
+    for (const DrawItem& e : expected.items()) {
+        const DrawItem& i = *m++;
+        ASSERT_EQ(i.actor, e.actor);
+        ASSERT_EQ(i.part, e.part);
+        EXPECT_EQ(mergedRefs.numberOf(i.drawable), expectedRefs.numberOf(e.drawable));
+        EXPECT_EQ(mergedRefs.numberOf(i.node), expectedRefs.numberOf(e.node));
+        EXPECT_TRUE(i.world == e.world) << "actor " << e.actor << " part " << e.part;
+        EXPECT_EQ(i.representation, e.representation) << "actor " << e.actor;
+        EXPECT_EQ(i.lodLevel, e.lodLevel);
+        EXPECT_EQ(i.clipTime, e.clipTime);
+        ASSERT_EQ(i.skinPaletteSize, e.skinPaletteSize);
+        for (std::uint32_t j = 0; j < e.skinPaletteSize; ++j) EXPECT_EQ(i.skinPalette[j], e.skinPalette[j]);
+        if (e.representation != Representation::KeyPose) continue;
+        EXPECT_EQ(mergedRefs.numberOf(i.keyPose.source), expectedRefs.numberOf(e.keyPose.source));
+        for (int k = 0; k < 2; ++k) {
+            EXPECT_EQ(i.keyPose.pose[k], e.keyPose.pose[k]);
+            EXPECT_EQ(i.keyPose.row[k], e.keyPose.row[k]) << "actor " << e.actor;
+        }
+        EXPECT_EQ(i.keyPose.blend, e.keyPose.blend);
+    }
+}
 
 // One process's copy of the scene: a street (the drawing process only), a wall, then two groups of
 // walkers with roaming bounds, as every process builds them.
@@ -142,24 +175,8 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
             std::vector<std::span<const std::byte>> messages(bytes.begin(), bytes.end());
             merger.merge(messages, parts[0]->refs, merged);
 
-            const DrawList& expected = whole->processor->drawList();
-            ASSERT_EQ(merged.size(), expected.size());
-            EXPECT_EQ(merged.primitiveCount(), expected.primitiveCount());
-            auto m = merged.items().begin();
-            for (const DrawItem& e : expected.items()) {
-                const DrawItem& i = *m++;
-                ASSERT_EQ(i.actor, e.actor);
-                ASSERT_EQ(i.part, e.part);
-                EXPECT_EQ(i.drawable, e.drawable);
-                EXPECT_EQ(parts[0]->refs.numberOf(i.node), whole->refs.numberOf(e.node));
-                EXPECT_TRUE(i.world == e.world) << "actor " << e.actor << " part " << e.part;
-                EXPECT_EQ(i.representation, e.representation);
-                EXPECT_EQ(i.lodLevel, e.lodLevel);
-                EXPECT_EQ(i.clipTime, e.clipTime);
-                ASSERT_EQ(i.skinPaletteSize, e.skinPaletteSize);
-                for (std::uint32_t j = 0; j < e.skinPaletteSize; ++j) EXPECT_EQ(i.skinPalette[j], e.skinPalette[j]);
-                impostorItems += e.representation == Representation::Impostor;
-            }
+            expectSameList(merged, parts[0]->refs, whole->processor->drawList(), whole->refs);
+            for (const DrawItem& e : whole->processor->drawList().items()) impostorItems += e.representation == Representation::Impostor;
             // Table 2 and the work, summed over the processes, as one process counts them.
             EXPECT_EQ(sum.actorsInScene, one.actorsInScene);
             EXPECT_EQ(sum.actorsAbsent, 0u);
@@ -179,5 +196,143 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
         }
         EXPECT_GT(impostorItems, 100u) << "the frames cover impostors";
         EXPECT_GT(occluded, 10u) << "the frames cover occlusion";
+    }
+}
+
+namespace {
+
+// Processes on threads of one program settling their key-pose caches together: every process
+// brings its demands, process 0 selects for their sum and the others copy its rows (what ranks do
+// over messages).
+class SharedSelection {
+public:
+    explicit SharedSelection(int processes) : barrier_(processes), demands_(std::size_t(processes)) {}
+
+    // Process `index`'s arbiter.
+    class Member : public KeyPoseArbiter {
+    public:
+        Member(SharedSelection& shared, int index) : shared_(shared), index_(std::size_t(index)) {}
+        KeyPoseSelectionCounts settle(std::span<const std::vector<KeyPoseDemand>> demands,
+                                      std::span<const std::shared_ptr<KeyPoseCache>> caches, std::uint64_t frame) override {
+            SharedSelection& s = shared_;
+            s.demands_[index_].assign(demands.begin(), demands.end());
+            s.barrier_.arrive_and_wait();
+            KeyPoseSelectionCounts counts;
+            if (index_ == 0) {
+                s.rows_.assign(caches.size(), {});
+                for (std::size_t ci = 0; ci < caches.size(); ++ci) {
+                    std::vector<KeyPoseDemand> sum;
+                    for (const auto& part : s.demands_) addKeyPoseDemands(sum, part[ci]);
+                    const KeyPoseSelectionCounts c = s.selector_.select(*caches[ci], sum, frame);
+                    counts.wanted += c.wanted, counts.updates += c.updates, counts.held += c.held;
+                    const auto poses = caches[ci]->rows().rowPoses();
+                    s.rows_[ci].assign(poses.begin(), poses.end());
+                }
+            }
+            s.barrier_.arrive_and_wait();
+            if (index_ != 0)
+                for (std::size_t ci = 0; ci < caches.size(); ++ci) caches[ci]->rows().copyRows(s.rows_[ci]);
+            return counts;
+        }
+
+    private:
+        SharedSelection& shared_;
+        std::size_t index_;
+    };
+
+private:
+    std::barrier<> barrier_;
+    std::vector<std::vector<std::vector<KeyPoseDemand>>> demands_;  // per process, per cache
+    std::vector<std::vector<std::uint32_t>> rows_;                    // per cache: process 0's rows
+    KeyPoseSelector selector_;
+};
+
+// Skinned bars standing on a grid in front of the camera, each at its own clip time, in one group.
+struct Bars {
+    Crowd crowd;
+    std::shared_ptr<OwnWalkers> behaviour = std::make_shared<OwnWalkers>();
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::unique_ptr<ActorProcessor> processor;
+    DrawReferences refs;
+};
+
+std::unique_ptr<Bars> bars(KeyPoseMode mode, std::uint32_t rows) {
+    static const auto tmpl = testkit::skinnedBar();
+    auto b = std::make_unique<Bars>();
+    std::vector<ActorId> ids;
+    for (int i = 0; i < 240; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = tmpl;
+        a.position = Vec3(1.5 * (i % 16) - 12.0, 0.0, 4.0 + 1.5 * (i / 16));
+        a.timeOffset = 0.037 * ((i * 7) % 53);
+        ids.push_back(b->crowd.add(tmpl, b->behaviour, b->behaviour->addActor(a)));
+    }
+    b->root->addChild(b->crowd.makeGroupNode(ids));
+    b->processor = std::make_unique<ActorProcessor>(b->crowd);
+    KeyPoseCacheSettings settings;
+    settings.rows = rows;
+    settings.mode = mode;
+    b->processor->setKeyPoseCache(std::make_shared<KeyPoseCache>(tmpl, settings));
+    b->processor->setKeyPoseDistance(10.0, 1.0);
+    b->refs = actorDrawReferences(b->crowd, *b->root, *b->processor);
+    return b;
+}
+
+}  // namespace
+
+// Key-pose caches too small for every pose wanted: settled over the demands of every process,
+// each process draws from the rows one process would hold, and misses the same actors.
+TEST(CascadeAcrossProcesses, KeyPoseCachesSettledOverEveryProcessHoldWhatOneProcessHolds) {
+    for (const KeyPoseMode mode : {KeyPoseMode::Intermittent, KeyPoseMode::Interpolative}) {
+        SCOPED_TRACE(mode == KeyPoseMode::Intermittent ? "intermittent" : "interpolative");
+        constexpr int kProcesses = 3;
+        auto whole = bars(mode, 6);
+        std::vector<std::unique_ptr<Bars>> parts;
+        SharedSelection shared(kProcesses);
+        std::vector<std::unique_ptr<SharedSelection::Member>> arbiters;
+        for (int p = 0; p < kProcesses; ++p) {
+            parts.push_back(bars(mode, 6));
+            parts.back()->behaviour->here.assign(240, 0);
+            for (std::size_t i = 0; i < 240; ++i) parts.back()->behaviour->here[i] = i % kProcesses == std::size_t(p);
+            arbiters.push_back(std::make_unique<SharedSelection::Member>(shared, p));
+            parts.back()->processor->setKeyPoseArbiter(arbiters.back().get());
+        }
+        Camera camera;
+        camera.setPerspective(1.2, 1.0, 0.1, 1000.0);
+        DrawRecordMerger merger;
+        std::uint64_t cached = 0, missed = 0;
+        for (int f = 0; f < 12; ++f) {
+            SCOPED_TRACE("frame " + std::to_string(f));
+            camera.setLookAt(Vec3(0.3 * f, 1.0, -2.0 + 0.8 * f), Vec3(0.3 * f, 1.0, 30.0));
+            const double time = 0.13 * f;
+            const ActorFrameStatistics one = whole->processor->processFrame(*whole->root, camera, time);
+            std::vector<std::vector<std::byte>> bytes(kProcesses);
+            std::vector<ActorFrameStatistics> shares(kProcesses);
+            {
+                std::vector<std::jthread> threads;
+                for (int p = 0; p < kProcesses; ++p)
+                    threads.emplace_back([&, p] {
+                        Bars& part = *parts[std::size_t(p)];
+                        shares[std::size_t(p)] = part.processor->processFrame(*part.root, camera, time);
+                        writeDrawRecords(part.processor->drawList(), part.refs, bytes[std::size_t(p)]);
+                    });
+            }
+            DrawList merged;
+            std::vector<std::span<const std::byte>> messages(bytes.begin(), bytes.end());
+            merger.merge(messages, parts[0]->refs, merged);
+            expectSameList(merged, parts[0]->refs, whole->processor->drawList(), whole->refs);
+            ActorFrameStatistics sum;
+            for (const ActorFrameStatistics& s : shares) addShare(sum, s);
+            EXPECT_EQ(sum.keyPoseBand, one.keyPoseBand);
+            EXPECT_EQ(sum.keyPoseActors, one.keyPoseActors);
+            EXPECT_EQ(sum.keyPoseMisses, one.keyPoseMisses);
+            EXPECT_EQ(shares[0].keyPosesWanted, one.keyPosesWanted);
+            EXPECT_EQ(shares[0].keyPoseUpdates, one.keyPoseUpdates);
+            EXPECT_EQ(shares[0].keyPosesHeld, one.keyPosesHeld);
+            EXPECT_EQ(sum.actorsPosed, one.actorsPosed);
+            cached += one.keyPoseActors, missed += one.keyPoseMisses;
+        }
+        EXPECT_GT(cached, 100u) << "the frames cover actors drawn from the cache";
+        EXPECT_GT(missed, 20u) << "the frames cover actors whose poses did not fit";
     }
 }

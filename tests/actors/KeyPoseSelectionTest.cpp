@@ -1,11 +1,13 @@
 // The key-pose cache of seed 004 on the CPU: which poses to cache (the greedy selection of §4.2 and
 // the exact one of §4.1, checked against each other, against the paper's worked example and against
 // an exhaustive search), the rows kept from frame to frame (retention, least recently used
-// replacement), and the key-poses of a template (sampling in both modes, palettes).
+// replacement), and the key-poses of a template (sampling in both modes, palettes); demands of
+// several processes added, and rows copied from the process that selected.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -18,6 +20,7 @@
 #include "throng/testkit/ActorTestScenes.h"
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/AnimationClip.h"
+#include "throng/actors/KeyPoseArbiter.h"
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/research/KeyPoseExactSelection.h"
 #include "throng/actors/KeyPoseRows.h"
@@ -544,4 +547,47 @@ TEST(KeyPoseCache, RejectsTemplatesAndSettingsItCannotCache) {
         b.addClip(std::make_shared<AnimationClip>("turn", std::vector<ClipChannel>{c}));
         expectThrowWith<std::invalid_argument>([&] { KeyPoseCache(b.build(), KeyPoseCacheSettings{}); }, "no skinned actor-level mesh");
     }
+}
+
+// Demands of several processes add up per pair of poses, in increasing order of first pose: the
+// list one process holding every actor would have made.
+TEST(KeyPoseDemands, DemandsOfSeveralProcessesAddUpInOrder) {
+    std::vector<KeyPoseDemand> combined;
+    addKeyPoseDemands(combined, std::vector<KeyPoseDemand>{{2, 3, 1}, {5, 6, 2}});
+    addKeyPoseDemands(combined, std::vector<KeyPoseDemand>{{0, 1, 4}, {2, 3, 2}, {9, 9, 1}});
+    addKeyPoseDemands(combined, std::vector<KeyPoseDemand>{});
+    addKeyPoseDemands(combined, std::vector<KeyPoseDemand>{{5, 6, 1}, {7, 8, 3}});
+    const std::vector<std::array<std::uint32_t, 3>> expected{{0, 1, 4}, {2, 3, 3}, {5, 6, 3}, {7, 8, 3}, {9, 9, 1}};
+    ASSERT_EQ(combined.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        EXPECT_EQ(combined[k].a, expected[k][0]);
+        EXPECT_EQ(combined[k].b, expected[k][1]);
+        EXPECT_EQ(combined[k].actors, expected[k][2]);
+    }
+}
+
+// Rows copied from another process's answer every lookup as those do; a copy that cannot be rows
+// of this cache is refused and changes nothing.
+TEST(KeyPoseRows, CopiedRowsAnswerAsTheOriginalAndBadCopiesChangeNothing) {
+    KeyPoseRows original(4, 20), copy(4, 20);
+    original.hold(std::vector<std::uint32_t>{7, 3, 12}, 1);
+    original.hold(std::vector<std::uint32_t>{3, 19}, 2);
+    copy.copyRows(original.rowPoses());
+    for (std::uint32_t p = 0; p < 20; ++p) EXPECT_EQ(copy.rowOf(p), original.rowOf(p)) << "pose " << p;
+    EXPECT_EQ(copy.heldCount(), original.heldCount());
+    const std::vector<std::uint32_t> before(copy.rowPoses().begin(), copy.rowPoses().end());
+    const std::uint32_t none = KeyPoseRows::kNone;
+    EXPECT_THROW(copy.copyRows(std::vector<std::uint32_t>{1, 2, 3}), std::invalid_argument);
+    EXPECT_THROW(copy.copyRows(std::vector<std::uint32_t>{1, 20, none, none}), std::invalid_argument);
+    try {
+        copy.copyRows(std::vector<std::uint32_t>{5, none, 6, 5});
+        FAIL() << "a pose in two rows was copied";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("row 3 holds pose 5, which an earlier row holds"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(std::vector<std::uint32_t>(copy.rowPoses().begin(), copy.rowPoses().end()), before);
+    copy.copyRows(std::vector<std::uint32_t>{5, none, 6, 1});  // the refused copies left nothing behind
+    EXPECT_EQ(copy.rowOf(5), 0u);
+    EXPECT_EQ(copy.rowOf(1), 3u);
+    EXPECT_EQ(copy.rowOf(7), none);
 }

@@ -36,6 +36,7 @@ class Camera;
 class Crowd;
 class DrawBackend;
 class Drawable;
+class KeyPoseArbiter;
 class KeyPoseCache;
 class Node;
 class ThreadTeam;
@@ -99,6 +100,11 @@ public:
     /// Gives `cache`'s template that cache (replacing the one it had). A cache serves one processor
     /// (its rows are this processor's state). Throws std::invalid_argument if `cache` is null.
     void setKeyPoseCache(std::shared_ptr<KeyPoseCache> cache);
+    /// When several processes each show some actors of one crowd (ranks posing their own walkers):
+    /// `arbiter` settles the caches' rows over every process's demands each frame, so that every
+    /// process draws from the rows one process showing every actor would hold. Null (the default):
+    /// this processor selects for its own actors. The arbiter must outlive its use.
+    void setKeyPoseArbiter(KeyPoseArbiter* arbiter) { keyPoseArbiter_ = arbiter; }
     /// Removes every key-pose cache.
     void clearKeyPoseCaches();
     /// The key-pose caches.
@@ -153,6 +159,7 @@ private:
     std::vector<std::uint8_t> impostorTier_;    // per actor: 1 while drawn as an impostor
     double keyPoseDistance_ = 0.0, keyPoseHysteresis_ = 0.0;
     std::vector<std::shared_ptr<KeyPoseCache>> keyPoseCaches_;
+    KeyPoseArbiter* keyPoseArbiter_ = nullptr;
     std::vector<std::uint8_t> keyPoseTier_;     // per actor: 1 while in the key-pose band
     double lodScale_ = 1.0;
     bool skeletalLod_ = true;

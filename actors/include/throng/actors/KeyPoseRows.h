@@ -43,6 +43,13 @@ public:
     std::uint32_t heldCount() const {
         return static_cast<std::uint32_t>(rowPose_.size() - static_cast<std::size_t>(std::count(rowPose_.begin(), rowPose_.end(), kNone)));
     }
+    /// The pose each row holds (kNone: empty), in row order.
+    std::span<const std::uint32_t> rowPoses() const { return rowPose_; }
+    /// Makes row r hold poses[r] (kNone: empty), as another process's rows of the same cache do
+    /// (rowPoses() there). When the poses were last used is not copied: a process whose rows follow
+    /// another's does not select (KeyPoseArbiter). Throws std::invalid_argument, the rows unchanged,
+    /// unless there is one pose per row, each below poseCount() or kNone, none twice.
+    void copyRows(std::span<const std::uint32_t> poses);
     /// Empties every row.
     void clear();
 

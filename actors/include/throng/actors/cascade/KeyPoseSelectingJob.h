@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "throng/actors/KeyPoseArbiter.h"
 #include "throng/actors/KeyPoseSelection.h"
 #include "throng/actors/cascade/CascadeTypes.h"
 #include "throng/actors/cascade/PhaseLoop.h"
@@ -18,13 +19,10 @@ namespace throng::cascade {
 struct KeyPoseSelectingJob {
     /// The selection's workspace, kept between frames.
     struct Scratch {
-        std::vector<std::uint32_t> demandCount;  ///< per pose of the cache being selected: actors needing it first
+        std::vector<std::uint32_t> demandCount;  ///< per pose of the cache being counted: actors needing it first
         std::vector<std::uint32_t> secondPose;   ///< per pose: the second pose its actors need
-        std::vector<std::uint8_t> poseNeeded;    ///< per pose: some actor needs it
-        std::vector<KeyPoseDemand> demand;       ///< the demands of the cache being selected
-        std::vector<std::uint32_t> resident;     ///< the poses its rows held before the selection
-        std::vector<std::uint32_t> chosen;       ///< the poses selected
-        KeyPoseSelectionWorkspace selection;     ///< the greedy selection's scratch
+        std::vector<std::vector<KeyPoseDemand>> demands;  ///< per cache: this process's demands
+        KeyPoseSelector selector;                ///< the selection, when no arbiter makes it
     };
 
     /// In and out: the key-pose caches (demand recorded, rows updated).
@@ -36,6 +34,9 @@ struct KeyPoseSelectingJob {
     SurvivorDecisions* decisions = nullptr;
     /// The job's workspace.
     Scratch* scratch = nullptr;
+    /// Null: this process selects for its own demands. Otherwise the arbiter settles the rows over
+    /// the demands of every process showing some of the crowd; this process then reads them.
+    KeyPoseArbiter* arbiter = nullptr;
 
     /// Null when the job can run, else what is wrong.
     const char* problem() const;
