@@ -190,7 +190,9 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     });
     // Occlusion, when on: this frame's occluders drawn into the buffer CULL tests against.
     // A stage that rests this frame (the last one rejected little) builds and tests nothing.
-    if (occlusion_ && occlusion_->due(camera)) {
+    if (sharedOcclusion_) {
+        f.occlusion = sharedOcclusion_;  // drawn by another process for this frame
+    } else if (occlusion_ && occlusion_->due(camera)) {
         const OcclusionStatistics& o = occlusion_->build(root, camera, f.frustum);
         stats_.occlusionBufferMs = o.bufferMs;
         stats_.occludersDrawn = o.occludersDrawn;
@@ -247,7 +249,7 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         cascade::DrawListJob{&s, &f.frustum, time, &f.settings, f.candidates, f.survivors, &f.decisions, &f.posed, &f.visibility}
             .run(f.loop);
     });
-    if (f.occlusion)
+    if (f.occlusion && !sharedOcclusion_)
         occlusion_->settle(stats_.occludedWithGroup + stats_.occludedRefpoint + stats_.occludedSklsroot + stats_.nodesOccluded,
                            stats_.occlusionTests);
     stats_.fmultTotal = c ? counter.totalFmult() : 0;

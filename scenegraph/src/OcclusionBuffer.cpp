@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "throng/scenegraph/ByteStream.h"
 #include "throng/scenegraph/Camera.h"
 
 namespace throng {
@@ -231,6 +233,53 @@ void OcclusionBuffer::finish() {
             }
         }
     }
+}
+
+namespace {
+
+// What write() puts before the depths: the camera as begin() took it.
+struct BufferHead {
+    std::int32_t width, height;
+    double view[16];
+    double sx, sy, ox, oy, near, nearReach;
+};
+
+}  // namespace
+
+void OcclusionBuffer::write(ByteWriter& out) const {
+    BufferHead h{};
+    h.width = width_, h.height = height_;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) h.view[4 * c + r] = view_[c][r];
+    h.sx = sx_, h.sy = sy_, h.ox = ox_, h.oy = oy_, h.near = near_, h.nearReach = nearReach_;
+    out.put(h);
+    out.putSpan(std::span<const float>(levels_[0].r));
+}
+
+void OcclusionBuffer::read(ByteReader& in) {
+    const auto h = in.get<BufferHead>("an occlusion buffer's camera");
+    if (h.width != width_ || h.height != height_)
+        throw std::invalid_argument(in.source() + ": an occlusion buffer of " + std::to_string(h.width) + " x " + std::to_string(h.height) +
+                                    " pixels, this one has " + std::to_string(width_) + " x " + std::to_string(height_));
+    bool finite = true;
+    for (const double v : h.view) finite = finite && std::isfinite(v);
+    for (const double v : {h.sx, h.sy, h.ox, h.oy, h.near, h.nearReach}) finite = finite && std::isfinite(v);
+    if (!finite || !(h.near > 0.0)) throw std::invalid_argument(in.source() + ": an occlusion buffer's camera holds a number that is not finite");
+    const std::span<const std::byte> depths = in.take(levels_[0].r.size() * sizeof(float), "an occlusion buffer's depths");
+    // Reciprocal depths: finite and not negative (0 where nothing was drawn). Checked in a copy.
+    std::vector<float>& r = rowMin_;
+    r.resize(levels_[0].r.size());
+    std::memcpy(r.data(), depths.data(), depths.size());
+    for (std::size_t i = 0; i < r.size(); ++i)
+        if (!std::isfinite(r[i]) || r[i] < 0.0f)
+            throw std::invalid_argument(in.source() + ": an occlusion buffer's depth at pixel " + std::to_string(i) + " is not a depth");
+    levels_[0].r.swap(r);
+    r.resize(std::size_t(width_));
+    for (int c = 0; c < 4; ++c)
+        for (int row = 0; row < 4; ++row) view_[c][row] = h.view[4 * c + row];
+    sx_ = h.sx, sy_ = h.sy, ox_ = h.ox, oy_ = h.oy, near_ = h.near, nearReach_ = h.nearReach;
+    pixelsWritten_ = 0;
+    finish();
 }
 
 bool OcclusionBuffer::occluded(const BoundingSphere& sphere) const { return test(sphere, true); }

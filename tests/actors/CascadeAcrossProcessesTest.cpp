@@ -1,7 +1,8 @@
 // The cascade split over processes that each pose their own actors (Behaviour::presence: the
 // others are absent there), each sending its draw items as records (DrawRecords.h): merged in the
 // drawing process, the list is item for item the one a process holding every actor makes, frame
-// after frame (impostor hysteresis and occlusion included), and the Table-2 counts add up to its.
+// after frame (impostor hysteresis, occlusion against the drawing process's buffer and key-pose
+// caches settled over every process included), and the Table-2 counts add up to its.
 
 #include <gtest/gtest.h>
 
@@ -20,6 +21,7 @@
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/actors/KeyframeBehaviour.h"
 #include "throng/actors/SeedHumanoid.h"
+#include "throng/scenegraph/ByteStream.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawRecords.h"
 #include "throng/scenegraph/Geometry.h"
@@ -70,14 +72,16 @@ void expectSameList(const DrawList& merged, const DrawReferences& mergedRefs, co
     }
 }
 
-// One process's copy of the scene: a street (the drawing process only), a wall, then two groups of
-// walkers with roaming bounds, as every process builds them.
+// One process's copy of the scene: a street and a wall (the drawing process only: the others test
+// against the occlusion buffer it sends), then two groups of walkers with roaming bounds, as every
+// process builds them.
 struct World {
     Crowd crowd;
     std::shared_ptr<OwnWalkers> walkers = std::make_shared<OwnWalkers>();
     std::shared_ptr<Group> root = std::make_shared<Group>();
     std::unique_ptr<ActorProcessor> processor;
     DrawReferences refs;
+    OcclusionBuffer occlusion{OcclusionSettings{}.width, OcclusionSettings{}.height};
 };
 
 constexpr std::size_t kWalkers = 1200;
@@ -94,10 +98,9 @@ std::unique_ptr<World> world(bool draws) {
     if (draws) {
         static const auto street = std::make_shared<Drawable>("street", BoundingSphere(Vec3(0.0), 100.0), 12);
         w->root->addChild(std::make_shared<Geometry>(street));
+        w->root->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-30, 0, -1), glm::vec3(30, 12, 1)}},
+                                                     AxisBox{glm::vec3(-31, -1, -2), glm::vec3(31, 13, 2)}));
     }
-    // Every process tests against the same occlusion buffer (here each draws it from the same wall).
-    w->root->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-30, 0, -1), glm::vec3(30, 12, 1)}},
-                                                 AxisBox{glm::vec3(-31, -1, -2), glm::vec3(31, 13, 2)}));
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<ActorId> ids[2];
@@ -120,7 +123,8 @@ std::unique_ptr<World> world(bool draws) {
     w->processor = std::make_unique<ActorProcessor>(w->crowd);
     w->processor->setImpostor(*humanoid, impostor());
     w->processor->setImpostorDistance(45.0, 4.0);
-    w->processor->setOcclusion(OcclusionSettings{});
+    if (draws) w->processor->setOcclusion(OcclusionSettings{});
+    else w->processor->setSharedOcclusionBuffer(&w->occlusion);  // the drawing process's, received
     w->refs = actorDrawReferences(w->crowd, *w->root, *w->processor);
     return w;
 }
@@ -162,11 +166,20 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
             const ActorFrameStatistics one = whole->processor->processFrame(*whole->root, camera, time);
             std::vector<std::vector<std::byte>> bytes(static_cast<std::size_t>(processes));
             ActorFrameStatistics sum;
+            std::vector<std::byte> buffer;
             for (int p = 0; p < processes; ++p) {
                 World& part = *parts[std::size_t(p)];
+                if (p > 0) {  // the drawing process's buffer of this frame, as received
+                    ByteReader in(buffer, "occlusion buffer");
+                    part.occlusion.read(in);
+                }
                 const ActorFrameStatistics& s = part.processor->processFrame(*part.root, camera, time);
                 writeDrawRecords(part.processor->drawList(), part.refs, bytes[std::size_t(p)]);
                 addShare(sum, s);
+                if (p == 0) {
+                    ByteWriter out(buffer);
+                    part.processor->occlusion()->buffer().write(out);
+                }
             }
             // The drawing process: its own items of no actor, then everyone's merged.
             DrawList merged;

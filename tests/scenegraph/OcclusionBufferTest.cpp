@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstring>
+#include <string>
+#include <vector>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "throng/testkit/Cameras.h"
 #include "throng/scenegraph/AxisBox.h"
+#include "throng/scenegraph/ByteStream.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/CullVisitor.h"
 #include "throng/scenegraph/Geometry.h"
@@ -217,6 +221,63 @@ TEST(OcclusionBuffer, TheCentrePixelShortcutAnswersAsTheWholeRectangle) {
 }
 
 // An Occluder node in a scene: CULL rejects the geometry behind it, and only that.
+// A buffer sent to another process (write, read) answers every test there as where it was drawn;
+// bytes of another size, cut short or holding a non-finite number are refused and change nothing.
+TEST(OcclusionBuffer, ABufferReadFromItsBytesAnswersAsTheOriginal) {
+    std::mt19937 rng(405);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Camera camera;
+    camera.setPerspective(glm::radians(55.0), 1.6, 0.2, 800.0);
+    camera.setLookAt(Vec3(1, 2, 3), Vec3(0.3, 0.1, -1.0));
+    OcclusionBuffer drawn(256, 144), received(256, 144);
+    drawn.begin(camera);
+    for (int b = 0; b < 12; ++b) {
+        const Vec3 c(12.0 * u(rng), 4.0 * u(rng), -5.0 - 15.0 * (u(rng) + 1.0));
+        const Vec3 h(0.1 + 3.0 * (u(rng) + 1.0), 0.1 + 2.0 * (u(rng) + 1.0), 0.1 + 1.0 * (u(rng) + 1.0));
+        drawn.drawBox(corners(c - h, c + h));
+    }
+    drawn.finish();
+    std::vector<std::byte> bytes;
+    ByteWriter out(bytes);
+    drawn.write(out);
+    ByteReader in(bytes, "rank 0's buffer");
+    received.read(in);
+    EXPECT_EQ(in.remaining(), 0u);
+    int hidden = 0;
+    for (int s = 0; s < 4000; ++s) {
+        const BoundingSphere sphere(Vec3(40.0 * u(rng), 15.0 * u(rng), -0.5 - 40.0 * (u(rng) + 1.0)), 0.05 + 3.0 * (u(rng) + 1.0));
+        ASSERT_EQ(received.occluded(sphere), drawn.occluded(sphere)) << "sphere " << s;
+        hidden += drawn.occluded(sphere);
+    }
+    EXPECT_GT(hidden, 300);
+    EXPECT_EQ(received.depthAt(128, 72), drawn.depthAt(128, 72));
+
+    auto refusal = [&](OcclusionBuffer& into, const std::vector<std::byte>& b) {
+        ByteReader r(b, "rank 0's buffer");
+        try {
+            into.read(r);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    OcclusionBuffer smaller(128, 72);
+    EXPECT_NE(refusal(smaller, bytes).find("rank 0's buffer: an occlusion buffer of 256 x 144 pixels, this one has 128 x 72"),
+              std::string::npos);
+    OcclusionBuffer blank(256, 144);
+    EXPECT_NE(refusal(blank, std::vector<std::byte>(bytes.begin(), bytes.end() - 1)).find("the bytes end at"), std::string::npos);
+    std::vector<std::byte> bad = bytes;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(bad.data() + bad.size() - 4 * 300, &nan, sizeof nan);
+    EXPECT_NE(refusal(blank, bad).find("depth at pixel"), std::string::npos);
+    std::vector<std::byte> badCamera = bytes;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::memcpy(badCamera.data() + 8, &inf, sizeof inf);
+    EXPECT_NE(refusal(blank, badCamera).find("camera holds a number that is not finite"), std::string::npos);
+    for (int x = 0; x < 256; x += 17)
+        for (int y = 0; y < 144; y += 13) ASSERT_TRUE(std::isinf(blank.depthAt(x, y))) << "a refused read left depths behind";
+}
+
 TEST(OcclusionCulling, CullRejectsGenericNodesHiddenByAnOccluderNode) {
     auto root = std::make_shared<Group>();
     auto wall = std::make_shared<Transform>();

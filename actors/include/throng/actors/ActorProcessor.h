@@ -114,6 +114,12 @@ public:
     /// groups are tested during the traversal, actors after CULL 1 and CULL 2. Throws
     /// std::invalid_argument for bad settings.
     void setOcclusion(const std::optional<OcclusionSettings>& settings);
+    /// For a process that tests against an occlusion buffer another process drew (ranks posing
+    /// their own actors; actor processing): the next frames test generic nodes, actor groups and
+    /// actors against `buffer` as against one drawn here, and draw none of their own. Null (the
+    /// default): this processor's own occlusion stage, if any. The buffer must hold the frame's
+    /// occluders (OcclusionBuffer::read) whenever processFrame runs.
+    void setSharedOcclusionBuffer(const OcclusionBuffer* buffer) { sharedOcclusion_ = buffer; }
     /// The occlusion stage of actor processing, or null when occlusion is off.
     const OcclusionCulling* occlusion() const { return occlusion_ ? &*occlusion_ : nullptr; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
@@ -166,6 +172,7 @@ private:
     bool behaviouralLod_ = true;
     std::optional<Frustum> cullingFrustum_;
     std::optional<OcclusionCulling> occlusion_;
+    const OcclusionBuffer* sharedOcclusion_ = nullptr;
     std::uint64_t frame_ = 0;
     double lastTime_ = 0.0;
     ActorFrameStatistics stats_;

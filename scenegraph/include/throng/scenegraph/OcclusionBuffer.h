@@ -25,6 +25,8 @@
 
 namespace throng {
 
+class ByteReader;
+class ByteWriter;
 class Camera;
 
 /// One frame's occlusion depth buffer.
@@ -50,6 +52,15 @@ public:
     /// The same answer as occluded(), always reached over the sphere's whole screen rectangle
     /// (occluded() first looks at the pixel under the sphere's centre); for tests.
     bool occludedOverRectangle(const BoundingSphere& sphere) const;
+
+    /// Appends the frame as finish() left it (its camera and depths, not the pyramid) to `out`, for
+    /// processes that test against it without drawing it (ranks posing their own actors).
+    void write(ByteWriter& out) const;
+    /// Makes this buffer the frame `in` holds (what write() wrote of a buffer of this size) and
+    /// builds its pyramid: tests then answer as they do on the writer's. Throws
+    /// std::invalid_argument naming what is wrong (another size, bytes cut short, a depth or a
+    /// camera number that is not finite), the buffer unchanged.
+    void read(ByteReader& in);
 
     /// Buffer width in pixels.
     int width() const { return width_; }
@@ -78,7 +89,7 @@ private:
     Mat4 view_{1.0};
     double sx_ = 1, sy_ = 1, ox_ = 0, oy_ = 0, near_ = 0.1, nearReach_ = 0.1;
     std::uint64_t pixelsWritten_ = 0;
-    std::vector<float> rowMin_;   // scratch of drawBox
+    std::vector<float> rowMin_;   // scratch of drawBox and read
 };
 
 }  // namespace throng
