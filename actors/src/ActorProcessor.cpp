@@ -1,5 +1,6 @@
 #include "throng/actors/ActorProcessor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -43,6 +44,46 @@ void timed(double& ms, Work&& work) {
     Stopwatch watch;
     work();
     ms += watch.elapsedMs();
+}
+
+// Each node's present members from phase 1's lists of the actors shown (membersListed frames).
+void listPresentMembers(cascade::CascadeFrame& f, const Crowd::State& s) {
+    // Node by node in member order (as a pass over the node's members would list them): counted,
+    // placed, then sorted where the actors came out of order.
+    f.listedOf.clear();
+    const Node* last = nullptr;
+    cascade::PresentMembers* entry = nullptr;
+    auto entryOf = [&](const Node* node) -> cascade::PresentMembers& {
+        if (node != last) entry = &f.listedOf[node], entry->node = node, last = node;
+        return *entry;
+    };
+    for (const ActorId id : f.listed.shown)
+        if (s.owner[id]) ++entryOf(s.owner[id]).count;
+    std::size_t total = 0;
+    for (auto& [node, e] : f.listedOf) e.first = total, total += e.count, e.count = 0;
+    f.presentMembers.resize(total);
+    f.listedIds.resize(total);
+    last = nullptr;
+    for (const ActorId id : f.listed.shown) {
+        if (!s.owner[id]) continue;
+        cascade::PresentMembers& e = entryOf(s.owner[id]);
+        const std::size_t k = e.first + e.count++;
+        f.presentMembers[k] = s.member[id];
+        f.listedIds[k] = id;
+    }
+    for (const auto& [node, e] : f.listedOf) {
+        const auto members = f.presentMembers.begin() + std::ptrdiff_t(e.first);
+        if (std::is_sorted(members, members + std::ptrdiff_t(e.count))) continue;
+        f.presentIds.resize(e.count);
+        std::vector<std::size_t> order(e.count);  // rare: actors numbered against their members' order
+        for (std::size_t k = 0; k < e.count; ++k) order[k] = k;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return members[std::ptrdiff_t(a)] < members[std::ptrdiff_t(b)]; });
+        std::vector<std::uint32_t> sortedMembers(e.count);
+        for (std::size_t k = 0; k < e.count; ++k)
+            sortedMembers[k] = members[std::ptrdiff_t(order[k])], f.presentIds[k] = f.listedIds[e.first + order[k]];
+        std::copy(sortedMembers.begin(), sortedMembers.end(), members);
+        std::copy(f.presentIds.begin(), f.presentIds.end(), f.listedIds.begin() + std::ptrdiff_t(e.first));
+    }
 }
 
 }  // namespace
@@ -182,7 +223,11 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
     });
     // Phase 1: every actor's Reference Point; the generic matrices traversal places them in the
     // world (bound() below, a RefpointPlacementJob per actor node).
-    timed(stats_.refpointMs, [&] { cascade::ReferencePointsJob{&crowd_, f.context}.run(f.loop); });
+    timed(stats_.refpointMs, [&] {
+        cascade::ReferencePointsJob{&crowd_, f.context, &f.listed}.run(f.loop);
+        f.membersListed = f.listed.active;
+        if (f.membersListed) listPresentMembers(f, s);
+    });
     timed(stats_.matricesBoundsMs, [&] {
         WithActorTraversal<MatrixBoundsVisitor> matrices(this, c, false);
         root.accept(matrices);
@@ -261,7 +306,14 @@ BoundingSphere ActorProcessor::bound(Node& node, std::span<const ActorId> ids, M
     visitor.statistics().spheresRecomputed += ids.size();
     Crowd::State& s = crowd_.state();
     std::span<const ActorId> placed = ids;
-    if (stats_.actorsAbsent > 0) {
+    if (cascade_->membersListed) {
+        // The present members as phase 1's lists found them (no pass over the node's members).
+        cascade::CascadeFrame& f = *cascade_;
+        const auto at = f.listedOf.find(&node);
+        const cascade::PresentMembers present = at == f.listedOf.end() ? cascade::PresentMembers{&node, 0, 0} : at->second;
+        f.presentOf.push_back(present);
+        placed = std::span<const ActorId>(f.listedIds).subspan(present.first, present.count);
+    } else if (stats_.actorsAbsent > 0) {
         // Only the present are placed (the others are stale here and widen no bound), and only they
         // become candidates of CULL 1 (cull() below takes this node's list). No branch per member:
         // who is present is random.

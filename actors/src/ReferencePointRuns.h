@@ -13,10 +13,11 @@ namespace throng::detail {
 
 /// Writes the local Reference Point of actors idOf(begin) … idOf(end - 1) into s.refLocal, and
 /// whether each is present into s.present; an absent actor's is not computed (its state here is
-/// stale, and nothing of this frame reads it).
-template <class IdOf>
+/// stale, and nothing of this frame reads it). The actors of a behaviour for which
+/// `presentByList(behaviour)` is true are present without asking (its list named them).
+template <class IdOf, class PresentByList>
 void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t end, IdOf&& idOf, const FrameContext& context,
-                               OpTally* ops) {
+                               OpTally* ops, PresentByList&& presentByList) {
     constexpr std::size_t kRun = 32;
     std::uint32_t slots[kRun];
     ActorId ids[kRun];
@@ -34,7 +35,7 @@ void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t e
             consecutive = consecutive && id == ids[0] + n;
         }
         k += n;
-        if (behaviour->presence({slots, n}, {present, n})) {
+        if (presentByList(behaviour) || behaviour->presence({slots, n}, {present, n})) {
             for (std::size_t j = 0; j < n; ++j) s.present[ids[j]] = 1;
         } else {  // only the present ones, packed (without a branch: who is present is random)
             std::size_t m = 0;
@@ -54,6 +55,13 @@ void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t e
             for (std::size_t j = 0; j < n; ++j) s.refLocal[ids[j]] = out[j];
         }
     }
+}
+
+/// computeReferencePointRuns asking every behaviour which of its actors are present.
+template <class IdOf>
+void computeReferencePointRuns(Crowd::State& s, std::size_t begin, std::size_t end, IdOf&& idOf, const FrameContext& context,
+                               OpTally* ops) {
+    computeReferencePointRuns(s, begin, end, idOf, context, ops, [](const Behaviour*) { return false; });
 }
 
 }  // namespace throng::detail

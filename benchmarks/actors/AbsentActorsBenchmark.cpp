@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -38,11 +39,16 @@ namespace {
 // Key-frame walkers of which only some are present in this process (see Behaviour::presence).
 class SomePresent : public KeyframeBehaviour {
 public:
-    std::vector<std::uint8_t> here;  // per slot, 1 when present; empty: every one
+    std::vector<std::uint8_t> here;      // per slot, 1 when present; empty: every one
+    std::vector<std::uint32_t> hereList;  // the present slots, increasing (as rank 0's exchange lists them)
     bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
         if (here.empty()) return true;
         for (std::size_t k = 0; k < slots.size(); ++k) present[k] = here[slots[k]];
         return false;
+    }
+    std::optional<std::span<const std::uint32_t>> presentSlots() const override {
+        if (here.empty()) return std::nullopt;
+        return std::span<const std::uint32_t>(hereList);
     }
 };
 
@@ -109,11 +115,15 @@ void BM_AbsentActors(benchmark::State& state) {
     std::vector<KeyframeBehaviour::Actor> near;
     for (std::size_t i = 0; i < actors; ++i)
         if (nearView(camera.frustum(), Vec3(whole->crowd.state().refWorld[i][3]), margin)) here[i] = 1, near.push_back(all[i]);
+    std::vector<std::uint32_t> hereList;
+    for (std::size_t i = 0; i < actors; ++i)
+        if (here[i]) hereList.push_back(std::uint32_t(i));
     auto alone = walkers(near, extent);
     ActorProcessor aloneProcessor(alone->crowd);
 
     auto frame = [&](ActorProcessor& p, Walkers& w, bool masked, double t) {  // masked: only `here` present
         w.behaviour->here = masked ? here : std::vector<std::uint8_t>();
+        w.behaviour->hereList = masked ? hereList : std::vector<std::uint32_t>();
         return p.processFrame(*w.root, camera, t);
     };
     for (int k = 0; k < 4; ++k) {  // draw lists grown, storage merged: timed frames do not allocate
@@ -121,8 +131,8 @@ void BM_AbsentActors(benchmark::State& state) {
         frame(aloneProcessor, *alone, false, time);
         frame(wholeProcessor, *whole, false, time);
     }
-    double later[2][5] = {};
-    double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0, refpoint = 0.0, bounds = 0.0, cull = 0.0;
+    double later[2][5] = {}, early[2][3] = {};
+    double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0;
     std::int64_t frames = 0;
     for (auto _ : state) {
         const double t = time + double(frames % 2) * 1e-9;
@@ -133,9 +143,10 @@ void BM_AbsentActors(benchmark::State& state) {
             return;
         }
         rank0 += a.appCullMs(), lone += b.appCullMs(), items += double(a.drawItems);
-        refpoint += a.refpointMs, bounds += a.matricesBoundsMs, cull += a.cullMs;
         for (int k = 0; k < 2; ++k) {
             const ActorFrameStatistics& s = k == 0 ? a : b;
+            const double before[3] = {s.refpointMs, s.matricesBoundsMs, s.cullMs};
+            for (int i = 0; i < 3; ++i) early[k][i] += before[i];
             const double phases[5] = {s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
             for (int i = 0; i < 5; ++i) later[k][i] += phases[i];
         }
@@ -151,10 +162,12 @@ void BM_AbsentActors(benchmark::State& state) {
     state.counters["alone_ms"] = lone / n;
     state.counters["whole_ms"] = everyone / n;
     state.counters["rank0_over_alone"] = rank0 / lone;
-    // Where rank 0's time goes before CULL 2: every actor's phase 1 and placement, CULL 1.
-    state.counters["rank0_refpoint_ms"] = refpoint / n;
-    state.counters["rank0_bounds_ms"] = bounds / n;
-    state.counters["rank0_cull1_ms"] = cull / n;
+    // Where the time goes: before CULL 2 (phase 1, placement, CULL 1), then from CULL 2 on.
+    const char* first[3] = {"refpoint", "bounds", "cull1"};
+    for (int i = 0; i < 3; ++i) {
+        state.counters[std::string("rank0_") + first[i] + "_ms"] = early[0][i] / n;
+        state.counters[std::string("alone_") + first[i] + "_ms"] = early[1][i] / n;
+    }
     const char* names[5] = {"sklsroot", "cull2", "pose", "cull3", "drawlist"};
     for (int i = 0; i < 5; ++i) {
         state.counters[std::string("rank0_") + names[i] + "_ms"] = later[0][i] / n;

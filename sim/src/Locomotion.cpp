@@ -275,6 +275,9 @@ bool Locomotion::presence(std::span<const std::uint32_t> slots, std::span<std::u
     return false;
 }
 bool Locomotion::known(std::uint32_t slot) const { return !exchange_ || exchange_->known(slot); }
+std::optional<std::span<const std::uint32_t>> Locomotion::presentSlots() const {
+    return exchange_ ? exchange_->shownSlots() : std::nullopt;
+}
 std::size_t Locomotion::shownCount() const { return exchange_ ? exchange_->shownCount(actors_.size()) : actors_.size(); }
 std::size_t Locomotion::presentCount() const { return exchange_ ? exchange_->presentCount(actors_.size()) : actors_.size(); }
 std::span<const Locomotion::RankStepRecord> Locomotion::rankSteps() const {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <random>
 
 #include "throng/testkit/ActorTestScenes.h"
@@ -538,4 +539,112 @@ TEST(Cascade, ARoamingBoundStandsForTheGroupAndAbsentActorsAreRejectedUnread) {
     EXPECT_EQ(d.a, 1u) << "the lone member is rejected at CULL 1";
     EXPECT_EQ(d.c1, 0u);
     EXPECT_EQ(po.drawList().size(), 0u);
+}
+
+namespace {
+
+// Walkers of which those in `here` are present, listing their present slots (Behaviour::
+// presentSlots) when `lists`: a crowd then visits only those; otherwise every actor is asked.
+class ListedWalkers : public KeyframeBehaviour {
+public:
+    bool lists = true;
+    std::vector<std::uint8_t> here;
+    std::vector<std::uint32_t> slots;  // the present ones, increasing
+    bool presence(std::span<const std::uint32_t> s, std::span<std::uint8_t> present) const override {
+        for (std::size_t k = 0; k < s.size(); ++k) present[k] = here[s[k]];
+        return false;
+    }
+    std::optional<std::span<const std::uint32_t>> presentSlots() const override {
+        if (!lists) return std::nullopt;
+        return std::span<const std::uint32_t>(slots);
+    }
+    void choose(std::mt19937& rng, double share) {
+        std::bernoulli_distribution in(share);
+        slots.clear();
+        for (std::size_t k = 0; k < here.size(); ++k)
+            if ((here[k] = in(rng))) slots.push_back(std::uint32_t(k));
+    }
+};
+
+// 300 listed walkers in two groups (the first numbered against its members' order), and 40 actors
+// of another behaviour, always present, in a third.
+struct ListedScene {
+    Crowd crowd;
+    std::shared_ptr<Group> root = std::make_shared<Group>();
+    std::shared_ptr<ListedWalkers> walkers = std::make_shared<ListedWalkers>();
+    std::shared_ptr<KeyframeBehaviour> others = std::make_shared<KeyframeBehaviour>();
+};
+
+std::unique_ptr<ListedScene> listedScene() {
+    static const auto humanoid = makeSeedHumanoid();
+    auto s = std::make_unique<ListedScene>();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-40.0, 40.0);
+    std::vector<ActorId> groups[3];
+    for (int i = 0; i < 340; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = humanoid;
+        a.clip = humanoid->findClip("walk");
+        a.position = Vec3(u(rng), 0.0, u(rng));
+        a.pathRadius = 3.0, a.pathSpeed = 1.2;
+        const bool walker = i < 300;
+        auto& behaviour = walker ? static_cast<KeyframeBehaviour&>(*s->walkers) : *s->others;
+        const ActorId id = s->crowd.add(humanoid, walker ? std::shared_ptr<Behaviour>(s->walkers) : s->others, behaviour.addActor(a));
+        groups[walker ? i % 2 : 2].push_back(id);
+    }
+    std::reverse(groups[0].begin(), groups[0].end());
+    for (auto& ids : groups) {
+        auto group = s->crowd.makeGroupNode(ids);
+        group->setRoamingBound(BoundingSphere(Vec3(0.0), 60.0));
+        s->root->addChild(group);
+    }
+    s->walkers->here.assign(300, 1);
+    return s;
+}
+
+}  // namespace
+
+// A behaviour listing its present slots: the crowd visits only those (and the actors of behaviours
+// listing none), and the frame is the one a visit of every actor makes, frame after frame, as
+// actors come and go.
+TEST(Cascade, VisitingOnlyTheListedActorsMakesTheFrameEveryActorsVisitMakes) {
+    auto listed = listedScene(), asked = listedScene();
+    asked->walkers->lists = false;
+    ActorProcessor pl(listed->crowd), pa(asked->crowd);
+    Camera camera;
+    camera.setPerspective(1.0, 1.5, 0.1, 300.0);
+    std::mt19937 rng(9);
+    for (int f = 0; f < 12; ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f));
+        std::mt19937 same(rng());
+        listed->walkers->choose(same, f == 5 ? 1.0 : 0.3);  // frame 5: everyone present
+        same.seed(rng());
+        asked->walkers->here = listed->walkers->here, asked->walkers->slots = listed->walkers->slots;
+        camera.setLookAt(Vec3(-50.0 + 5.0 * f, 2.0, 60.0), Vec3(0.0, 0.0, 0.0), Vec3(0, 1, 0));
+        const ActorFrameStatistics a = pa.processFrame(*asked->root, camera, 0.1 * f);
+        const ActorFrameStatistics l = pl.processFrame(*listed->root, camera, 0.1 * f);
+        EXPECT_EQ(l.actorsInScene, a.actorsInScene);
+        EXPECT_EQ(l.actorsAbsent, a.actorsAbsent);
+        EXPECT_EQ(l.culledWithGroup, a.culledWithGroup);
+        EXPECT_EQ(l.a, a.a);
+        EXPECT_EQ(l.b, a.b);
+        EXPECT_EQ(l.c1, a.c1);
+        EXPECT_EQ(l.c2, a.c2);
+        EXPECT_EQ(l.spheresTested, a.spheresTested);
+        ASSERT_EQ(pl.drawList().size(), pa.drawList().size());
+        EXPECT_GT(pa.drawList().size(), 50u);
+        auto item = pa.drawList().items().begin();
+        for (const DrawItem& i : pl.drawList().items()) {
+            const DrawItem& e = *item++;
+            ASSERT_EQ(i.actor, e.actor);
+            ASSERT_EQ(i.part, e.part);
+            ASSERT_TRUE(i.world == e.world);
+        }
+        for (ActorId id = 0; id < 340; ++id) {
+            ASSERT_EQ(listed->crowd.actorClass(id), asked->crowd.actorClass(id)) << "actor " << id;
+            ASSERT_EQ(listed->crowd.state().present[id], asked->crowd.state().present[id]) << "actor " << id;
+        }
+        if (f == 5) EXPECT_EQ(l.actorsAbsent, 0u);
+        else EXPECT_GT(l.actorsAbsent, 150u);
+    }
 }

@@ -4,11 +4,13 @@
 // The jobs themselves (throng/actors/cascade/) declare what each reads and writes.
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "throng/actors/cascade/CascadeTypes.h"
 #include "throng/actors/cascade/KeyPoseSelectingJob.h"
 #include "throng/actors/cascade/PhaseLoop.h"
+#include "throng/actors/cascade/ReferencePointsJob.h"
 #include "throng/actors/cascade/RefpointCullingJob.h"
 #include "throng/actors/cascade/RefpointOcclusionJob.h"
 #include "throng/scenegraph/FrameContext.h"
@@ -45,6 +47,12 @@ struct CascadeFrame {
     std::vector<PresentMembers> presentOf;       ///< each node's stretch of presentMembers, in traversal order
     std::size_t presentCursor = 0;               ///< CULL's place in presentOf
     std::vector<ActorId> presentIds;             ///< scratch: the present members of the node being placed
+    // When a behaviour lists its present slots (phase 1's `listed`), the present members of every
+    // node are found from the actors shown, not by a pass over each node's members.
+    ReferencePointsJob::Listed listed;           ///< phase 1's lists, kept between frames
+    bool membersListed = false;                  ///< this frame's present members come from listed.shown
+    std::unordered_map<const Node*, PresentMembers> listedOf;  ///< per node: its stretch of presentMembers and listedIds
+    std::vector<ActorId> listedIds;              ///< the actors of presentMembers, when listed
     std::vector<std::uint32_t> survivors;        ///< candidate indices past CULL 1 and occlusion
     SurvivorDecisions decisions;                 ///< CULL 2's, per survivor
     PosedActors posed;                           ///< the actors shown and posed

@@ -1,6 +1,7 @@
 // Phase 1 of actor processing: Reference Points of every actor (simulation state, computed whatever
 // the camera), and their placement in the world with their Refpoint Bspheres.
 
+#include <algorithm>
 #include <limits>
 
 #include "../ReferencePointRuns.h"
@@ -16,8 +17,29 @@ const char* ReferencePointsJob::problem() const {
     return nullptr;
 }
 
+namespace {
+
+// Whether some behaviour of `crowd` lists its present slots this frame.
+bool someBehaviourLists(const Crowd& crowd) {
+    for (const auto& b : crowd.behaviours())
+        if (b->presentSlots()) return true;
+    return false;
+}
+
+// The class of an actor after phase 1.
+ActorClass classAfterPhase1(const Crowd::State& s, ActorId id) {
+    return !s.owner[id] ? ActorClass::NotInScene : s.present[id] ? ActorClass::CulledWithGroup : ActorClass::A;
+}
+
+}  // namespace
+
 void ReferencePointsJob::run(PhaseLoop& loop) const {
     throwIfInvalid("ReferencePointsJob", loop.ready() ? problem() : "the loop has no frame");
+    if (listed && someBehaviourLists(*crowd)) {
+        runListed(loop);
+        return;
+    }
+    if (listed) listed->active = false;
     Crowd::State& s = crowd->state();
     loop.parallel(crowd->size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         FrameContext chunkContext = context;
@@ -34,6 +56,61 @@ void ReferencePointsJob::run(PhaseLoop& loop) const {
             out.counts.a += inScene && !present;
         }
     });
+    for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved
+}
+
+void ReferencePointsJob::runListed(PhaseLoop& loop) const {
+    Crowd::State& s = crowd->state();
+    Listed& l = *listed;
+    if (!l.active) {  // from visiting every actor: every one absent until visited
+        for (ActorId id = 0; id < crowd->size(); ++id) {
+            s.present[id] = 0;
+            s.eyeDistance[id] = std::numeric_limits<double>::infinity();
+            s.actorClass[id] = classAfterPhase1(s, id);
+        }
+        l.shown.clear();
+        l.active = true;
+    }
+    for (const ActorId id : l.shown) s.present[id] = 0;
+    // The listed actors, and every actor of the behaviours that list none, behaviour by behaviour
+    // (computeReferencePointRuns takes runs of one behaviour).
+    l.visit.clear();
+    l.listing.clear();
+    for (std::size_t b = 0; b < crowd->behaviours().size(); ++b) {
+        const std::span<const ActorId> bySlot = crowd->actorsBySlot(b);
+        if (const auto slots = crowd->behaviours()[b]->presentSlots()) {
+            l.listing.push_back(crowd->behaviours()[b].get());
+            for (const std::uint32_t slot : *slots)
+                if (slot < bySlot.size() && bySlot[slot] != kNoActor) l.visit.push_back(bySlot[slot]);
+        } else {
+            for (const ActorId id : bySlot)
+                if (id != kNoActor) l.visit.push_back(id);
+        }
+    }
+    loop.parallel(l.visit.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        FrameContext chunkContext = context;
+        chunkContext.counter = loop.counterOf(out);
+        OpTally* ops = tallyFor(chunkContext.counter, OpCategory::RefpointDofValues);
+        detail::computeReferencePointRuns(s, begin, end, [&](std::size_t k) { return l.visit[k]; }, chunkContext, ops,
+                                          [&](const Behaviour* b) { return std::find(l.listing.begin(), l.listing.end(), b) != l.listing.end(); });
+        for (std::size_t k = begin; k < end; ++k) {
+            const ActorId id = l.visit[k];
+            s.eyeDistance[id] = std::numeric_limits<double>::infinity();
+            s.actorClass[id] = classAfterPhase1(s, id);
+        }
+    });
+    // Those shown last frame and not now, and who is shown now.
+    for (const ActorId id : l.shown)
+        if (!s.present[id]) s.eyeDistance[id] = std::numeric_limits<double>::infinity(), s.actorClass[id] = classAfterPhase1(s, id);
+    l.shown.clear();
+    std::uint64_t shownInScene = 0;
+    for (const ActorId id : l.visit)
+        if (s.present[id]) l.shown.push_back(id), shownInScene += s.owner[id] != nullptr;
+    ActorFrameStatistics& stats = loop.statistics();
+    const std::uint64_t inScene = crowd->actorsInScene();
+    stats.actorsInScene += inScene;
+    stats.actorsAbsent += inScene - shownInScene;
+    stats.a += inScene - shownInScene;
     for (Node* node : crowd->nodes()) node->dirtyBound();  // every actor moved
 }
 

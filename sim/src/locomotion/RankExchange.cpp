@@ -205,8 +205,13 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             if (view.on) present_[w.slot] = i < step.shown ? 2 : 1;
         }
     }
-    presentCount_ = shownCount_ = 0;
-    for (std::uint8_t p : present_) presentCount_ += p != 0, shownCount_ += p == 2;
+    presentCount_ = 0;
+    shownSlots_.clear();
+    for (std::uint32_t slot = 0; slot < present_.size(); ++slot) {
+        presentCount_ += present_[slot] != 0;
+        if (present_[slot] == 2) shownSlots_.push_back(slot);
+    }
+    shownCount_ = shownSlots_.size();
     return totals;
 }
 

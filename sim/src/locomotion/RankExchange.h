@@ -62,6 +62,12 @@ public:
     bool shown(std::uint32_t slot) const { return present_.empty() || present_[slot] == 2; }
     /// Whether every walker may be seen (no view left any out).
     bool everyoneShown() const { return present_.empty(); }
+    /// The walkers that may be seen on rank 0 this step, in increasing order of slot, or
+    /// std::nullopt when no view left any out.
+    std::optional<std::span<const std::uint32_t>> shownSlots() const {
+        if (present_.empty()) return std::nullopt;
+        return std::span<const std::uint32_t>(shownSlots_);
+    }
     /// Walkers known on rank 0 this step, or `all` when no view left any out.
     std::size_t presentCount(std::size_t all) const { return present_.empty() ? all : presentCount_; }
     /// Walkers that may be seen on rank 0 this step, or `all` when no view left any out.
@@ -83,6 +89,7 @@ private:
     // someone who may be seen), 2 its state and it may be seen (empty: every walker, seen).
     std::vector<std::uint8_t> present_;
     std::size_t presentCount_ = 0, shownCount_ = 0;
+    std::vector<std::uint32_t> shownSlots_;  // rank 0, with a view: the slots with present_ 2, increasing
     std::vector<std::uint8_t> held_;  // on the other ranks: what rank 0 holds of each walker sent
 };
 

@@ -7,6 +7,7 @@
 // for different slots from several threads at once: they must touch only their slot's state.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "throng/actors/RootPose.h"
@@ -74,6 +75,13 @@ public:
         (void)slots, (void)present;
         return true;
     }
+    /// The slots present this step (those presence() would call present), in increasing order,
+    /// when this behaviour knows them as a list and most of its actors are absent (the walkers near
+    /// the view, on the rank of a distributed run that draws); std::nullopt (the default) when every
+    /// actor must be asked. A crowd one of whose behaviours lists its slots visits only the listed
+    /// actors, those of the behaviours that list none, and those it showed last frame: phase 1 and
+    /// placement then cost what the process shows, not what it holds.
+    virtual std::optional<std::span<const std::uint32_t>> presentSlots() const { return std::nullopt; }
     /// Whether this process holds actor `slot`'s state of the last step, absent or not: an absent
     /// actor that someone present may look at is known. Default true.
     virtual bool known(std::uint32_t slot) const { (void)slot; return true; }

@@ -128,6 +128,14 @@ public:
                 std::uint32_t slot, const ActorLook& look = {});
     /// Number of actors.
     std::size_t size() const { return state_.tmpl.size(); }
+    /// Actors held by a node of a scene (ActorClass other than NotInScene), kept as nodes take and
+    /// release them.
+    std::size_t actorsInScene() const { return inScene_; }
+    /// The behaviours driving the actors, in order of their first actor.
+    std::span<const std::shared_ptr<Behaviour>> behaviours() const { return behaviours_; }
+    /// The actor of each slot of behaviours()[b] (kNoActor where no actor drives that slot), in
+    /// slot order.
+    std::span<const ActorId> actorsBySlot(std::size_t b) const { return actorsBySlot_[b]; }
 
     /// A node standing for actor `id`, to put in a scenegraph. Throws std::invalid_argument if the
     /// id is out of range or the actor already belongs to a node.
@@ -193,6 +201,8 @@ private:
     TraditionalWorkspace traditional_;
     std::vector<std::shared_ptr<const ActorTemplate>> templates_;
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
+    std::vector<std::vector<ActorId>> actorsBySlot_;  // per behaviour, per slot: its actor
+    std::size_t inScene_ = 0;                         // actors with an owner
     std::vector<Node*> nodes_;
     std::unordered_map<const Node*, std::size_t> nodeSlot_;  // where each node is in nodes_ (release in O(1))
     double time_ = 0.0;

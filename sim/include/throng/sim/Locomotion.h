@@ -200,6 +200,7 @@ public:
     bool posesFromTemplateClips() const override { return true; }
     bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override;
     bool known(std::uint32_t slot) const override;
+    std::optional<std::span<const std::uint32_t>> presentSlots() const override;
     double poseMargin(std::uint32_t slot) const override;
     double clipTime(std::uint32_t slot, double time) const override;
     int mainClip(std::uint32_t slot) const override { return actors_[slot].walkClip; }
