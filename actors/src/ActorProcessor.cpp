@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "cascade/CascadeFrame.h"
 #include "throng/actors/cascade/BehavioursJob.h"
@@ -130,6 +131,18 @@ void ActorProcessor::setKeyPoseDistance(double distance, double hysteresis) {
     keyPoseDistance_ = distance;
     keyPoseHysteresis_ = hysteresis;
     if (distance == 0.0) keyPoseTier_.clear();
+}
+
+void ActorProcessor::setTiers(ActorId id, ActorTiers tiers) {
+    if (id >= crowd_.size())
+        throw std::invalid_argument("ActorProcessor::setTiers: actor " + std::to_string(id) + " does not exist (" +
+                                    std::to_string(crowd_.size()) + " actors)");
+    if (tiers.impostor > 1 || tiers.keyPose > 1) throw std::invalid_argument("ActorProcessor::setTiers: a tier is 0 or 1");
+    // Sized as CULL 2 sizes them (every actor), so that the job finds them as it left them.
+    if (impostorTier_.size() < crowd_.size()) impostorTier_.resize(crowd_.size(), 0);
+    if (keyPoseTier_.size() < crowd_.size()) keyPoseTier_.resize(crowd_.size(), 0);
+    impostorTier_[id] = tiers.impostor;
+    keyPoseTier_[id] = tiers.keyPose;
 }
 
 void ActorProcessor::setKeyPoseCache(std::shared_ptr<KeyPoseCache> cache) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <barrier>
 #include <cmath>
 #include <memory>
@@ -148,21 +149,32 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
         auto whole = world(true);
         std::vector<std::unique_ptr<World>> parts;
         for (int p = 0; p < processes; ++p) parts.push_back(world(p == 0));
-        // Process p holds the walkers starting in stripe p of the ground (x), whatever group they are in.
-        for (int p = 0; p < processes; ++p) {
-            parts[std::size_t(p)]->walkers->here.assign(kWalkers, 0);
+        // Process p holds the walkers standing in stripe p of the ground (x) at the frame's time,
+        // whatever group they are in: walkers crossing a stripe's border change hands (as between
+        // ranks), their tiers handed with them.
+        std::vector<int> owner(kWalkers, -1);
+        std::size_t handedOver = 0, handedAsImpostors = 0;
+        auto share = [&](double time) {
+            for (auto& part : parts) part->walkers->here.assign(kWalkers, 0);
             for (std::size_t i = 0; i < kWalkers; ++i) {
-                const double x = whole->walkers->referencePoint(std::uint32_t(i), FrameContext{}, nullptr)[3].x;
-                const int stripe = std::min(processes - 1, int((x / kExtent + 0.5) * processes));
-                parts[std::size_t(p)]->walkers->here[i] = stripe == p;
+                const double x = whole->walkers->referencePoint(std::uint32_t(i), FrameContext{time, 0.0, 0, nullptr}, nullptr)[3].x;
+                const int stripe = std::clamp(int((x / kExtent + 0.5) * processes), 0, processes - 1);
+                parts[std::size_t(stripe)]->walkers->here[i] = 1;
+                if (owner[i] >= 0 && owner[i] != stripe) {
+                    const auto tiers = parts[std::size_t(owner[i])]->processor->tiersOf(ActorId(i));
+                    parts[std::size_t(stripe)]->processor->setTiers(ActorId(i), tiers);
+                    ++handedOver, handedAsImpostors += tiers.impostor;
+                }
+                owner[i] = stripe;
             }
-        }
+        };
         DrawRecordMerger merger;
         std::uint64_t impostorItems = 0, occluded = 0;
         for (int f = 0; f < 24; ++f) {
             SCOPED_TRACE("frame " + std::to_string(f));
             const Camera camera = cameraAt(f);
-            const double time = 0.1 * f;
+            const double time = 0.8 * f;
+            share(time);
             const ActorFrameStatistics one = whole->processor->processFrame(*whole->root, camera, time);
             std::vector<std::vector<std::byte>> bytes(static_cast<std::size_t>(processes));
             ActorFrameStatistics sum;
@@ -208,6 +220,7 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
             occluded += one.occludedRefpoint + one.occludedSklsroot;
         }
         EXPECT_GT(impostorItems, 100u) << "the frames cover impostors";
+        EXPECT_GT(handedAsImpostors, 3u) << "the frames cover walkers handed over as impostors (" << handedOver << " handed over)";
         EXPECT_GT(occluded, 10u) << "the frames cover occlusion";
     }
 }
@@ -348,4 +361,23 @@ TEST(CascadeAcrossProcesses, KeyPoseCachesSettledOverEveryProcessHoldWhatOneProc
         EXPECT_GT(cached, 100u) << "the frames cover actors drawn from the cache";
         EXPECT_GT(missed, 20u) << "the frames cover actors whose poses did not fit";
     }
+}
+
+// An actor's tiers read back as the frame left them and as set; an actor or a tier that cannot be
+// is refused.
+TEST(CascadeAcrossProcesses, TiersReadBackAndBadOnesAreRefused) {
+    auto w = world(false);
+    Camera camera = cameraAt(0);
+    w->processor->processFrame(*w->root, camera, 0.0);
+    std::size_t impostors = 0;
+    for (ActorId id = 0; id < kWalkers; ++id) {
+        EXPECT_EQ(w->processor->tiersOf(id).impostor, w->processor->drawnAsImpostor(id) ? 1 : 0) << "actor " << id;
+        impostors += w->processor->drawnAsImpostor(id);
+    }
+    EXPECT_GT(impostors, 0u);
+    w->processor->setTiers(3, {1, 0});
+    EXPECT_EQ(w->processor->tiersOf(3), (ActorProcessor::ActorTiers{1, 0}));
+    EXPECT_THROW(w->processor->setTiers(ActorId(kWalkers), {}), std::invalid_argument);
+    EXPECT_THROW(w->processor->setTiers(0, {2, 0}), std::invalid_argument);
+    EXPECT_EQ(w->processor->tiersOf(ActorId(kWalkers + 5)), ActorProcessor::ActorTiers{}) << "beyond the crowd: none";
 }

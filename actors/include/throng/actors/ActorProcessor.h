@@ -86,6 +86,23 @@ public:
             if (t == &tmpl) return impostor.get();
         return nullptr;
     }
+    /// What this processor keeps of one actor between frames: the side of each hysteresis band it
+    /// was last on (impostor, key-pose cache).
+    struct ActorTiers {
+        std::uint8_t impostor = 0;  ///< 1 while drawn as an impostor
+        std::uint8_t keyPose = 0;   ///< 1 while in the key-pose band
+        /// Both equal.
+        bool operator==(const ActorTiers&) const = default;
+    };
+    /// Actor `id`'s tiers as the last frame left them (zeros for an actor never shown). A process
+    /// that takes an actor over from another (ranks, as walkers cross between them) sets them
+    /// there (setTiers), so that the actor crosses a band's threshold where one process would.
+    ActorTiers tiersOf(ActorId id) const {
+        return {id < impostorTier_.size() ? impostorTier_[id] : std::uint8_t{0}, id < keyPoseTier_.size() ? keyPoseTier_[id] : std::uint8_t{0}};
+    }
+    /// Sets actor `id`'s tiers (see tiersOf). Throws std::invalid_argument for an id the crowd lacks
+    /// or a tier other than 0 or 1.
+    void setTiers(ActorId id, ActorTiers tiers);
     /// Whether actor `id` was drawn as an impostor in the last frame.
     bool drawnAsImpostor(ActorId id) const { return id < impostorTier_.size() && impostorTier_[id] != 0; }
     /// Key-pose caches (seed 004): an actor nearer than the impostor distance but beyond `distance`
