@@ -1,6 +1,6 @@
 # The fuzzers' two steps, run by CTest:
 # - MODE=build: configures a separate build in FUZZ_DIR/build with clang, every target compiled
-#   with -fsanitize=address,undefined,fuzzer-no-link, and builds the three fuzz targets;
+#   with -fsanitize=address,undefined,fuzzer-no-link, and builds the four fuzz targets;
 #   cmake -DMODE=build -DSOURCE_DIR= -DFUZZ_DIR= -DCC= -DCXX= -DASSETS= [-DGENERATOR=] -P RunFuzz.cmake
 # - MODE=run: runs fuzzer FUZZER for SECONDS seconds from the committed corpus CORPUS (read-only
 #   seeds), the shared assets matching ASSET_GLOB (';'-separated, relative to ASSETS; used in place,
@@ -35,7 +35,7 @@ if(MODE STREQUAL "build")
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "configuring the fuzz build failed")
   endif()
-  execute_process(COMMAND ${CMAKE_COMMAND} --build ${FUZZ_DIR}/build --target fuzz_gltf fuzz_glb_startup fuzz_scene RESULT_VARIABLE rc)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${FUZZ_DIR}/build --target fuzz_gltf fuzz_glb_startup fuzz_scene fuzz_messages RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "building the fuzzers failed")
   endif()
