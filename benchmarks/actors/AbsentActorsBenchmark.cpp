@@ -31,6 +31,7 @@
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/ZOrder.h"
+#include "throng/testkit/TownSpread.h"
 
 using namespace throng;
 
@@ -64,17 +65,7 @@ struct Walkers {
 std::vector<KeyframeBehaviour::Actor> spread(std::size_t actors, double extent, bool zOrdered) {
     static const auto humanoid = makeSeedHumanoid();
     std::mt19937_64 rng(1);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<KeyframeBehaviour::Actor> all(actors);
-    for (KeyframeBehaviour::Actor& a : all) {
-        a.tmpl = humanoid;
-        a.clip = std::max(humanoid->findClip("walk"), 0);
-        a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
-        a.heading = 6.283 * u(rng);
-        a.pathRadius = 3.0 + 10.0 * u(rng);
-        a.pathSpeed = 1.2 + 0.4 * u(rng);
-        a.timeOffset = 2.0 * u(rng);
-    }
+    std::vector<KeyframeBehaviour::Actor> all = testkit::circleWalkers(humanoid, std::max(humanoid->findClip("walk"), 0), actors, extent, rng);
     if (zOrdered)
         std::stable_sort(all.begin(), all.end(), [](const KeyframeBehaviour::Actor& p, const KeyframeBehaviour::Actor& q) {
             return zOrder(p.position.x, p.position.z, 16.0) < zOrder(q.position.x, q.position.z, 16.0);

@@ -29,6 +29,7 @@
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/Occluder.h"
 #include "throng/testkit/ActorTestScenes.h"
+#include "throng/testkit/TownSpread.h"
 
 using namespace throng;
 
@@ -103,19 +104,10 @@ std::unique_ptr<World> world(bool draws) {
                                                      AxisBox{glm::vec3(-31, -1, -2), glm::vec3(31, 13, 2)}));
     }
     std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<ActorId> ids[2];
-    for (std::size_t i = 0; i < kWalkers; ++i) {
-        KeyframeBehaviour::Actor a;
-        a.tmpl = humanoid;
-        a.clip = std::max(humanoid->findClip("walk"), 0);
-        a.position = Vec3(kExtent * (u(rng) - 0.5), 0.0, kExtent * (u(rng) - 0.5));
-        a.heading = 6.283 * u(rng);
-        a.pathRadius = 2.0 + 6.0 * u(rng);
-        a.pathSpeed = 1.0 + 0.5 * u(rng);
-        a.timeOffset = 2.0 * u(rng);
-        ids[i % 2].push_back(w->crowd.add(humanoid, w->walkers, w->walkers->addActor(a)));
-    }
+    std::size_t i = 0;
+    for (const KeyframeBehaviour::Actor& a : testkit::circleWalkers(humanoid, std::max(humanoid->findClip("walk"), 0), kWalkers, kExtent, rng))
+        ids[i++ % 2].push_back(w->crowd.add(humanoid, w->walkers, w->walkers->addActor(a)));
     for (auto& members : ids) {
         auto group = w->crowd.makeGroupNode(members);
         group->setRoamingBound(BoundingSphere(Vec3(0.0), kExtent));

@@ -11,6 +11,22 @@
 
 namespace throng::testkit {
 
+std::vector<KeyframeBehaviour::Actor> circleWalkers(std::shared_ptr<const ActorTemplate> tmpl, int clip, std::size_t count, double extent,
+                                                    std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<KeyframeBehaviour::Actor> walkers(count);
+    for (KeyframeBehaviour::Actor& a : walkers) {
+        a.tmpl = tmpl;
+        a.clip = clip;
+        a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
+        a.heading = 6.283 * u(rng);
+        a.pathRadius = 3.0 + 10.0 * u(rng);
+        a.pathSpeed = 1.2 + 0.4 * u(rng);
+        a.timeOffset = 2.0 * u(rng);
+    }
+    return walkers;
+}
+
 TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, double blockSize, std::uint64_t seed,
                            std::shared_ptr<const ActorTemplate> figure) {
     TownSpread town;
@@ -20,20 +36,10 @@ TownSpread buildTownSpread(Crowd& crowd, std::size_t actors, double extent, doub
     const int walkClip = humanoid->findClip("walk");
     auto walk = std::make_shared<KeyframeBehaviour>();
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     // Actors of one block get consecutive ids, so each group walks its own stretch of the crowd's arrays.
     std::map<std::pair<int, int>, std::vector<KeyframeBehaviour::Actor>> blocks;
-    for (std::size_t i = 0; i < actors; ++i) {
-        KeyframeBehaviour::Actor a;
-        a.tmpl = humanoid;
-        a.clip = std::max(walkClip, 0);
-        a.position = Vec3(extent * (u(rng) - 0.5), 0.0, extent * (u(rng) - 0.5));
-        a.heading = 6.283 * u(rng);
-        a.pathRadius = 3.0 + 10.0 * u(rng);
-        a.pathSpeed = 1.2 + 0.4 * u(rng);
-        a.timeOffset = 2.0 * u(rng);
+    for (const KeyframeBehaviour::Actor& a : circleWalkers(humanoid, std::max(walkClip, 0), actors, extent, rng))
         blocks[{int(std::floor(a.position.x / blockSize)), int(std::floor(a.position.z / blockSize))}].push_back(a);
-    }
     for (auto& [key, members] : blocks) {
         std::vector<ActorId> ids;
         for (const KeyframeBehaviour::Actor& a : members) ids.push_back(crowd.add(humanoid, walk, walk->addActor(a)));
