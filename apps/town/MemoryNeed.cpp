@@ -13,8 +13,10 @@
 namespace throng::town {
 namespace {
 
-constexpr std::uint64_t kFixedBytes = 300ull << 20;  // town, templates, GL and libraries at 10k actors, less their actors
-constexpr std::uint64_t kBytesPerActor = 12ull << 10;
+// Fitted above the peaks of the default scene's runs (10k: 436 MiB, 100k: 895, 300k: 1,767, 1M:
+// 4,660): town, templates, GL and libraries, then each actor.
+constexpr std::uint64_t kFixedBytes = 450ull << 20;
+constexpr std::uint64_t kBytesPerActor = 5ull << 10;
 
 std::int64_t totalActors(const sim::SceneDescription& scene) {
     std::int64_t n = 0;
@@ -73,7 +75,7 @@ std::optional<std::string> memoryProblem(const sim::SceneDescription& scene, con
     const std::uint64_t need = estimatedPeakBytes(scene);
     if (need <= limit.bytes) return std::nullopt;
     const std::uint64_t fit = limit.bytes > kFixedBytes ? (limit.bytes - kFixedBytes) / kBytesPerActor : 0;
-    return std::to_string(totalActors(scene)) + " actors need about " + gib(need) + " of memory (300 MiB and 12 KiB per actor, as measured), but " +
+    return std::to_string(totalActors(scene)) + " actors need about " + gib(need) + " of memory (450 MiB and 5 KiB per actor, as measured), but " +
            limit.what + " leaves " + gib(limit.bytes) + ": about " + std::to_string(fit) + " actors fit (--actors)";
 }
 

@@ -12,7 +12,7 @@
 namespace throng::town {
 
 /// Peak resident memory a run of `scene` needs, estimated from measured runs of the default scene
-/// (`throng-town --actors N --frames 2`, 10k to 100k actors): 300 MiB plus 12 KiB per actor.
+/// (`throng-town --actors N --frames 2`, 10k to 1M actors): 450 MiB plus 5 KiB per actor.
 std::uint64_t estimatedPeakBytes(const sim::SceneDescription& scene);
 
 /// The memory this process may use and what sets it.
