@@ -35,16 +35,7 @@ using namespace throng;
 
 namespace {
 
-// Walkers of which a process holds some (`here`, per slot; empty: all).
-class OwnWalkers : public KeyframeBehaviour {
-public:
-    std::vector<std::uint8_t> here;
-    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
-        if (here.empty()) return true;
-        for (std::size_t k = 0; k < slots.size(); ++k) present[k] = here[slots[k]];
-        return false;
-    }
-};
+using OwnWalkers = testkit::KeyframeShare;
 
 // Compares `merged` with `expected` item by item; numbers drawables, nodes and key-pose sources
 // by `mergedRefs` and `expectedRefs` (each process has its own). Returns the items compared.
@@ -277,15 +268,7 @@ struct Bars {
 std::unique_ptr<Bars> bars(KeyPoseMode mode, std::uint32_t rows) {
     static const auto tmpl = testkit::skinnedBar();
     auto b = std::make_unique<Bars>();
-    std::vector<ActorId> ids;
-    for (int i = 0; i < 240; ++i) {
-        KeyframeBehaviour::Actor a;
-        a.tmpl = tmpl;
-        a.position = Vec3(1.5 * (i % 16) - 12.0, 0.0, 4.0 + 1.5 * (i / 16));
-        a.timeOffset = 0.037 * ((i * 7) % 53);
-        ids.push_back(b->crowd.add(tmpl, b->behaviour, b->behaviour->addActor(a)));
-    }
-    b->root->addChild(b->crowd.makeGroupNode(ids));
+    b->root->addChild(testkit::barGrid(b->crowd, b->behaviour, tmpl, 240));
     b->processor = std::make_unique<ActorProcessor>(b->crowd);
     KeyPoseCacheSettings settings;
     settings.rows = rows;

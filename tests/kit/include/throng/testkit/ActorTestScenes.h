@@ -5,6 +5,7 @@
 #include <numbers>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -133,6 +134,34 @@ inline std::shared_ptr<const ActorTemplate> skinnedBar() {
     ActorTemplateBuilder b = skinnedBarBuilder("bar");
     b.addClip(barBendClip());
     return b.build();
+}
+
+/// Key-framed actors of which this process holds those marked in `here` (per slot; empty: every
+/// one), as a rank holds its share of a crowd (Behaviour::presence).
+class KeyframeShare : public KeyframeBehaviour {
+public:
+    std::vector<std::uint8_t> here;  ///< per slot, 1 when held here
+    bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
+        if (here.empty()) return true;
+        for (std::size_t k = 0; k < slots.size(); ++k) present[k] = here[slots[k]];
+        return false;
+    }
+};
+
+/// `count` actors of `tmpl` (skinned bars: skinnedBar) on a grid in front of the origin along +Z
+/// (16 a row, 1.5 m apart, from 4 m), each at its own clip time, driven by `behaviour`, in one
+/// group of `crowd`.
+inline std::shared_ptr<ActorGroup> barGrid(Crowd& crowd, const std::shared_ptr<KeyframeBehaviour>& behaviour,
+                                           const std::shared_ptr<const ActorTemplate>& tmpl, int count) {
+    std::vector<ActorId> ids;
+    for (int i = 0; i < count; ++i) {
+        KeyframeBehaviour::Actor a;
+        a.tmpl = tmpl;
+        a.position = Vec3(1.5 * (i % 16) - 12.0, 0.0, 4.0 + 1.5 * (i / 16));
+        a.timeOffset = 0.037 * ((i * 7) % 53);
+        ids.push_back(crowd.add(tmpl, behaviour, behaviour->addActor(a)));
+    }
+    return crowd.makeGroupNode(ids);
 }
 
 /// Adds to `crowd` an actor of `tmpl` playing its keyframes through `behaviour`; returns its id.
