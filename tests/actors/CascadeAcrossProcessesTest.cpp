@@ -29,6 +29,7 @@
 #include "throng/scenegraph/Group.h"
 #include "throng/scenegraph/Occluder.h"
 #include "throng/testkit/ActorTestScenes.h"
+#include "throng/testkit/CachedBars.h"
 #include "throng/testkit/TownSpread.h"
 
 using namespace throng;
@@ -256,28 +257,9 @@ private:
     KeyPoseSelector selector_;
 };
 
-// Skinned bars standing on a grid in front of the camera, each at its own clip time, in one group.
-struct Bars {
-    Crowd crowd;
-    std::shared_ptr<OwnWalkers> behaviour = std::make_shared<OwnWalkers>();
-    std::shared_ptr<Group> root = std::make_shared<Group>();
-    std::unique_ptr<ActorProcessor> processor;
-    DrawReferences refs;
-};
+using Bars = testkit::CachedBars;
 
-std::unique_ptr<Bars> bars(KeyPoseMode mode, std::uint32_t rows) {
-    static const auto tmpl = testkit::skinnedBar();
-    auto b = std::make_unique<Bars>();
-    b->root->addChild(testkit::barGrid(b->crowd, b->behaviour, tmpl, 240));
-    b->processor = std::make_unique<ActorProcessor>(b->crowd);
-    KeyPoseCacheSettings settings;
-    settings.rows = rows;
-    settings.mode = mode;
-    b->processor->setKeyPoseCache(std::make_shared<KeyPoseCache>(tmpl, settings));
-    b->processor->setKeyPoseDistance(10.0, 1.0);
-    b->refs = actorDrawReferences(b->crowd, *b->root, *b->processor);
-    return b;
-}
+std::unique_ptr<Bars> bars(KeyPoseMode mode, std::uint32_t rows) { return testkit::cachedBars(240, rows, mode); }
 
 }  // namespace
 

@@ -545,15 +545,10 @@ namespace {
 
 // Walkers of which those in `here` are present, listing their present slots (Behaviour::
 // presentSlots) when `lists`: a crowd then visits only those; otherwise every actor is asked.
-class ListedWalkers : public KeyframeBehaviour {
+class ListedWalkers : public KeyframeShare {
 public:
     bool lists = true;
-    std::vector<std::uint8_t> here;
     std::vector<std::uint32_t> slots;  // the present ones, increasing
-    bool presence(std::span<const std::uint32_t> s, std::span<std::uint8_t> present) const override {
-        for (std::size_t k = 0; k < s.size(); ++k) present[k] = here[s[k]];
-        return false;
-    }
     std::optional<std::span<const std::uint32_t>> presentSlots() const override {
         if (!lists) return std::nullopt;
         return std::span<const std::uint32_t>(slots);

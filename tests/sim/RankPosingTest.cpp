@@ -10,39 +10,18 @@
 #include <string>
 #include <vector>
 
-#include "throng/actors/ActorDrawReferences.h"
 #include "throng/actors/ActorProcessor.h"
-#include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/Camera.h"
 #include "throng/scenegraph/DrawRecords.h"
 #include "throng/sim/RankKeyPoseArbiter.h"
 #include "throng/sim/Ranks.h"
-#include "throng/testkit/ActorTestScenes.h"
+#include "throng/testkit/CachedBars.h"
 
 namespace throng::sim {
 namespace {
 
 // Skinned bars in one group with a key-pose cache too small for every pose wanted.
-struct Bars {
-    Crowd crowd;
-    std::shared_ptr<testkit::KeyframeShare> behaviour = std::make_shared<testkit::KeyframeShare>();
-    std::shared_ptr<Group> root = std::make_shared<Group>();
-    std::unique_ptr<ActorProcessor> processor;
-    DrawReferences refs;
-};
-
-std::unique_ptr<Bars> bars() {
-    static const auto tmpl = testkit::skinnedBar();
-    auto b = std::make_unique<Bars>();
-    b->root->addChild(testkit::barGrid(b->crowd, b->behaviour, tmpl, 160));
-    b->processor = std::make_unique<ActorProcessor>(b->crowd);
-    KeyPoseCacheSettings settings;
-    settings.rows = 6;
-    b->processor->setKeyPoseCache(std::make_shared<KeyPoseCache>(tmpl, settings));
-    b->processor->setKeyPoseDistance(10.0, 1.0);
-    b->refs = actorDrawReferences(b->crowd, *b->root, *b->processor);
-    return b;
-}
+std::unique_ptr<testkit::CachedBars> bars() { return testkit::cachedBars(160, 6); }
 
 }  // namespace
 
