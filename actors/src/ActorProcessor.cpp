@@ -257,6 +257,8 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         f.occlusion = &occlusion_->buffer();
     }
     stats_.occlusionRested = occlusion_ && occlusion_->statistics().rested;
+    occlusionBuilt_ = f.occlusion && !sharedOcclusion_;
+    if (beforeCull_) beforeCull_(f.occlusion);
     // Generic CULL, which meets actor nodes after the generic groups above them (cull() below
     // gathers the candidates); phase 2: CULL 1, then occlusion of the survivors.
     timed(stats_.cullMs, [&] {
@@ -307,10 +309,14 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         cascade::DrawListJob{&s, &f.frustum, time, &f.settings, f.candidates, f.survivors, &f.decisions, &f.posed, &f.visibility}
             .run(f.loop);
     });
-    if (f.occlusion && !sharedOcclusion_)
-        occlusion_->settle(stats_.occludedWithGroup + stats_.occludedRefpoint + stats_.occludedSklsroot + stats_.nodesOccluded,
-                           stats_.occlusionTests);
+    if (occlusionBuilt_ && !occlusionByShares_) settleOcclusion(stats_);
     stats_.fmultTotal = c ? counter.totalFmult() : 0;
+}
+
+void ActorProcessor::settleOcclusion(const ActorFrameStatistics& whole) {
+    if (!occlusionBuilt_) return;
+    occlusion_->settle(whole.occludedWithGroup + whole.occludedRefpoint + whole.occludedSklsroot + whole.nodesOccluded, whole.occlusionTests);
+    occlusionBuilt_ = false;  // once per frame built
 }
 
 BoundingSphere ActorProcessor::bound(Node& node, std::span<const ActorId> ids, MatrixBoundsVisitor& visitor,

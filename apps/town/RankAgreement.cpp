@@ -26,6 +26,9 @@ WorldKey worldKey(const TownOptions& o) {
     key.seedGiven = o.seed.has_value();
     key.seed = o.seed.value_or(0);
     key.frames = o.frames;
+    key.poseOnRanks = o.poseOnRanks;
+    key.looks = o.looks;
+    key.faces = o.faces;
     return key;
 }
 
@@ -41,9 +44,15 @@ std::optional<std::string> disagreement(const WorldKey& mine, const WorldKey& ro
         add("--seed " + (mine.seedGiven ? std::to_string(mine.seed) : std::string("not given")) + " here, " +
             (root.seedGiven ? std::to_string(root.seed) : std::string("not given")) + " on rank 0");
     if (mine.frames != root.frames) add("--frames " + std::to_string(mine.frames) + " here, " + std::to_string(root.frames) + " on rank 0");
+    auto flag = [&](const char* name, std::uint8_t here, std::uint8_t there) {
+        if (here != there) add(std::string(name) + (here ? " on" : " off") + " here, " + (there ? "on" : "off") + " on rank 0");
+    };
+    flag("--pose-on-ranks", mine.poseOnRanks, root.poseOnRanks);
+    flag("--looks", mine.looks, root.looks);
+    flag("--faces", mine.faces, root.faces);
     if (what.empty()) return std::nullopt;
     return "this rank would build or step another world than rank 0: " + what +
-           ". Every rank must read the same scene file with the same --actors, --seed and --frames";
+           ". Every rank must read the same scene file with the same --actors, --seed, --frames, --pose-on-ranks, --looks and --faces";
 }
 
 }  // namespace throng::town

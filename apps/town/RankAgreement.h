@@ -1,7 +1,7 @@
 #pragma once
 // Whether the ranks of a throng-town run would build and step the same world: each reads its own
-// scene file and command line (on two hosts, two copies), and a rank whose scene, --actors, --seed
-// or --frames differ from rank 0's would step other walkers, or stop at another frame, without
+// scene file and command line (on two hosts, two copies), and a rank whose scene, --actors, --seed,
+// --frames, --pose-on-ranks, --looks or --faces differ from rank 0's would step other walkers, or stop at another frame, without
 // any exchange noticing. Rank 0 sends its WorldKey before anything is built; a rank that differs
 // names what differs and stops the run.
 
@@ -21,7 +21,10 @@ struct WorldKey {
     std::uint64_t seed = 0;       ///< --seed, when given
     std::int64_t frames = 0;      ///< --frames: how many steps every rank takes
     std::uint8_t seedGiven = 0;   ///< 1 when --seed was given
-    std::uint8_t padding[7] = {}; ///< zero, so that equal keys have equal bytes
+    std::uint8_t poseOnRanks = 0; ///< --pose-on-ranks: every rank poses its walkers (and exchanges more)
+    std::uint8_t looks = 0;       ///< --looks: what a posing rank's walkers wear
+    std::uint8_t faces = 0;       ///< --faces: whether a posing rank's walkers have faces
+    std::uint8_t padding[4] = {}; ///< zero, so that equal keys have equal bytes
 };
 
 /// The key of the run `o` describes (the scene file read whole). Throws std::runtime_error if the

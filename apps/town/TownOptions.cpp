@@ -109,6 +109,9 @@ void declare(support::CommandLine& cl, TownOptions& o) {
                    "under mpirun: the walkers the other ranks send rank 0 each step: view (those that can be seen or looked at) or all")
         ->check(oneOf({"view", "all"}))
         ->capture_default_str();
+    app.add_flag("--pose-on-ranks", o.poseOnRanks,
+                 "under mpirun: every rank culls and poses the walkers it steps and sends rank 0 what to draw, not the walkers "
+                 "(actor processing, --gather view, no --vtk)");
     app.add_option("--vtk", o.vtk, "write crowd data for ParaView here: actors every K steps, town, trajectories, crowd.pvd")
         ->type_name("DIR")
         ->check(folderToWrite());
@@ -140,6 +143,15 @@ TownOptions parseTownOptions(int argc, char** argv, const std::string& defaultSc
         [&](support::CommandLine& cl) {
             o.framesGiven = cl.app().count("--frames") > 0;
             if (o.gl == "window" && o.headless) throw std::invalid_argument("--gl: 'window' contradicts --headless");
+            // Ranks posing their own walkers send rank 0 only what can be seen, drawn as actor processing draws it.
+            if (o.poseOnRanks && o.processing == "traditional")
+                throw std::invalid_argument("--pose-on-ranks: traditional processing reads every actor's state before culling; use --processing actor");
+            if (o.poseOnRanks && o.gather == "all")
+                throw std::invalid_argument("--pose-on-ranks: ranks posing their own walkers send rank 0 none: --gather all contradicts it");
+            if (o.poseOnRanks && !o.vtk.empty())
+                throw std::invalid_argument("--pose-on-ranks: --vtk records every walker on rank 0, which then holds none of the other ranks'");
+            if (o.poseOnRanks && o.gl == "window")
+                throw std::invalid_argument("--pose-on-ranks: ranks posing their own walkers follow the camera path, headless; --gl window contradicts it");
             // CLI11 checks the values given; the default folder is checked too, before any work.
             std::string out = o.out;
             if (cl.app().count("--out") == 0)

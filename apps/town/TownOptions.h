@@ -34,6 +34,7 @@ struct TownOptions {
     std::string cellWarp = "proxy";         ///< how the CPU makes dropped key-frames: proxy (surface proxy) or lines
     double rankTimeout = 120.0;             ///< under mpirun: seconds a rank waits for another before the run stops
     std::string gather = "view";            ///< under mpirun: walkers rank 0 gathers, view (those near it) or all
+    bool poseOnRanks = false;               ///< under mpirun: every rank poses the walkers it steps, rank 0 merges what they draw
     double frameBudget = 0.0;               ///< APP+CULL+DRAW a frame should stay under, ms (0: no allocator)
     std::string frameBudgetLadder;          ///< the allocator's ladder (the common accuracy CSV)
     std::string vtk;                        ///< folder for crowd data for ParaView (VTK files), empty: none

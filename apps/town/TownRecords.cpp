@@ -27,12 +27,15 @@ const char* kBudgetCsvHeader = ",budget_ms,app_cull_draw_ms,over_budget,budget_r
 }  // namespace
 
 // Distributed, each rank's share of the step follows (rank0_agents, ..., rank1_agents, ...).
-std::string csvHeader(int ranks, bool budget) {
+std::string csvHeader(int ranks, bool budget, bool posing) {
     std::string header = kCsvHeader;
     if (budget) header += kBudgetCsvHeader;
     for (int r = 0; r < ranks; ++r)
         for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "sent", "state_bytes", "work_ms", "wait_ms", "peak_bytes"})
             header += ",rank" + std::to_string(r) + "_" + column;
+    // Posing on the ranks: what each drew, the bytes of its draw records and its APP+CULL.
+    for (int r = 0; posing && r < ranks; ++r)
+        for (const char* column : {"posed_items", "record_bytes", "app_cull_ms"}) header += ",rank" + std::to_string(r) + "_" + column;
     return header + "\n";
 }
 
@@ -70,6 +73,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
           << share.borderBytes << ',' << share.sent << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs << ','
           << share.peakBytes;
+    for (const auto& posed : f.posed) o << ',' << posed.items << ',' << posed.recordBytes << ',' << posed.appCullMs;
     return o.str() + '\n';
 }
 
@@ -85,6 +89,11 @@ void Sums::add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistic
         into.sent += from.sent;
         into.workMs += from.workMs, into.waitMs += from.waitMs;
         into.peakBytes = std::max(into.peakBytes, from.peakBytes);  // a peak, not a sum
+    }
+    posedShares.resize(std::max(posedShares.size(), f.posed.size()));
+    for (std::size_t r = 0; r < f.posed.size(); ++r) {
+        PreparedFrame::PosedShare& into = posedShares[r];
+        into.items += f.posed[r].items, into.recordBytes += f.posed[r].recordBytes, into.appCullMs += f.posed[r].appCullMs;
     }
     const ActorFrameStatistics& s = f.stats;
     app += s.appCullMs();
@@ -144,6 +153,10 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
                                     {"handedToRanks", double(r.handedToRanks) / n}, {"borderBytes", double(r.borderBytes) / n},
                                     {"sent", double(r.sent) / n}, {"stateBytes", double(r.stateBytes) / n}, {"workMs", r.workMs / n}, {"waitMs", r.waitMs / n},
                                     {"peakBytes", r.peakBytes}});  // the largest resident memory any step reported
+    for (std::size_t r = 0; r < sums.posedShares.size() && r < j["meanPerRank"].size(); ++r) {  // --pose-on-ranks: each rank's posing
+        const PreparedFrame::PosedShare& p = sums.posedShares[r];
+        j["meanPerRank"][r].update({{"posedItems", double(p.items) / n}, {"recordBytes", double(p.recordBytes) / n}, {"appCullMs", p.appCullMs / n}});
+    }
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.
     j["faces"] = {{"evaluations", sums.faceEvaluations / n}, {"ms", sums.faceMs / n}, {"morphTargetsRead", sums.morphTargetsRead / n},

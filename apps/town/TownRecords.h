@@ -31,9 +31,17 @@ struct PreparedFrame {
     std::uint64_t deferred = 0;        // walkers of far regions that did not step (a declared approximation)
     Camera camera;                     // the camera it was culled for
     ActorFrameStatistics stats;        // APP and CULL
-    const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame)
+    const DrawList* list = nullptr;    // its draw list (the processor keeps it through the next frame, or `merged`)
+    DrawList merged;                   // --pose-on-ranks: rank 0's items of the scene, then every rank's actors
     Image occlusion;                   // its occlusion buffer as a picture, when the window shows it
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // each rank's share of the step, when distributed
+    /// --pose-on-ranks: what one rank posed of the frame.
+    struct PosedShare {
+        std::uint64_t items = 0;        // draw items of its actors
+        std::uint64_t recordBytes = 0;  // bytes of its draw records (rank 0's merged in place, the others' sent)
+        double appCullMs = 0.0;         // its APP and CULL
+    };
+    std::vector<PosedShare> posed;     // --pose-on-ranks: each rank's, indexed by rank
     int rung = -1;                     // --frame-budget: the ladder rung it was processed and drawn with
     std::uint64_t faceEvaluations[3] = {0, 0, 0};  // actors whose expression, blink, phrase was evaluated in its CULL
     double faceMs = 0.0;               // the face layers' time in its CULL (all threads)
@@ -41,8 +49,8 @@ struct PreparedFrame {
 };
 
 /// The header line of stats.csv: the frame's columns, the allocator's with --frame-budget, then each
-/// rank's share of the step when `ranks` > 0.
-std::string csvHeader(int ranks, bool budget);
+/// rank's share of the step when `ranks` > 0 (and of the frame's posing, with `posing`).
+std::string csvHeader(int ranks, bool budget, bool posing = false);
 /// The stats.csv line of frame `f`, drawn in `drawMs` (`frameMs` since the previous frame's end).
 std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const CrowdRenderStatistics& r,
                    const sim::FrameBudgetAllocator* budget);
@@ -55,6 +63,7 @@ struct Sums {
     double posed = 0, nodes = 0, items = 0, primitives = 0, impostors = 0;
     double faceEvaluations = 0, faceMs = 0, morphTargetsRead = 0, captions = 0;
     std::vector<sim::Locomotion::RankStepRecord> ranks;  // distributed: each rank's share, summed
+    std::vector<PreparedFrame::PosedShare> posedShares;  // --pose-on-ranks: each rank's posing, summed
     std::int64_t frames = 0;
     /// Adds frame `f`, drawn in `drawMs` with the renderer's statistics `r`.
     void add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistics& r);

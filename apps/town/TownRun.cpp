@@ -13,6 +13,7 @@
 #include <numbers>
 #include <optional>
 
+#include "RankPosing.h"
 #include "TownOverlay.h"
 #include "throng/render/ContextFactory.h"
 #include "throng/render/GlfwWindowContext.h"
@@ -35,7 +36,8 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     : o_(o), world_(world), ranks_(ranks), budget_(std::move(budget)), recorder_(std::move(recorder)),
       distributed_(sim::Ranks::launchedByMpi()), pipeline_(o.pipeline) {
     std::string why;
-    const bool wantWindow = !o.headless && (o.gl == "auto" || o.gl == "window") && displayAvailable() && ranks.size() == 1;
+    const bool posing = o.poseOnRanks && distributed_;
+    const bool wantWindow = !o.headless && (o.gl == "auto" || o.gl == "window") && displayAvailable() && ranks.size() == 1 && !posing;
     if (!o.headless && ranks.size() > 1) std::fprintf(stderr, "throng-town: %d ranks run headless\n", ranks.size());
     context_ = createContext({.width = o.width, .height = o.height, .window = wantWindow, .title = "Throng town", .api = glApiFromName(o.gl)},
                              &why);
@@ -85,7 +87,7 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
     aspect_ = double(o.width) / double(o.height);
     fs::create_directories(o.out);
     csv_ = std::make_unique<LineFile>(fs::path(o.out) / "stats.csv");
-    csv_->append(csvHeader(distributed_ ? ranks.size() : 0, budget_ != nullptr));
+    csv_->append(csvHeader(distributed_ ? ranks.size() : 0, budget_ != nullptr, o.poseOnRanks && distributed_));
     nextRung_ = budget_ ? budget_->rung() : -1;
     rungFrames_.assign(budget_ ? budget_->ladder().size() : 0, 0);
     caches_ = !processor.keyPoseCaches().empty();
@@ -94,10 +96,15 @@ TownRun::TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks
         for (ActorId id = 0; id < world.crowd().size(); ++id)
             if (world.crowd().state().behaviour[id] == layer.get())
                 faceActors_.push_back({id, layer.get(), world.crowd().state().slot[id]});
+    // Ranks posing their own walkers: rank 0's orders sent from within its CULL, shares merged after.
+    if (posing) posing_ = std::make_unique<PosingRoot>(world, ranks, processor, aspect_);
     start_ = std::chrono::steady_clock::now();
-    // The other ranks wait for rank 0's set-up (impostors, GL) before the first step.
-    if (ranks.size() > 1) ranks.broadcast({}, kStartTag, "start");
+    // The other ranks wait for rank 0's set-up (impostors, GL) before the first step; posing, they
+    // learn with it what rank 0 draws with.
+    if (ranks.size() > 1) ranks.broadcast(posing_ ? posing_->setup() : sim::Bytes{}, kStartTag, "start");
 }
+
+TownRun::~TownRun() = default;
 
 void TownRun::applyRung(int rung) {
     if (rung == appliedRung_) return;
@@ -110,7 +117,7 @@ void TownRun::applyRung(int rung) {
 }
 
 // Step the simulation (unless paused), then APP and CULL for `camera`.
-void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camera, bool step) {
+void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camera, bool step, double cameraTime) {
     f.number = number;
     f.rung = nextRung_;
     if (budget_) applyRung(f.rung);
@@ -132,9 +139,17 @@ void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camer
     }
     f.time = world_.now().time;
     f.camera = camera;
+    if (posing_) posing_->beginFrame(number, cameraTime);
     f.stats = processor_->processFrame(world_.root(), camera, f.time);
     f.list = &processor_->drawList();
-    countFaces(f, camera);
+    const FaceTally::Counts faces = faces_.take(world_);
+    if (posing_) {
+        posing_->finishFrame(f, faces);  // every rank's share: f.list, f.stats and the faces' counts the whole frame's
+    } else {
+        for (int k = 0; k < 3; ++k) f.faceEvaluations[k] = faces.evaluations[k];
+        f.faceMs = 1000.0 * faces.seconds;
+    }
+    placeCaptions(f, camera);
     if (recorder_) try {
         recorder_->record(world_.crowd(), *processor_);
     } catch (const std::exception& e) {
@@ -144,19 +159,8 @@ void TownRun::prepare(PreparedFrame& f, std::int64_t number, const Camera& camer
     f.occlusion = showOcclusion_ && processor_->occlusion() ? occlusionPicture(processor_->occlusion()->buffer(), f.stats.occlusionRested) : Image{};
 }
 
-// The face layers' evaluations and time in this frame's CULL, and the captions of the speakers
-// within the phrase effect's first band.
-void TownRun::countFaces(PreparedFrame& f, const Camera& camera) {
-    double seconds = 0.0;
-    for (const auto& layer : world_.faceLayers()) seconds += layer->flushCounts();
-    const char* effects[3] = {"face", "blink", "phrase"};
-    for (int k = 0; k < 3; ++k) {
-        const std::uint64_t ticks = world_.effects().of(effects[k]).ticks;
-        f.faceEvaluations[k] = ticks - faceTicksSeen_[k];
-        faceTicksSeen_[k] = ticks;
-    }
-    f.faceMs = 1000.0 * (seconds - faceSecondsSeen_);
-    faceSecondsSeen_ = seconds;
+// The captions of the speakers within the phrase effect's first band.
+void TownRun::placeCaptions(PreparedFrame& f, const Camera& camera) {
     f.captions.clear();
     if (faceActors_.empty()) return;
     // Captions for speakers drawn as meshes this frame: near, in view and not occluded.
@@ -228,11 +232,11 @@ void TownRun::runHeadless() {
     auto cameraAt = [&](double time) { return world_.camera().at(time, aspect_); };
     // Frame f's camera follows the path at frame f's time, known before it is stepped.
     const double step = world_.description().step;
-    prepare(prepared_[0], 0, cameraAt(0.0), true);
+    prepare(prepared_[0], 0, cameraAt(0.0), true, 0.0);
     for (std::int64_t f = 0; f < o_.frames; ++f) {
         PreparedFrame& current = prepared_[f % 2];
         PreparedFrame& next = prepared_[(f + 1) % 2];
-        pipeline_.run([&] { if (f + 1 < o_.frames) prepare(next, f + 1, cameraAt(double(f + 1) * step), true); },
+        pipeline_.run([&] { if (f + 1 < o_.frames) prepare(next, f + 1, cameraAt(double(f + 1) * step), true, double(f + 1) * step); },
                       [&] {
                           draw(current, [&] {
                               if (o_.every > 0 && f % o_.every == 0) {  // frame f: its own state, whatever the pipeline

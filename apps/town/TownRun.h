@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "CrowdRecording.h"
+#include "FaceTally.h"
 #include "TownOptions.h"
 #include "TownRecords.h"
 #include "throng/actors/ActorProcessor.h"
@@ -25,6 +26,8 @@
 #include "throng/sim/Simulation.h"
 
 namespace throng::town {
+
+class PosingRoot;
 
 /// Message tag of the start signal rank 0 sends the other ranks when it is ready to step.
 inline constexpr int kStartTag = 1;
@@ -40,6 +43,7 @@ public:
     /// in o.out. `budget` and `recorder` may be null. Throws when the GL or a file cannot be made.
     TownRun(const TownOptions& o, sim::Simulation& world, sim::Ranks& ranks, std::unique_ptr<sim::FrameBudgetAllocator> budget,
             std::unique_ptr<CrowdRecording> recorder);
+    ~TownRun();
     /// Whether the frames go to a window (else headless).
     bool windowed() const { return window_; }
     /// Runs o.frames frames headless: a PNG every o.every frames, a progress bar. Stops after the
@@ -55,7 +59,7 @@ public:
 
 private:
     void applyRung(int rung);
-    void prepare(PreparedFrame& f, std::int64_t number, const Camera& camera, bool step);
+    void prepare(PreparedFrame& f, std::int64_t number, const Camera& camera, bool step, double cameraTime = 0.0);
     void draw(const PreparedFrame& f, const std::function<void()>& beforePresent);
     void allocate();
     double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
@@ -98,11 +102,11 @@ private:
         std::uint32_t slot;
     };
     std::vector<FaceActor> faceActors_;
-    std::vector<char> drawnAsMesh_;  // per actor: 1 has a face, 2 and drawn as a mesh in the frame being counted
+    std::vector<char> drawnAsMesh_;  // per actor: 1 has a face, 2 and drawn as a mesh in the frame being captioned
     std::vector<Vec3> captionAt_;    // per actor: the top of its drawn parts (valid where drawnAsMesh_ is 2)
-    std::uint64_t faceTicksSeen_[3] = {0, 0, 0};
-    double faceSecondsSeen_ = 0.0;
-    void countFaces(PreparedFrame& f, const Camera& camera);
+    FaceTally faces_;
+    std::unique_ptr<PosingRoot> posing_;  // --pose-on-ranks under mpirun
+    void placeCaptions(PreparedFrame& f, const Camera& camera);
 };
 
 }  // namespace throng::town

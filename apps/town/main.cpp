@@ -33,6 +33,8 @@
 #include "CrowdRecording.h"
 #include "MemoryNeed.h"
 #include "RankAgreement.h"
+#include "RankPosing.h"
+#include "RankWait.h"
 #include "TownOptions.h"
 #include "TownRun.h"
 #include "throng/render/ContextFactory.h"
@@ -54,20 +56,9 @@ namespace {
 // " (rank N)" in messages of a run of several ranks.
 std::string rankLabel(const sim::Ranks& ranks) { return ranks.size() > 1 ? " (rank " + std::to_string(ranks.rank()) + ")" : ""; }
 
-// Runs `wait` with the ranks' timeout raised to at least 30 minutes: rank 0 builds the world and
-// bakes impostors meanwhile.
-template <class Wait>
-auto waitLong(sim::Ranks& ranks, Wait&& wait) {
-    const auto timeout = ranks.timeout();
-    ranks.setTimeout(std::max<std::chrono::milliseconds>(timeout, std::chrono::minutes(30)));
-    auto result = wait();
-    ranks.setTimeout(timeout);
-    return result;
-}
-
 // A rank other than 0: rank 0's navigation mesh (none when nothing walks), once rank 0 has built it.
 std::shared_ptr<const sim::NavMesh> receiveNavMesh(sim::Ranks& ranks) {
-    const sim::Bytes bytes = waitLong(ranks, [&] { return ranks.broadcast({}, town::kNavMeshTag, "navigation mesh"); });
+    const sim::Bytes bytes = town::waitLong(ranks, [&] { return ranks.broadcast({}, town::kNavMeshTag, "navigation mesh"); });
     if (bytes.empty()) return nullptr;
     try {
         return sim::NavMesh::fromBytes(bytes);
@@ -81,7 +72,7 @@ std::shared_ptr<const sim::NavMesh> receiveNavMesh(sim::Ranks& ranks) {
 int stepShare(sim::Simulation& world, sim::Ranks& ranks, const town::TownOptions& o) {
     try {
         world.setThreads(unsigned(o.threads));
-        waitLong(ranks, [&] { return ranks.broadcast({}, town::kStartTag, "start"); });  // baking impostors takes a while
+        town::waitLong(ranks, [&] { return ranks.broadcast({}, town::kStartTag, "start"); });  // baking impostors takes a while
         for (std::int64_t f = 0; f < o.frames; ++f) world.step();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "throng-town%s: %s\n", rankLabel(ranks).c_str(), e.what());
@@ -164,7 +155,9 @@ int main(int argc, char** argv) {
         // Ranks other than 0 draw nothing: they build what stepping their walkers needs, on rank 0's
         // navigation mesh (built once, not once per rank).
         sim::Simulation::BuildOptions options;
-        if (distributed && ranks.rank() != 0) options = {sim::Simulation::Scope::Walkers, receiveNavMesh(ranks)};
+        // Posing their own walkers, they build every actor (the others' absent) but not the town's scene graph.
+        if (distributed && ranks.rank() != 0)
+            options = {o.poseOnRanks ? sim::Simulation::Scope::Actors : sim::Simulation::Scope::Walkers, receiveNavMesh(ranks)};
         world = sim::Simulation::build(scene, [&](const std::string& stage, double f) {
             support::StopSignals::throwIfStopped();
             bar.phase(std::size_t(f * 100), stage);
@@ -188,8 +181,8 @@ int main(int argc, char** argv) {
         if (ranks.size() > 1) ranks.abort(2);
         return 2;
     }
-    if (distributed) world->distribute(ranks);
-    if (ranks.rank() != 0) return stepShare(*world, ranks, o);
+    if (distributed) world->distribute(ranks, o.poseOnRanks);
+    if (ranks.rank() != 0) return o.poseOnRanks ? town::poseShare(*world, ranks, o) : stepShare(*world, ranks, o);
 
     std::unique_ptr<town::TownRun> run;
     try {

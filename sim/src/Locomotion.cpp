@@ -141,6 +141,7 @@ void Locomotion::start() {
     firstRegion_ = 0, endRegion_ = regions_->count();
     if (ranks_) {
         exchange_ = std::make_unique<locomotion::RankExchange>(*ranks_, state_);
+        exchange_->setPosing(posedWhereStepped_);
         std::tie(firstRegion_, endRegion_) = exchange_->assign(*regions_);
     }
     regions_->start(firstRegion_, endRegion_);
@@ -150,6 +151,15 @@ void Locomotion::distribute(Ranks& ranks) {
     if (started_) throw std::logic_error("Locomotion::distribute: the crowd has already started");
     ranks_ = &ranks;
 }
+
+void Locomotion::setPosedWhereStepped(bool posed) {
+    if (started_) throw std::logic_error("Locomotion::setPosedWhereStepped: the crowd has already started");
+    if (!ranks_) throw std::logic_error("Locomotion::setPosedWhereStepped: the walkers are not distributed over ranks");
+    posedWhereStepped_ = posed;
+}
+
+std::uint8_t Locomotion::carried(std::uint32_t slot) const { return state_[slot].carried; }
+void Locomotion::setCarried(std::uint32_t slot, std::uint8_t value) { state_[slot].carried = value; }
 
 void Locomotion::setGatherView(std::optional<Frustum> view, double margin, double shownMargin) {
     if (!std::isfinite(margin) || margin < 0.0)
@@ -165,10 +175,14 @@ void Locomotion::setGatherView(std::optional<Frustum> view, double margin, doubl
 void Locomotion::advance(const FrameContext& context) {
     if (!started_) start();
     const float dt = static_cast<float>(context.deltaTime);
-    if (dt <= 0.0f) return;
     const Stopwatch watch;
     RankStepRecord mine;
     locomotion::RegionStepper& regions = *regions_;
+    if (dt <= 0.0f) {
+        // Nobody moves. Posing where stepped, every rank still learns which walkers it shows.
+        if (posedWhereStepped_) listOwn(), gatherOwn(mine, watch);
+        return;
+    }
     // Which regions step now: every one, unless the scene lets far ones step less often.
     lastDeferred_ = mine.deferred = regions.chooseStepping(firstRegion_, endRegion_, context.deltaTime, viewpoint_);
     auto eachRegion = [&](auto&& body) {
@@ -221,12 +235,20 @@ void Locomotion::advance(const FrameContext& context) {
         lastAdvanceMs_ = watch.elapsedMs();
         return;
     }
-    ownSlots_.clear();
-    for (std::uint32_t r = firstRegion_; r < endRegion_; ++r)
-        ownSlots_.insert(ownSlots_.end(), regions.region(r).owned.begin(), regions.region(r).owned.end());
+    listOwn();
     forEachChunk(ownSlots_.size(), 256, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) walk(ownSlots_[k], context.deltaTime);
     });
+    gatherOwn(mine, watch);
+}
+
+void Locomotion::listOwn() {
+    ownSlots_.clear();
+    for (std::uint32_t r = firstRegion_; r < endRegion_; ++r)
+        ownSlots_.insert(ownSlots_.end(), regions_->region(r).owned.begin(), regions_->region(r).owned.end());
+}
+
+void Locomotion::gatherOwn(RankStepRecord& mine, const Stopwatch& watch) {
     mine.agents = ownSlots_.size();
     mine.workMs = watch.elapsedMs() - mine.waitMs;
     mine.peakBytes = peakResidentBytes();

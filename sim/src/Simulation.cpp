@@ -13,6 +13,7 @@
 
 #include "throng/actors/ActorGroup.h"
 #include "throng/actors/ActorProcessor.h"
+#include "throng/actors/ElsewhereBehaviour.h"
 #include "throng/actors/ProceduralBird.h"
 #include "throng/actors/SeedHumanoid.h"
 #include "throng/actors/Table3Template.h"
@@ -307,6 +308,14 @@ struct Placement {
         }
     }
 
+    // Stand-ins for the actors of group `g`, which another process simulates and shows (Scope::
+    // Actors): one absent actor each, numbered (and looking) as the group's own would be.
+    void elsewhere(const ActorGroupDescription& g, const ResolvedTemplate& t, const ActorLook& look, const std::vector<double>& levels,
+                   std::vector<ActorId>& ids) {
+        auto stand = std::make_shared<ElsewhereBehaviour>(levels);
+        for (std::int64_t i = 0; i < g.count; ++i, ++stream) ids.push_back(crowd.add(t.tmpl, stand, stand->addActor(), t.lookFor(look, stream)));
+    }
+
     // A flock of its own for group `g` (the group's index `gi` seeds it).
     std::shared_ptr<Flock> fly(const ActorGroupDescription& g, std::size_t gi, const ResolvedTemplate& t, const ActorLook& look,
                                const std::vector<double>& levels, std::vector<ActorId>& ids) {
@@ -400,7 +409,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
         for (std::size_t i = 0; i < d.walkways->floors.size(); ++i) {
             const AreaDescription& f = d.walkways->floors[i];
             const glm::vec3 c(float(f.center.x), -0.05f, float(f.center.y)), half(float(0.5 * f.size.x), 0.05f, float(0.5 * f.size.y));
-            if (!walkersOnly_) {
+            if (scope_ == Scope::Everything) {
                 auto slab = makeBox("floor " + std::to_string(i), c, half, glm::vec4(0.72f, 0.7f, 0.66f, 1.0f));
                 root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(slab)));
             }
@@ -410,7 +419,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
     }
     if (!d.town) {
         // A plain ground to stand and fly over.
-        if (!walkersOnly_) {
+        if (scope_ == Scope::Everything) {
             auto ground = makeBox("ground", glm::vec3(0, -0.25f, 0), glm::vec3(250.0f, 0.25f, 250.0f), glm::vec4(0.45f, 0.5f, 0.4f, 1.0f));
             root_->addChild(std::make_shared<Geometry>(std::make_shared<MeshDrawable>(ground)));
         }
@@ -419,7 +428,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
     }
     progress("laying out the town", 0.0);
     town_ = layoutTown(*d.town);
-    if (walkersOnly_ && navGiven_) return;  // the layout is all a walkers' world needs of the town then
+    if (scope_ != Scope::Everything && navGiven_) return;  // the layout is all a world without the town's graph needs of it then
     // One model per kind of tile, shared by every tile of that kind.
     std::map<TileKind, std::vector<std::shared_ptr<const MeshDrawable>>> models;
     for (const TilePlacement& t : town_->tiles) {
@@ -437,7 +446,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
     }
     // Occluders, when the scene asks: boxes fitted inside each kind of building, once per kind.
     std::map<TileKind, std::pair<std::vector<AxisBox>, AxisBox>> occluderOf;  // boxes and shell
-    if (d.town->occluders && !walkersOnly_) {
+    if (d.town->occluders && scope_ == Scope::Everything) {
         for (const auto& [kind, list] : models) {
             if (tileWalkable(kind)) continue;
             std::vector<const MeshData*> meshes;
@@ -465,7 +474,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
         const float h = float(0.5 * town_->tileSize);
         if (!tileWalkable(t.kind)) navGeometry_.addBlocked(c - glm::vec3(0.47f * 2 * h, 0, 0.47f * 2 * h), c + glm::vec3(0.47f * 2 * h, 30, 0.47f * 2 * h));
         if (t.kind == TileKind::PavementFountain) navGeometry_.addBlocked(c - glm::vec3(0.3f * h, 0, 0.3f * h), c + glm::vec3(0.3f * h, 10, 0.3f * h));
-        if (walkersOnly_) continue;
+        if (scope_ != Scope::Everything) continue;
         auto& chunk = chunks[{t.x / 4, t.z / 4}];
         if (!chunk) {
             chunk = std::make_shared<Group>();
@@ -486,7 +495,7 @@ void Simulation::buildTown(const BuildProgress& progress) {
         chunk->addChild(node);
     }
     for (auto& [key, chunk] : chunks) town->addChild(chunk);
-    if (!walkersOnly_) root_->addChild(town);
+    if (scope_ == Scope::Everything) root_->addChild(town);
     progress("town laid out", 0.5);
 }
 
@@ -552,6 +561,7 @@ void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<cons
         const ActorLook look{float(g.priority), glm::vec4(1.0f), {}};
         const std::vector<double> levels = levelsOf(g);
         if (g.behaviour == "walk") place.walk(g, t, look, levels, info.actors);
+        else if (scope_ == Scope::Actors) place.elsewhere(g, t, look, levels, info.actors);
         else if (g.behaviour == "idle") place.stand(g, t, look, levels, info.actors);
         else behaviours_.push_back(place.fly(g, gi, t, look, levels, info.actors));
         auto node = crowd_.makeGroupNode(info.actors);
@@ -591,15 +601,20 @@ void Simulation::setGatherView(std::optional<Frustum> view) {
     if (walkers_ && walkers_->distributed()) walkers_->setGatherView(std::move(view), gatherMargin_, shownMargin_);
 }
 
-void Simulation::distribute(Ranks& ranks) {
+void Simulation::distribute(Ranks& ranks, bool posedWhereStepped) {
     if (started_) throw std::logic_error("Simulation::distribute: the simulation has already started");
-    if (scope_ == Scope::Walkers && ranks.rank() == 0)
-        throw std::logic_error("Simulation::distribute: rank 0 draws and gathers, but this world was built for walkers only");
+    if (scope_ != Scope::Everything && ranks.rank() == 0)
+        throw std::logic_error("Simulation::distribute: rank 0 draws and gathers, but this world was built without the town's scene graph");
+    if (scope_ == Scope::Walkers && posedWhereStepped)
+        throw std::logic_error("Simulation::distribute: a rank posing the walkers it steps needs their actors, but this world was built for "
+                               "stepping walkers only (Scope::Actors)");
     if (!walkers_) return;
     walkers_->distribute(ranks);
+    walkers_->setPosedWhereStepped(posedWhereStepped);
     // Only rank 0 draws: elsewhere the behaviours of the other actors (standing, gazing, flying)
-    // would be computed for nothing.
-    walkersOnly_ = walkersOnly_ || ranks.rank() != 0;
+    // would be computed for nothing. Posing where stepped, a rank steps its walkers' effects too
+    // (whom they look at); the other actors stand in there and step nothing.
+    walkersOnly_ = walkersOnly_ || (ranks.rank() != 0 && !posedWhereStepped);
 }
 
 void Simulation::attachKeyPoseCaches(ActorProcessor& processor) {

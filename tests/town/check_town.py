@@ -14,6 +14,10 @@ usage: check_town.py TOWN_EXE MODE SCENES_DIR WORK_DIR
                every rank reports its peak memory and those that draw nothing hold less than rank 0; a
                rank reading another scene with other --actors, --seed and --frames stops the run, saying so,
                nothing written
+  mpiPosing    --pose-on-ranks under $THRONG_MPIEXEC with 1, 2 and 3 ranks over TCP only, separate working
+               folders: every rank poses the walkers it steps, rank 0 draws the plain program's frames and
+               writes its stats.csv (timing, per-rank and the cell shortcut's work counts aside); every
+               rank posed items; what it cannot do is refused, a rank without it stops the run
   mpiHang      under $THRONG_MPIEXEC with 2 ranks over TCP, rank 1 stopped mid-run: the run ends within the
                rank timeout with an error naming rank 1, never hangs
   signals      SIGINT and SIGTERM end a long run after the frame in progress: exit 130 / 143, one line
@@ -261,6 +265,66 @@ def mpi(exe, scenes, work):
     for n, (across, border, left_out, peaks) in crossed.items():
         print(f"  {n} ranks: {across} walkers crossed between ranks, {border} border bytes, walkers left out of the gather in "
               f"{left_out} frames; peak MiB per rank {peaks}")
+
+
+# Work counts of occlusion's cell shortcut: the survivors of CULL 1 are tested cell by cell, one
+# sphere around a cell's actors first, and the cells a process forms depend on which actors it holds.
+# Which actors are hidden does not (each hidden actor is hidden by the cell's sphere or its own).
+OCCLUSION_CELL_WORK = ("occlusion_tests", "occlusion_cells_hidden")
+
+
+def mpiPosing(exe, scenes, work):
+    """--pose-on-ranks: every rank culls and poses the walkers it steps and sends rank 0 draw records."""
+    mpiexec = os.environ.get("THRONG_MPIEXEC")
+    if not mpiexec:
+        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    # The effects scene: gaze (a walker may look at another rank's), impostors and key-pose caches
+    # with hysteresis (tiers handed over with the walkers), occlusion with rests (rank 0's buffer),
+    # standing people and a flock posed on rank 0.
+    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "80", "--every", "40",
+              "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
+    # Refused before anything is built: what posing on the ranks cannot do.
+    for extra, said in ((["--processing", "traditional"], "traditional processing reads every actor"),
+                        (["--gather", "all"], "--gather all contradicts it")):
+        p = subprocess.run([exe, "--out", os.path.join(work, "refused"), *common, "--pose-on-ranks", *extra], capture_output=True, text=True)
+        if p.returncode != 2 or said not in p.stderr:
+            sys.exit(f"--pose-on-ranks {' '.join(extra)}: exit {p.returncode}, not 2 saying '{said}':\n{p.stderr}")
+    plain = os.path.join(work, "plain")
+    run(exe, plain, *common)
+    reference = stats_without_timing(plain)
+    reference_frames = frames(plain)
+    work_rows = {}
+    for n in (1, 2, 3):
+        out = run_ranks(exe, mpiexec, n, os.path.join(work, f"ranks-{n}"), [*common, "--pose-on-ranks"])
+        other = stats_without_timing(out)
+        if len(other) != len(reference):
+            sys.exit(f"--pose-on-ranks, {n} rank(s): {len(other)} rows of stats.csv, not {len(reference)}")
+        work_rows[n] = sum(1 for a, b in zip(reference, other) if any(a[k] != b[k] for k in OCCLUSION_CELL_WORK))
+        strip = lambda rows: [{k: v for k, v in r.items() if k not in OCCLUSION_CELL_WORK} for r in rows]
+        if strip(other) != strip(reference):
+            sys.exit(f"--pose-on-ranks, {n} rank(s): stats.csv differs from the plain run: {first_difference(strip(reference), strip(other))}")
+        if frames(out) != reference_frames:
+            sys.exit(f"--pose-on-ranks, {n} rank(s) wrote other frames than the plain run")
+        rows = list(csv.DictReader(open(os.path.join(out, "stats.csv"))))
+        # Every rank posed walkers and sent their records; rank 0 drew what all of them posed.
+        for k in range(n):
+            posed = sum(int(r[f"rank{k}_posed_items"]) for r in rows)
+            sent = sum(int(r[f"rank{k}_record_bytes"]) for r in rows)
+            if posed == 0 or sent == 0:
+                sys.exit(f"--pose-on-ranks, {n} rank(s): rank {k} posed {posed} items in {sent} bytes of records over the run")
+        for r in rows:
+            posed = sum(int(r[f"rank{k}_posed_items"]) for k in range(n))
+            if posed > int(r["draw_items"]):
+                sys.exit(f"--pose-on-ranks, {n} rank(s), frame {r['frame']}: the ranks posed {posed} items, rank 0 drew {r['draw_items']}")
+        if n > 1 and sum(int(r[f"rank{k}_handed_to_ranks"]) for r in rows for k in range(n)) == 0:
+            sys.exit(f"--pose-on-ranks, {n} ranks: no walker crossed between the ranks: the tiers' handover is not covered")
+    # A rank that would not pose its walkers while rank 0 expects it to stops the run, saying so.
+    cmd, p = start_ranks(exe, mpiexec, 2, os.path.join(work, "disagree"), common, [[*common, "--pose-on-ranks"], common])
+    if p.returncode == 0 or "--pose-on-ranks off here, on on rank 0" not in p.stderr:
+        sys.exit(f"rank 1 without --pose-on-ranks: exit {p.returncode}, not the error expected:\n{p.stderr}")
+    print(f"--pose-on-ranks with 1, 2 and 3 ranks over TCP (separate working folders) draws the plain run's {len(reference_frames)} "
+          f"frames and writes its {len(reference)} rows of stats.csv; the cell shortcut's work counts differed in "
+          f"{[work_rows[n] for n in (1, 2, 3)]} rows; refusals and a disagreeing rank stop the run")
 
 
 def process_of_rank(launcher_pid, rank):
@@ -700,4 +764,4 @@ if __name__ == "__main__":
     os.makedirs(work, exist_ok=True)
     {"determinism": determinism, "effects": effects, "window": window, "mpi": mpi, "mpiHang": mpiHang,
      "mpiKill": mpiKill, "budget": budget, "signals": signals, "fileLimit": fileLimit, "scale": scale,
-     "memoryLimit": memoryLimit, "gpuCheck": gpuCheck}[mode](exe, scenes, work)
+     "memoryLimit": memoryLimit, "gpuCheck": gpuCheck, "mpiPosing": mpiPosing}[mode](exe, scenes, work)

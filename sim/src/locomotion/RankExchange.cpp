@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "throng/scenegraph/Stopwatch.h"
@@ -131,26 +132,33 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
         view = got[0];
         mine.waitMs += wait.elapsedMs();
     }
+    if (posing_ && !view.on)
+        throw std::logic_error("Locomotion: walkers posed where they are stepped need the view of every step (setGatherView on rank 0)");
     // One message per rank: its share of the step, then a record per walker it sends, those that
     // may be seen first (mine.shown of them), then those that only matter to them (whom they look
     // at), written in place (a million walkers are 40 MB a step: not copied twice).
-    // Rank 0's own walkers are up to date there: it sends none (and counts them all as sent).
+    // Rank 0 draws: its own walkers are up to date there, it sends none (and counts them all as
+    // sent). Posing where stepped, every rank poses its own walkers and needs the others' only as
+    // whom they may look at: every rank sends every other its walkers near the view, or none when
+    // nobody looks at anyone (no margin beyond the shown one).
     const bool root = ranks_.rank() == 0;
+    const bool looked = view.margin > view.shownMargin;
     std::size_t sent = 0, shown = 0;
     held_.clear();
-    if (!root)
+    if (!root || posing_)
         for (std::uint32_t slot : own) {
             const std::uint8_t h = holding(view, state_[slot].position);
             held_.push_back(h);
             sent += h != 0, shown += h == 2;
         }
-    mine.sent = root ? own.size() : sent;
-    mine.shown = root ? own.size() : shown;
-    Bytes message(sizeof(Locomotion::RankStepRecord) + sent * sizeof(WalkerRecord));
+    mine.sent = root && !posing_ ? own.size() : sent;
+    mine.shown = root && !posing_ ? own.size() : shown;
+    const std::size_t records = posing_ && !looked ? 0 : sent;
+    Bytes message(sizeof(Locomotion::RankStepRecord) + records * sizeof(WalkerRecord));
     std::memcpy(message.data(), &mine, sizeof mine);
     std::size_t k = 0;
     for (const std::uint8_t pass : {std::uint8_t(2), std::uint8_t(1)})
-        for (std::size_t i = 0; i < held_.size(); ++i) {
+        for (std::size_t i = 0; i < held_.size() && k < records; ++i) {
             if (held_[i] != pass) continue;
             const WalkerState& s = state_[own[i]];
             WalkerRecord w;
@@ -160,23 +168,32 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             std::memcpy(message.data() + sizeof(Locomotion::RankStepRecord) + k++ * sizeof(WalkerRecord), &w, sizeof w);
         }
     const std::size_t sentBefore = ranks_.bytesSent();
-    const std::vector<Bytes> gathered = ranks_.gather(message, kWalkerTag, "walkers");
+    std::vector<Bytes> gathered;
+    if (posing_) {
+        const std::vector<Bytes> outgoing(std::size_t(ranks_.size()), message);
+        gathered = ranks_.exchange(outgoing, kWalkerTag, "walkers");
+    } else {
+        gathered = ranks_.gather(message, kWalkerTag, "walkers");
+    }
     rankSteps_.assign(std::size_t(ranks_.size()), Locomotion::RankStepRecord{});
     Totals totals;
-    if (!root) {
+    if (!root && !posing_) {
         mine.stateBytes = ranks_.bytesSent() - sentBefore;
         rankSteps_[std::size_t(ranks_.rank())] = mine;
         return totals;
     }
-    // Rank 0: with a view, the walkers near it are present, its own as those the others sent; its
-    // own far from it are left out too, so that what rank 0 shows of the walkers depends on the
-    // view only, never on which rank steps whom. Without a view every walker is present.
+    // Rank 0 (every rank, posing where stepped): with a view, the walkers near it are known, its
+    // own as those the others sent; its own far from it are left out too, so that what rank 0
+    // shows of the walkers depends on the view only, never on which rank steps whom. Posing where
+    // stepped, a rank shows its own only: the others' are known, for its own to look at. Without
+    // a view every walker is present.
     if (view.on) {
         present_.assign(state_.size(), 0);
-        for (std::uint32_t slot : own) present_[slot] = holding(view, state_[slot].position);
+        for (std::size_t i = 0; i < own.size(); ++i) present_[own[i]] = posing_ ? held_[i] : holding(view, state_[own[i]].position);
     } else {
         present_.clear();
     }
+    const int me = ranks_.rank();
     for (std::size_t r = 0; r < gathered.size(); ++r) {
         const Bytes& bytes = gathered[r];
         if (bytes.size() < sizeof(Locomotion::RankStepRecord) ||
@@ -185,11 +202,12 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
                                         " bytes of walkers, not a step record and whole walker records");
         Locomotion::RankStepRecord& step = rankSteps_[r];
         std::memcpy(&step, bytes.data(), sizeof step);
-        if (r > 0) step.stateBytes = bytes.size() + sizeof(std::uint64_t);  // and its size header
+        // What it sent: its message and its size header, to rank 0 or to every other rank.
+        if (r > 0 || posing_) step.stateBytes = (bytes.size() + sizeof(std::uint64_t)) * (posing_ ? std::size_t(ranks_.size() - 1) : 1);
         totals.ghosts += step.ghosts, totals.handovers += step.handovers, totals.deferred += step.deferred;
-        if (r == 0) continue;  // rank 0's own walkers are already up to date
+        if (int(r) == me) continue;  // this rank's own walkers are already up to date
         const std::size_t n = (bytes.size() - sizeof(Locomotion::RankStepRecord)) / sizeof(WalkerRecord);
-        if (step.sent != n || step.shown > n)
+        if ((posing_ && !looked ? n != 0 : step.sent != n) || step.shown > step.sent)
             throw RankError(int(r), "rank " + std::to_string(r) + " sent " + std::to_string(n) + " walker records, saying " +
                                         std::to_string(step.sent) + " of which " + std::to_string(step.shown) + " may be seen");
         for (std::size_t i = 0; i < n; ++i) {
@@ -202,7 +220,7 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             s.region = w.region;
             s.position = glm::vec3(w.position[0], w.position[1], w.position[2]);
             s.heading = w.heading, s.speed = w.speed, s.runWeight = w.runWeight, s.phase = w.phase;
-            if (view.on) present_[w.slot] = i < step.shown ? 2 : 1;
+            if (view.on) present_[w.slot] = posing_ ? 1 : i < step.shown ? 2 : 1;
         }
     }
     presentCount_ = 0;

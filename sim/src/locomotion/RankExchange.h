@@ -49,10 +49,18 @@ public:
     /// Empties every region's arriving, then does for handovers what routeGhosts does for ghosts.
     std::uint64_t routeHandovers(RegionStepper& regions);
 
+    /// Makes every rank pose the walkers it steps (see Locomotion::setPosedWhereStepped): gather()
+    /// then shows each rank its own walkers near the view, and lets it know the others' there.
+    void setPosing(bool posing) { posing_ = posing; }
+    /// Whether every rank poses the walkers it steps.
+    bool posing() const { return posing_; }
+
     /// Sends rank 0 this rank's share of the step `mine` and the state of the walkers `own` it
     /// stepped; rank 0 sends the others `view` first (see Locomotion::setGatherView: only walkers
     /// within `margin` of it are sent, and those within `shownMargin` may be seen). On rank 0,
-    /// takes in every rank's; returns rank 0's totals.
+    /// takes in every rank's; returns rank 0's totals. Posing where stepped, every rank sends every
+    /// other rank its walkers near the view (none when nobody looks at anyone) and takes in theirs,
+    /// and every rank's totals are rank 0's; a step without a view is then a std::logic_error.
     Totals gather(Locomotion::RankStepRecord mine, std::span<const std::uint32_t> own, const std::optional<Frustum>& view,
                   double margin, double shownMargin);
     /// Whether rank 0 holds walker `slot`'s state of this step: near the view (whoever steps it),
@@ -91,6 +99,7 @@ private:
     std::size_t presentCount_ = 0, shownCount_ = 0;
     std::vector<std::uint32_t> shownSlots_;  // rank 0, with a view: the slots with present_ 2, increasing
     std::vector<std::uint8_t> held_;  // on the other ranks: what rank 0 holds of each walker sent
+    bool posing_ = false;             // every rank poses its own walkers (and holds present_)
 };
 
 }  // namespace throng::sim::locomotion

@@ -236,6 +236,7 @@ void RegionStepper::exportHandovers(std::uint32_t r) {
         h.to = to;
         for (int i = 0; i < 3; ++i) h.position[i] = s.position[i], h.velocity[i] = s.velocity[i], h.target[i] = s.target[i];
         h.heading = s.heading, h.speed = s.speed, h.runWeight = s.runWeight, h.phase = s.phase, h.trips = s.trips;
+        h.carried = s.carried;
         region.leaving.push_back(h);
         region.crowd->remove(s.agent);
     }
@@ -261,6 +262,7 @@ void RegionStepper::importHandovers(std::uint32_t r) {
         s.velocity = glm::vec3(h.velocity[0], h.velocity[1], h.velocity[2]);
         s.target = glm::vec3(h.target[0], h.target[1], h.target[2]);
         s.heading = h.heading, s.speed = h.speed, s.runWeight = h.runWeight, s.phase = h.phase, s.trips = h.trips;
+        s.carried = std::uint8_t(h.carried);
         s.agent = addAgent(region, r, h.slot, h.position, h.velocity, false);
         requestTarget(region, h.slot);
     }

@@ -26,6 +26,7 @@ struct WalkerState {
     std::uint32_t region = 0;   ///< the region owning it
     BoundingSphere extent;      ///< where its Skeleton Root may go, Reference Point frame
     double blendMargin = 0.0;   ///< how far walk-run blends reach beyond the Sklsroot Bsphere
+    std::uint8_t carried = 0;   ///< what the process posing it keeps with it (Locomotion::carried)
 };
 
 /// An agent as a neighbouring region sees it for avoidance during one step.
@@ -48,6 +49,7 @@ struct HandoverRecord {
     float heading = 0.0f;          ///< radians about +Y
     float speed = 0.0f;            ///< m/s, after the previous step
     float runWeight = 0.0f;        ///< how far the run clip is blended in
+    std::uint32_t carried = 0;     ///< what the process posing it keeps with it (in what was padding)
     double phase = 0.0;            ///< walk cycle, in cycles
     std::uint64_t trips = 0;       ///< destinations drawn so far
 };

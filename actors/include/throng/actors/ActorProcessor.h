@@ -16,6 +16,7 @@
 // the processor runs them in order over one workspace it keeps between frames.
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -76,6 +77,8 @@ public:
     void setImpostorDistance(double distance, double hysteresis = 0.0);
     /// The impostor distance (0: off).
     double impostorDistance() const { return impostorDistance_; }
+    /// The impostor hysteresis, metres.
+    double impostorHysteresis() const { return impostorHysteresis_; }
     /// Shows actors of `tmpl` beyond the impostor distance as `impostor` (null removes it). The
     /// drawable must outlive its use; the backend knows how to draw it (throng::render's
     /// ImpostorDrawable).
@@ -114,6 +117,8 @@ public:
     void setKeyPoseDistance(double distance, double hysteresis = 0.0);
     /// The key-pose distance (0: off).
     double keyPoseDistance() const { return keyPoseDistance_; }
+    /// The key-pose hysteresis, metres.
+    double keyPoseHysteresis() const { return keyPoseHysteresis_; }
     /// Gives `cache`'s template that cache (replacing the one it had). A cache serves one processor
     /// (its rows are this processor's state). Throws std::invalid_argument if `cache` is null.
     void setKeyPoseCache(std::shared_ptr<KeyPoseCache> cache);
@@ -137,6 +142,18 @@ public:
     /// default): this processor's own occlusion stage, if any. The buffer must hold the frame's
     /// occluders (OcclusionBuffer::read) whenever processFrame runs.
     void setSharedOcclusionBuffer(const OcclusionBuffer* buffer) { sharedOcclusion_ = buffer; }
+    /// Called by actor processing once per frame, after the occlusion stage and before CULL, with
+    /// the buffer CULL will test against (null when occlusion is off or rests this frame): a
+    /// drawing process sends it there to the processes posing their own actors, which must test
+    /// against it before CULL 2 needs them (the key-pose arbiter). Empty (the default): none.
+    void setBeforeCull(std::function<void(const OcclusionBuffer*)> beforeCull) { beforeCull_ = std::move(beforeCull); }
+    /// When this processor's frames are one share of several processes' (ranks posing their own
+    /// actors): its occlusion stage decides whether to rest from the counts of every share, given
+    /// to settleOcclusion() after each frame, not from its own. Off by default.
+    void setOcclusionSettledByShares(bool shares) { occlusionByShares_ = shares; }
+    /// With setOcclusionSettledByShares: the last frame's statistics, every process's share added
+    /// (addShare). Nothing unless that frame built an occlusion buffer here.
+    void settleOcclusion(const ActorFrameStatistics& whole);
     /// The occlusion stage of actor processing, or null when occlusion is off.
     const OcclusionCulling* occlusion() const { return occlusion_ ? &*occlusion_ : nullptr; }
     /// Culls against `frustum` instead of the camera's (null restores the camera's).
@@ -190,6 +207,9 @@ private:
     std::optional<Frustum> cullingFrustum_;
     std::optional<OcclusionCulling> occlusion_;
     const OcclusionBuffer* sharedOcclusion_ = nullptr;
+    std::function<void(const OcclusionBuffer*)> beforeCull_;
+    bool occlusionByShares_ = false;
+    bool occlusionBuilt_ = false;  // the last frame built an occlusion buffer here
     std::uint64_t frame_ = 0;
     double lastTime_ = 0.0;
     ActorFrameStatistics stats_;

@@ -33,6 +33,10 @@
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/RegionGrid.h"
 
+namespace throng {
+class Stopwatch;
+}
+
 namespace throng::sim {
 
 class Ranks;
@@ -162,6 +166,20 @@ public:
     /// their own walkers. `ranks` must outlive the stepping. Throws
     /// std::logic_error after the first step; exchanges throw RankError (a rank failed).
     void distribute(Ranks& ranks);
+    /// Distributed, on every rank before the first step: each rank poses the walkers it steps,
+    /// rather than rank 0 posing every walker. Each step then needs a gather view (rank 0's
+    /// setGatherView; a step without one throws std::logic_error), and on every rank the walkers
+    /// present() are its own near the view; the others' near it are known(), for its own to look
+    /// at (sent only when someone looks: a margin beyond the shown one). Throws std::logic_error
+    /// after the first step or unless distributed.
+    void setPosedWhereStepped(bool posed);
+    /// Whether each rank poses the walkers it steps.
+    bool posedWhereStepped() const { return posedWhereStepped_; }
+    /// A byte kept with walker `slot` for the process that poses it (its LOD tiers): set there,
+    /// it travels with the walker when a region of another rank takes it over.
+    std::uint8_t carried(std::uint32_t slot) const;
+    /// Sets walker `slot`'s carried byte (see carried()).
+    void setCarried(std::uint32_t slot, std::uint8_t value);
     /// Whether distribute() was called.
     bool distributed() const { return ranks_ != nullptr; }
     /// Distributed, set on rank 0 before a step: the other ranks then send rank 0 only the walkers
@@ -216,6 +234,9 @@ private:
     };
     void start();
     void walk(std::uint32_t slot, double dt);
+    // Distributed: lists the walkers of this rank's regions; sends and takes in the step's walkers.
+    void listOwn();
+    void gatherOwn(RankStepRecord& mine, const Stopwatch& watch);
 
     std::shared_ptr<const NavMesh> nav_;
     Settings settings_;
@@ -237,6 +258,7 @@ private:
     double gatherMargin_ = 0.0, shownMargin_ = 0.0;
     std::uint32_t firstRegion_ = 0, endRegion_ = 0;
     std::vector<std::uint32_t> ownSlots_;
+    bool posedWhereStepped_ = false;
 };
 
 }  // namespace throng::sim

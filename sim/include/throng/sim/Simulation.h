@@ -65,6 +65,12 @@ public:
         /// walkers' templates and their Locomotion. No crowd, no standing people, flocks, gaze or
         /// faces; groups list no actors.
         Walkers,
+        /// What a rank posing the walkers it steps needs (distribute with posedWhereStepped): the
+        /// navigation mesh (as for Walkers) and every actor group with its node, templates and
+        /// effects, but no scene graph of the town. The actors of groups that do not walk stand
+        /// in, absent (ElsewhereBehaviour), so that the crowd's actors, nodes and templates are
+        /// numbered as in the whole world; only the walkers step.
+        Actors,
     };
 
     /// How to build a world.
@@ -104,7 +110,11 @@ public:
     /// enough) and calls step() as often, and rank 0's world is then that of one process; the other
     /// ranks step their walkers only. Call before the first step; `ranks` must outlive the stepping.
     /// Throws std::logic_error after the first step, or on rank 0 of a world built for walkers only.
-    void distribute(Ranks& ranks);
+    /// With `posedWhereStepped`, on every rank: each rank poses the walkers it steps
+    /// (Locomotion::setPosedWhereStepped), the ranks other than 0 in a world of Scope::Actors (or
+    /// Everything), stepping the walkers and their effects (gaze, faces); a world of Scope::Walkers
+    /// there is then a std::logic_error.
+    void distribute(Ranks& ranks, bool posedWhereStepped = false);
     /// Distributed, on rank 0, before step(): the frustum the coming frame will cull against. The
     /// other ranks then send only the walkers that could pass CULL 1 or be looked at by one that
     /// does (Locomotion::setGatherView, with a margin from the walkers' Refpoint Bspheres and the
@@ -138,6 +148,8 @@ public:
     const CameraPath& camera() const { return *camera_; }
     /// The walkers' locomotion (its regions, ghosts and handovers), or null when nothing walks.
     const Locomotion* locomotion() const { return walkers_.get(); }
+    /// The same, to keep what a walker carries (Locomotion::setCarried).
+    Locomotion* locomotion() { return walkers_.get(); }
     /// The navigation mesh, or null when nothing walks.
     const NavMesh* navMesh() const { return nav_.get(); }
     /// The same, shared (for another world built from the same scene: BuildOptions::navMesh).
