@@ -192,7 +192,7 @@ void ActorProcessor::processTraditionally(Node& root, const Camera& camera, doub
     stats_.actorsPosed = stats_.actorsInScene;
     stats_.internalSpheresComputed = f.matrices.spheresRecomputed;
     stats_.nodesOccluded = f.cull.nodesOccluded;
-    stats_.occlusionTests = f.cull.occlusionTests;
+    stats_.occlusionTests = stats_.occlusionObjectsTested = f.cull.occlusionTests;
     stats_.occludersDrawn = f.occlusion.occludersDrawn;
     stats_.occlusionBufferMs = f.occlusion.bufferMs;
     stats_.occlusionRested = f.occlusion.rested;
@@ -269,6 +269,9 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         root.accept(cull);
         stats_.nodesOccluded += cull.statistics().nodesOccluded;
         stats_.occlusionTests += cull.statistics().occlusionTests;
+        // One node per test, and the actors rejected with their group's sphere as tested with it. A
+        // process testing against another's buffer holds the same nodes: they count there, once.
+        stats_.occlusionObjectsTested += (sharedOcclusion_ ? 0 : cull.statistics().occlusionTests) + stats_.occludedWithGroup;
         stats_.spheresTested += cull.statistics().spheresTested;
         stats_.lodDistances += cull.statistics().lodDistances;
         stats_.drawItems += cull.statistics().drawItems;
@@ -315,7 +318,8 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
 
 void ActorProcessor::settleOcclusion(const ActorFrameStatistics& whole) {
     if (!occlusionBuilt_) return;
-    occlusion_->settle(whole.occludedWithGroup + whole.occludedRefpoint + whole.occludedSklsroot + whole.nodesOccluded, whole.occlusionTests);
+    occlusion_->settle(whole.occludedWithGroup + whole.occludedRefpoint + whole.occludedSklsroot + whole.nodesOccluded,
+                       whole.occlusionObjectsTested);
     occlusionBuilt_ = false;  // once per frame built
 }
 

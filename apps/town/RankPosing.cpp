@@ -41,6 +41,8 @@ struct ShareHead {
     ActorFrameStatistics stats;     // its APP and CULL
     std::uint64_t faceEvaluations[3] = {0, 0, 0};
     double faceSeconds = 0.0;
+    double keyPoseWaitMs = 0.0;     // of its APP and CULL, waiting in the key-pose caches' exchanges
+    std::uint64_t bytesSent = 0;    // bytes it sent in them (its demands), payloads and size headers
     std::uint64_t recordBytes = 0;  // bytes of draw records after the head
 };
 
@@ -118,6 +120,7 @@ sim::Bytes PosingRoot::setup() const {
 
 void PosingRoot::beginFrame(std::int64_t number, double cameraTime) {
     number_ = number;
+    bytesBefore_ = ranks_.bytesSent();
     cameraTime_ = cameraTime;
     tiers_.take(processor_);
 }
@@ -151,7 +154,7 @@ void PosingRoot::finishFrame(PreparedFrame& f, const FaceTally::Counts& mine) {
         if (item.actor == kNoActor) f.merged.add(item, item.drawable->primitiveCount());
     messages_.assign(1, std::span<const std::byte>(mine_));
     f.posed.assign(shares.size(), {});
-    f.posed[0] = {f.stats.drawItems - f.merged.size(), mine_.size(), f.stats.appCullMs()};
+    f.posed[0] = {f.stats.drawItems - f.merged.size(), ranks_.bytesSent() - bytesBefore_, f.stats.appCullMs(), arbiter_.takeWaitMs()};
     for (int k = 0; k < 3; ++k) f.faceEvaluations[k] = mine.evaluations[k];
     double faceSeconds = mine.seconds;
     for (std::size_t r = 1; r < shares.size(); ++r) {
@@ -165,7 +168,7 @@ void PosingRoot::finishFrame(PreparedFrame& f, const FaceTally::Counts& mine) {
             throw sim::RankError(int(r), e.what());
         }
         addShare(f.stats, head.stats);
-        f.posed[r] = {head.stats.drawItems, head.recordBytes, head.stats.appCullMs()};
+        f.posed[r] = {head.stats.drawItems, head.bytesSent + shares[r].size() + sizeof(std::uint64_t), head.stats.appCullMs(), head.keyPoseWaitMs};
         for (int k = 0; k < 3; ++k) f.faceEvaluations[k] += head.faceEvaluations[k];
         faceSeconds += head.faceSeconds;
     }
@@ -248,12 +251,15 @@ int poseShare(sim::Simulation& world, sim::Ranks& ranks, const TownOptions& o) {
             processor.setKeyPoseDistance(order.keyPoseDistance, order.keyPoseHysteresis);
             processor.setSharedOcclusionBuffer(order.occlusion ? &*buffer : nullptr);
             tiers.take(processor);
+            const std::size_t bytesBefore = ranks.bytesSent();
             ShareHead head;
             head.stats = processor.processFrame(world.root(), camera, world.now().time);
             tiers.keep(processor);
             const FaceTally::Counts counts = faces.take(world);
             for (int k = 0; k < 3; ++k) head.faceEvaluations[k] = counts.evaluations[k];
             head.faceSeconds = counts.seconds;
+            head.keyPoseWaitMs = arbiter.takeWaitMs();
+            head.bytesSent = ranks.bytesSent() - bytesBefore;
             share.clear();
             ByteWriter out(share);
             out.put(head);  // written again below, once the records' size is known

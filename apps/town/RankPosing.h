@@ -77,6 +77,7 @@ private:
     DrawRecordMerger merger_;
     WalkerTiers tiers_;
     std::int64_t number_ = 0;
+    std::size_t bytesBefore_ = 0;  // Ranks::bytesSent when the frame began
     double cameraTime_ = 0.0;
     sim::Bytes orders_, mine_;
     std::vector<std::span<const std::byte>> messages_;

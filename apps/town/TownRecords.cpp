@@ -15,7 +15,7 @@ const char* kCsvHeader =
     "draw_ms,scene_ms,mesh_ms,impostor_ms,morph_ms,impostor_draw_ms,frame_ms,actors_in_scene,culled_with_group,a,b,c1,c2,c3_1,c3_2,"
     "skeleton_nodes,eye_distances,draw_items,skinned_items,impostors,cells_morphed,primitives,draw_calls,triangles_drawn,"
     "occlusion_buffer_ms,refpoint_occlusion_ms,occluders_drawn,occluded_group,occluded_refpoint,occluded_sklsroot,"
-    "occlusion_cells_hidden,occlusion_tests,nodes_occluded,occlusion_rested,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
+    "occlusion_cells_hidden,occlusion_tests,occlusion_objects_tested,nodes_occluded,occlusion_rested,key_pose_band,key_pose_actors,key_pose_misses,key_pose_updates,"
     "key_pose_select_ms,key_pose_fills,background_morph_ms,ghosts,handovers,far_deferred,"
     "draw_cpu_ms,draw_gpu_ms,gpu_town_ms,gpu_meshes_ms,gpu_impostors_ms,gpu_finish_ms,gpu_frames_behind,"
     "face_evaluations,blink_evaluations,phrase_evaluations,face_ms,morph_instances,morph_targets_read,captions";
@@ -33,9 +33,10 @@ std::string csvHeader(int ranks, bool budget, bool posing) {
     for (int r = 0; r < ranks; ++r)
         for (const char* column : {"agents", "ghosts", "handovers", "handed_to_ranks", "border_bytes", "sent", "state_bytes", "work_ms", "wait_ms", "peak_bytes"})
             header += ",rank" + std::to_string(r) + "_" + column;
-    // Posing on the ranks: what each drew, the bytes of its draw records and its APP+CULL.
+    // Posing on the ranks: what each posed, the bytes it sent for it, its APP+CULL and of that its
+    // wait in the key-pose caches' exchanges.
     for (int r = 0; posing && r < ranks; ++r)
-        for (const char* column : {"posed_items", "record_bytes", "app_cull_ms"}) header += ",rank" + std::to_string(r) + "_" + column;
+        for (const char* column : {"posed_items", "posing_bytes", "app_cull_ms", "pose_wait_ms"}) header += ",rank" + std::to_string(r) + "_" + column;
     return header + "\n";
 }
 
@@ -53,7 +54,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
       << ',' << s.impostors << ',' << r.cellsMorphed << ',' << s.primitives << ',' << r.meshes.drawCalls + r.quads.drawCalls
       << ',' << r.meshes.triangles << ',' << s.occlusionBufferMs << ',' << s.refpointOcclusionMs << ',' << s.occludersDrawn << ','
       << s.occludedWithGroup << ',' << s.occludedRefpoint << ',' << s.occludedSklsroot << ',' << s.occlusionCellsHidden << ','
-      << s.occlusionTests << ',' << s.nodesOccluded << ',' << (s.occlusionRested ? 1 : 0) << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
+      << s.occlusionTests << ',' << s.occlusionObjectsTested << ',' << s.nodesOccluded << ',' << (s.occlusionRested ? 1 : 0) << ',' << s.keyPoseBand << ',' << s.keyPoseActors << ',' << s.keyPoseMisses
       << ',' << s.keyPoseUpdates << ',' << s.keyPoseSelectMs << ',' << r.meshes.keyPoseFills << ',' << r.quads.backgroundMorphMs << ','
       << f.ghosts << ',' << f.handovers << ',' << f.deferred << ',' << drawMs - r.presentMs;
     // GPU times: of this frame when the GPU has finished it (headless, always), else of the newest
@@ -73,7 +74,7 @@ std::string csvRow(const PreparedFrame& f, double drawMs, double frameMs, const 
         o << ',' << share.agents << ',' << share.ghosts << ',' << share.handovers << ',' << share.handedToRanks << ','
           << share.borderBytes << ',' << share.sent << ',' << share.stateBytes << ',' << share.workMs << ',' << share.waitMs << ','
           << share.peakBytes;
-    for (const auto& posed : f.posed) o << ',' << posed.items << ',' << posed.recordBytes << ',' << posed.appCullMs;
+    for (const auto& posed : f.posed) o << ',' << posed.items << ',' << posed.bytesSent << ',' << posed.appCullMs << ',' << posed.waitMs;
     return o.str() + '\n';
 }
 
@@ -93,7 +94,8 @@ void Sums::add(const PreparedFrame& f, double drawMs, const CrowdRenderStatistic
     posedShares.resize(std::max(posedShares.size(), f.posed.size()));
     for (std::size_t r = 0; r < f.posed.size(); ++r) {
         PreparedFrame::PosedShare& into = posedShares[r];
-        into.items += f.posed[r].items, into.recordBytes += f.posed[r].recordBytes, into.appCullMs += f.posed[r].appCullMs;
+        into.items += f.posed[r].items, into.bytesSent += f.posed[r].bytesSent, into.appCullMs += f.posed[r].appCullMs;
+        into.waitMs += f.posed[r].waitMs;
     }
     const ActorFrameStatistics& s = f.stats;
     app += s.appCullMs();
@@ -155,7 +157,8 @@ nlohmann::json summaryJson(const TownOptions& o, const sim::Simulation& world, c
                                     {"peakBytes", r.peakBytes}});  // the largest resident memory any step reported
     for (std::size_t r = 0; r < sums.posedShares.size() && r < j["meanPerRank"].size(); ++r) {  // --pose-on-ranks: each rank's posing
         const PreparedFrame::PosedShare& p = sums.posedShares[r];
-        j["meanPerRank"][r].update({{"posedItems", double(p.items) / n}, {"recordBytes", double(p.recordBytes) / n}, {"appCullMs", p.appCullMs / n}});
+        j["meanPerRank"][r].update({{"posedItems", double(p.items) / n}, {"posingBytes", double(p.bytesSent) / n}, {"appCullMs", p.appCullMs / n},
+                                    {"poseWaitMs", p.waitMs / n}});
     }
     j["mean"] = {{"posed", sums.posed / n}, {"skeletonNodes", sums.nodes / n}, {"drawItems", sums.items / n}, {"primitives", sums.primitives / n}, {"impostors", sums.impostors / n}};
     // Every effect Throng knows, zero when the scene did not declare it.

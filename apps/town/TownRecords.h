@@ -38,8 +38,10 @@ struct PreparedFrame {
     /// --pose-on-ranks: what one rank posed of the frame.
     struct PosedShare {
         std::uint64_t items = 0;        // draw items of its actors
-        std::uint64_t recordBytes = 0;  // bytes of its draw records (rank 0's merged in place, the others' sent)
+        std::uint64_t bytesSent = 0;    // bytes it sent other ranks for posing: draw records and key-pose demands
+                                        // (rank 0: frame orders and key-pose rows), payloads and size headers
         double appCullMs = 0.0;         // its APP and CULL
+        double waitMs = 0.0;            // of which waiting in the key-pose caches' exchanges
     };
     std::vector<PosedShare> posed;     // --pose-on-ranks: each rank's, indexed by rank
     int rung = -1;                     // --frame-budget: the ladder rung it was processed and drawn with

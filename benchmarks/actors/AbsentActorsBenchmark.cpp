@@ -4,14 +4,19 @@
 // walking humanoids in one group with a roaming bound (as the town's walkers), of which only those
 // within a margin of the view are present, against those same walkers alone (a crowd holding nothing
 // else), and against the whole crowd present (one process of the whole town). Same camera, same
-// time, one frame of each per iteration, back to back, so noise touches the three alike. The
+// time, one frame of each per iteration, back to back, so noise touches them alike. A fourth crowd
+// stands for rank 0 when every rank poses the walkers it steps (throng-town --pose-on-ranks): of
+// the walkers near the view, only those on its side of the view's axis (its half of the view) are
+// present. The
 // walkers are numbered either in the order of where they start along a Z curve, as the town numbers
 // its walkers (second argument 1), or at random (0), as the town numbered them before: a view's
 // walkers then lie scattered among the others in every per-actor array.
 //
 // Counters: rank0_ms (the crowd with only the walkers near the view present), alone_ms (those
 // walkers alone), whole_ms (every walker present), rank0_over_alone, present, actors and
-// draw_items (which must be the same for rank0 and alone, or the run stops with an error).
+// draw_items (which must be the same for rank0 and alone, or the run stops with an error);
+// posing_ms (only rank 0's half of those near the view present), posing_over_alone, posing_present
+// and posing_draw_items (fewer than draw_items, more than none, or the run stops).
 
 #include <benchmark/benchmark.h>
 
@@ -109,26 +114,43 @@ void BM_AbsentActors(benchmark::State& state) {
     std::vector<std::uint32_t> hereList;
     for (std::size_t i = 0; i < actors; ++i)
         if (here[i]) hereList.push_back(std::uint32_t(i));
+    // Posing where stepped: rank 0's half of them, those on one side of the view's axis.
+    std::vector<std::uint8_t> mine(actors, 0);
+    std::vector<std::uint32_t> mineList;
+    for (std::size_t i : hereList) {
+        const Vec3 p(whole->crowd.state().refWorld[i][3]);
+        if (p.z * 100.0 - p.x * 20.0 < 0.0) mine[i] = 1, mineList.push_back(std::uint32_t(i));
+    }
     auto alone = walkers(near, extent);
     ActorProcessor aloneProcessor(alone->crowd);
 
-    auto frame = [&](ActorProcessor& p, Walkers& w, bool masked, double t) {  // masked: only `here` present
-        w.behaviour->here = masked ? here : std::vector<std::uint8_t>();
-        w.behaviour->hereList = masked ? hereList : std::vector<std::uint32_t>();
+    // A processor of its own for the half, so that each keeps its own frame-to-frame state.
+    ActorProcessor halfProcessor(whole->crowd);
+    enum Present { Near, Half, All };
+    auto frame = [&](ActorProcessor& p, Walkers& w, Present present, double t) {
+        w.behaviour->here = present == Near ? here : present == Half ? mine : std::vector<std::uint8_t>();
+        w.behaviour->hereList = present == Near ? hereList : present == Half ? mineList : std::vector<std::uint32_t>();
         return p.processFrame(*w.root, camera, t);
     };
     for (int k = 0; k < 4; ++k) {  // draw lists grown, storage merged: timed frames do not allocate
-        frame(wholeProcessor, *whole, true, time);
-        frame(aloneProcessor, *alone, false, time);
-        frame(wholeProcessor, *whole, false, time);
+        frame(wholeProcessor, *whole, Near, time);
+        frame(aloneProcessor, *alone, All, time);
+        frame(halfProcessor, *whole, Half, time);
+        frame(wholeProcessor, *whole, All, time);
     }
     double later[2][5] = {}, early[2][3] = {};
-    double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0;
+    double rank0 = 0.0, lone = 0.0, everyone = 0.0, items = 0.0, posing = 0.0, posingItems = 0.0;
     std::int64_t frames = 0;
     for (auto _ : state) {
         const double t = time + double(frames % 2) * 1e-9;
-        const ActorFrameStatistics a = frame(wholeProcessor, *whole, true, t);
-        const ActorFrameStatistics b = frame(aloneProcessor, *alone, false, t);
+        const ActorFrameStatistics a = frame(wholeProcessor, *whole, Near, t);
+        const ActorFrameStatistics b = frame(aloneProcessor, *alone, All, t);
+        const ActorFrameStatistics h = frame(halfProcessor, *whole, Half, t);
+        if (h.drawItems == 0 || h.drawItems >= b.drawItems) {
+            state.SkipWithError("rank 0's half of the walkers near the view drew none, or as many as all of them");
+            return;
+        }
+        posing += h.appCullMs(), posingItems += double(h.drawItems);
         if (a.drawItems != b.drawItems || a.actorsPosed != b.actorsPosed) {
             state.SkipWithError("the crowd with only the walkers near the view present drew otherwise than those walkers alone");
             return;
@@ -141,7 +163,7 @@ void BM_AbsentActors(benchmark::State& state) {
             const double phases[5] = {s.skeletonRootMs, s.cull2Ms, s.poseMs, s.cull3Ms, s.drawListMs};
             for (int i = 0; i < 5; ++i) later[k][i] += phases[i];
         }
-        everyone += frame(wholeProcessor, *whole, false, t).appCullMs();
+        everyone += frame(wholeProcessor, *whole, All, t).appCullMs();
         ++frames;
     }
     const double n = double(frames);
@@ -153,6 +175,10 @@ void BM_AbsentActors(benchmark::State& state) {
     state.counters["alone_ms"] = lone / n;
     state.counters["whole_ms"] = everyone / n;
     state.counters["rank0_over_alone"] = rank0 / lone;
+    state.counters["posing_present"] = double(mineList.size());
+    state.counters["posing_draw_items"] = posingItems / n;
+    state.counters["posing_ms"] = posing / n;
+    state.counters["posing_over_alone"] = posing / lone;
     // Where the time goes: before CULL 2 (phase 1, placement, CULL 1), then from CULL 2 on.
     const char* first[3] = {"refpoint", "bounds", "cull1"};
     for (int i = 0; i < 3; ++i) {

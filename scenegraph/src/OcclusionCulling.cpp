@@ -80,10 +80,10 @@ bool OcclusionCulling::due(const Camera& camera) {
     return true;
 }
 
-void OcclusionCulling::settle(std::uint64_t rejected, std::uint64_t tests) {
+void OcclusionCulling::settle(std::uint64_t rejected, std::uint64_t tested) {
     if (!builtThisFrame_ || settings_.restFrames == 0) return;
     builtThisFrame_ = false;
-    const bool little = tests == 0 || static_cast<double>(rejected) < settings_.restBelow * static_cast<double>(tests);
+    const bool little = tested == 0 || static_cast<double>(rejected) < settings_.restBelow * static_cast<double>(tested);
     if (little) restLeft_ = settings_.restFrames;
 }
 

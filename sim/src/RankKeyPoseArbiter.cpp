@@ -6,6 +6,7 @@
 
 #include "throng/actors/KeyPoseCache.h"
 #include "throng/scenegraph/ByteStream.h"
+#include "throng/scenegraph/Stopwatch.h"
 #include "throng/sim/Ranks.h"
 
 namespace throng::sim {
@@ -22,7 +23,9 @@ KeyPoseSelectionCounts RankKeyPoseArbiter::settle(std::span<const std::vector<Ke
         out.put(std::uint32_t(d.size()));
         out.putSpan(std::span<const KeyPoseDemand>(d));
     }
+    const Stopwatch wait;
     const std::vector<Bytes> all = ranks_.gather(mine, tag_, "key-pose demands");
+    waitMs_ += wait.elapsedMs();
     KeyPoseSelectionCounts counts;
     Bytes rows;
     if (ranks_.rank() == 0) {
@@ -56,7 +59,9 @@ KeyPoseSelectionCounts RankKeyPoseArbiter::settle(std::span<const std::vector<Ke
             rowsOut.putSpan(caches[ci]->rows().rowPoses());
         }
     }
+    const Stopwatch rowsWait;
     rows = ranks_.broadcast(rows, tag_ + 1, "key-pose rows");
+    waitMs_ += rowsWait.elapsedMs();
     if (ranks_.rank() != 0) {
         ByteReader in(rows, "rank 0's key-pose rows");
         try {

@@ -198,6 +198,7 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
             EXPECT_EQ(sum.impostors, one.impostors);
             EXPECT_EQ(sum.occludedRefpoint, one.occludedRefpoint);
             EXPECT_EQ(sum.occludedSklsroot, one.occludedSklsroot);
+            EXPECT_EQ(sum.occlusionObjectsTested, one.occlusionObjectsTested) << "what occlusion's rest weighs";
             EXPECT_EQ(sum.culledWithGroup + sum.occludedWithGroup, one.culledWithGroup + one.occludedWithGroup);
             EXPECT_EQ(sum.actorsPosed, one.actorsPosed);
             EXPECT_EQ(sum.skeletonNodesEvaluated, one.skeletonNodesEvaluated);

@@ -134,6 +134,79 @@ void stepsBitwiseAsOneProcess(bool far, std::optional<Frustum> view = std::nullo
     }
 }
 
+// Posing where stepped (Locomotion::setPosedWhereStepped): each rank shows only its own walkers near
+// the view, every walker near it on exactly one rank, and knows the others' near it (to look at);
+// the byte a rank keeps with each walker it poses goes with the walker to the rank that takes it over.
+void eachRankShowsItsOwnWalkers(const Frustum& view) {
+    const std::shared_ptr<const NavMesh> nav = test::plaza(true);
+    Ranks ranks;
+    const auto alone = crossing(nav, false), shared = crossing(nav, false);
+    EXPECT_THROW(alone->setPosedWhereStepped(true), std::logic_error) << "posing where stepped needs ranks";
+    shared->distribute(ranks);
+    shared->setPosedWhereStepped(true);
+    SimulationClock clock;
+    std::string firstMismatch;
+    std::size_t carriedOver = 0, shownOnRanks = 0, knownOthers = 0;
+    // The byte each walker carries: its slot and the frame it was last posed in.
+    auto keepsake = [](std::uint32_t slot, int f) { return std::uint8_t((slot * 7u + std::uint32_t(f)) & 0xffu); };
+    std::vector<int> posedIn(alone->size(), -1);    // per walker: the frame this rank last set its byte
+    std::vector<int> lastShown(alone->size(), -1);  // per walker: the last frame any rank showed it
+    for (int f = 0; f < 200; ++f, clock.advance()) {
+        if (ranks.rank() == 0) shared->setGatherView(view, 1.0, 0.5);
+        alone->advance(clock.context());
+        shared->advance(clock.context());
+        // The walkers this rank shows: its own within half a metre of the view, as one process has them.
+        const auto listed = shared->presentSlots();
+        if (!listed) {
+            firstMismatch = "frame " + std::to_string(f) + ": no walker listed";
+            break;
+        }
+        std::vector<std::uint32_t> mine(listed->begin(), listed->end());
+        const auto [first, end] = shared->ownRegions();
+        for (std::uint32_t slot : mine) {
+            if (!firstMismatch.empty()) break;
+            if (shared->region(slot) < first || shared->region(slot) >= end || !nearView(view, alone->position(slot), 0.5) ||
+                drawnState(*shared, slot) != drawnState(*alone, slot))
+                firstMismatch = "frame " + std::to_string(f) + ": rank " + std::to_string(ranks.rank()) + " shows walker " +
+                                std::to_string(slot) + ", not its own near the view as one process has it";
+            // It carries what the rank that showed it last kept with it, whichever rank that was.
+            else if (lastShown[slot] >= 0 && shared->carried(slot) != keepsake(slot, lastShown[slot]))
+                firstMismatch = "frame " + std::to_string(f) + ": walker " + std::to_string(slot) + " carries " +
+                                std::to_string(shared->carried(slot)) + ", not what frame " + std::to_string(lastShown[slot]) + " kept";
+            carriedOver += lastShown[slot] >= 0 && posedIn[slot] != lastShown[slot];  // kept by another rank
+        }
+        for (std::uint32_t slot = 0; slot < alone->size(); ++slot)
+            if (shared->known(slot) && !shared->present(slot) && nearView(view, alone->position(slot), 0.5)) ++knownOthers;
+        shownOnRanks += mine.size();
+        for (std::uint32_t slot : mine) shared->setCarried(slot, keepsake(slot, f)), posedIn[slot] = f;
+        for (std::uint32_t slot = 0; slot < alone->size(); ++slot)
+            if (nearView(view, alone->position(slot), 0.5)) lastShown[slot] = f;
+        // Every walker near the view is shown by exactly one rank.
+        Bytes bytes(mine.size() * sizeof(std::uint32_t));
+        if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+        const std::vector<Bytes> all = ranks.gather(bytes, 310, "shown walkers");
+        if (ranks.rank() != 0) continue;
+        std::vector<int> shownBy(alone->size(), 0);
+        for (const Bytes& b : all)
+            for (std::uint32_t slot : unpackRecords<std::uint32_t>(b, 0, "shown walkers")) ++shownBy[slot];
+        for (std::uint32_t slot = 0; slot < alone->size() && firstMismatch.empty(); ++slot)
+            if (shownBy[slot] != (nearView(view, alone->position(slot), 0.5) ? 1 : 0))
+                firstMismatch = "frame " + std::to_string(f) + ": walker " + std::to_string(slot) + " shown by " +
+                                std::to_string(shownBy[slot]) + " ranks";
+    }
+    EXPECT_EQ(firstMismatch, "");
+    EXPECT_GT(shownOnRanks, 1000u);
+    if (ranks.size() > 1) {
+        EXPECT_GT(knownOthers, 100u) << "the others' walkers near the view are known (to be looked at), not shown";
+        const std::vector<Bytes> counts = ranks.gather(packRecords(std::span<const std::size_t>(&carriedOver, 1)), 311, "carried");
+        if (ranks.rank() == 0) {
+            std::size_t total = 0;
+            for (const Bytes& b : counts) total += unpackRecords<std::size_t>(b, 0, "carried")[0];
+            EXPECT_GT(total, 4u) << "walkers posed by one rank should come to another with their byte";
+        }
+    }
+}
+
 }  // namespace
 
 // Plain tests, not parameterised ones: those would run after RanksTest's, the last of which leaves
@@ -146,6 +219,13 @@ TEST(DistributedLocomotion, GathersOnlyTheWalkersNearTheView) {
     camera.setPerspective(0.7, 1.5, 0.5, 35.0);
     camera.setLookAt(Vec3(-32.0, 8.0, -32.0), Vec3(-5.0, 0.0, -5.0), Vec3(0.0, 1.0, 0.0));
     stepsBitwiseAsOneProcess(false, camera.frustum());
+}
+// Each rank poses the walkers it steps: it shows its own near the view, and a walker's byte moves with it.
+TEST(DistributedLocomotion, EachRankShowsItsOwnWalkersWhenPosingWhereStepped) {
+    Camera camera;
+    camera.setPerspective(0.9, 1.5, 0.5, 60.0);
+    camera.setLookAt(Vec3(-32.0, 10.0, -32.0), Vec3(0.0, 0.0, 0.0), Vec3(0.0, 1.0, 0.0));
+    eachRankShowsItsOwnWalkers(camera.frustum());
 }
 
 }  // namespace throng::sim

@@ -309,9 +309,9 @@ def mpiPosing(exe, scenes, work):
         # Every rank posed walkers and sent their records; rank 0 drew what all of them posed.
         for k in range(n):
             posed = sum(int(r[f"rank{k}_posed_items"]) for r in rows)
-            sent = sum(int(r[f"rank{k}_record_bytes"]) for r in rows)
-            if posed == 0 or sent == 0:
-                sys.exit(f"--pose-on-ranks, {n} rank(s): rank {k} posed {posed} items in {sent} bytes of records over the run")
+            sent = sum(int(r[f"rank{k}_posing_bytes"]) for r in rows)
+            if posed == 0 or (n > 1 and sent == 0):
+                sys.exit(f"--pose-on-ranks, {n} rank(s): rank {k} posed {posed} items and sent {sent} bytes for them over the run")
         for r in rows:
             posed = sum(int(r[f"rank{k}_posed_items"]) for k in range(n))
             if posed > int(r["draw_items"]):

@@ -25,6 +25,7 @@ void addCounts(ActorFrameStatistics& into, const ActorFrameStatistics& from) {
     into.occlusionCellsTested += from.occlusionCellsTested;
     into.occlusionCellsHidden += from.occlusionCellsHidden;
     into.occlusionTests += from.occlusionTests;
+    into.occlusionObjectsTested += from.occlusionObjectsTested;
     into.nodesOccluded += from.nodesOccluded;
     into.occludersDrawn += from.occludersDrawn;
     into.actorsPosed += from.actorsPosed;

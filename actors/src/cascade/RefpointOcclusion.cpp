@@ -87,6 +87,8 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
         }
     });
 
+    // Every survivor was tested, with its cell or alone.
+    loop.statistics().occlusionObjectsTested += n;
     // The hidden leave the survivors, whose order is kept.
     std::size_t kept = 0;
     for (std::size_t k = 0; k < n; ++k) {

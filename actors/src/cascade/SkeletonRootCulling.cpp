@@ -99,7 +99,7 @@ void SkeletonRootCullingJob::run(PhaseLoop& loop) const {
             // Occlusion again only where the Sklsroot Bsphere is much smaller than the Refpoint
             // Bsphere that was just found visible: a sphere nearly as large rarely hides now.
             if (occlusion && s.sklsRadius[id] < kSecondOcclusionTest * s.refSphereWorld[id].radius()) {
-                ++counts.occlusionTests;
+                ++counts.occlusionTests, ++counts.occlusionObjectsTested;
                 if (occlusion->occluded(BoundingSphere(Vec3(s.sklsWorld[id][3]), s.sklsRadius[id]))) {
                     // Undo the class counted above: the actor leaves the cascade here.
                     if (actorClass[id] == ActorClass::B) --counts.b;

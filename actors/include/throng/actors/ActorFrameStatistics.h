@@ -57,6 +57,12 @@ struct ActorFrameStatistics {
     std::uint64_t occlusionCellsTested = 0;///< cells of nearby actors tested as one sphere after CULL 1
     std::uint64_t occlusionCellsHidden = 0;///< of those, hidden (their actors rejected with one test)
     std::uint64_t occlusionTests = 0;      ///< sphere tests against the buffer, all kinds
+    /// Objects tested against the buffer: generic nodes, the actors rejected with their group's
+    /// sphere, actors after CULL 1 (alone or with their cell) and after CULL 2, once per stage (a
+    /// process testing against another's buffer counts no node: that one counts them). Unlike the tests, which the cells a process forms
+    /// make, it does not depend on which actors a process holds: occlusion's rest weighs the
+    /// rejections against it.
+    std::uint64_t occlusionObjectsTested = 0;
     std::uint64_t nodesOccluded = 0;       ///< generic nodes rejected by occlusion (town tiles...)
     std::uint64_t occludersDrawn = 0;      ///< Occluder nodes drawn into the buffer
     bool occlusionRested = false;          ///< occlusion rested this frame (OcclusionSettings::restFrames)
@@ -110,6 +116,7 @@ inline void addShare(ActorFrameStatistics& whole, const ActorFrameStatistics& sh
                        &ActorFrameStatistics::occludedWithGroup, &ActorFrameStatistics::occludedRefpoint,
                        &ActorFrameStatistics::occludedSklsroot, &ActorFrameStatistics::occlusionCellsTested,
                        &ActorFrameStatistics::occlusionCellsHidden, &ActorFrameStatistics::occlusionTests,
+                       &ActorFrameStatistics::occlusionObjectsTested,
                        &ActorFrameStatistics::actorsPosed, &ActorFrameStatistics::impostors, &ActorFrameStatistics::keyPoseBand,
                        &ActorFrameStatistics::keyPoseActors, &ActorFrameStatistics::keyPoseMisses,
                        &ActorFrameStatistics::skeletonNodesEvaluated, &ActorFrameStatistics::internalSpheresComputed,

@@ -26,7 +26,7 @@ struct OcclusionSettings {
     int maxOccluders = 128;   ///< nearest Occluder nodes drawn per frame, >= 1
     /// Frames without occlusion after a frame whose tests rejected little, [0, 1000]; 0: never rest.
     int restFrames = 0;
-    /// "Little": objects rejected per sphere test below this share, [0, 1].
+    /// "Little": objects rejected per object tested below this share, [0, 1].
     double restBelow = 0.1;
     /// A rest ends early once the eye moved this far (metres) from where the little was measured...
     double wakeDistance = 2.0;
@@ -58,9 +58,9 @@ public:
     /// Whether this frame should build and test: false while resting, and then statistics() says
     /// so. A rest ends when its frames are spent or `camera` moved or turned past the wake limits.
     bool due(const Camera& camera);
-    /// After a frame that built the buffer: `rejected` objects (actors and nodes) in `tests` sphere
-    /// tests. Below the settings' share, the next restFrames frames rest.
-    void settle(std::uint64_t rejected, std::uint64_t tests);
+    /// After a frame that built the buffer: `rejected` objects (actors and nodes) of `tested`
+    /// objects tested. Below the settings' share, the next restFrames frames rest.
+    void settle(std::uint64_t rejected, std::uint64_t tested);
 
     /// The buffer of the last build().
     const OcclusionBuffer& buffer() const { return buffer_; }

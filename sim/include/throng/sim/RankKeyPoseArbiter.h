@@ -2,6 +2,7 @@
 // Key-pose caches settled across the ranks of a run (KeyPoseArbiter over sim::Ranks): each rank's
 // demands go to rank 0, which selects for their sum; every rank then copies rank 0's rows.
 
+#include <utility>
 #include <vector>
 
 #include "throng/actors/KeyPoseArbiter.h"
@@ -21,8 +22,13 @@ public:
     KeyPoseSelectionCounts settle(std::span<const std::vector<KeyPoseDemand>> demands,
                                   std::span<const std::shared_ptr<KeyPoseCache>> caches, std::uint64_t frame) override;
 
+    /// Milliseconds settle() spent in its exchanges since the last call: on rank 0 mostly waiting
+    /// for the slowest rank to reach its CULL 2, elsewhere for rank 0's selection.
+    double takeWaitMs() { return std::exchange(waitMs_, 0.0); }
+
 private:
     Ranks& ranks_;
+    double waitMs_ = 0.0;
     int tag_;
     KeyPoseSelector selector_;
     std::vector<KeyPoseDemand> sum_, part_;  // rank 0: one cache's demands added, and one rank's
