@@ -7,7 +7,10 @@
 #include <cmath>
 
 #include "throng/testkit/Assets.h"
+#include "throng/actors/ActorDrawReferences.h"
 #include "throng/actors/ActorProcessor.h"
+#include "throng/scenegraph/Camera.h"
+#include "throng/sim/Ranks.h"
 #include "throng/sim/Locomotion.h"
 #include "throng/sim/NavMesh.h"
 #include "throng/sim/SceneError.h"
@@ -184,6 +187,75 @@ TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
         moved += walkers->locomotion()->speed(slot);
     }
     EXPECT_GT(moved / double(n), 0.5) << "they walk: the comparison proves something";
+}
+
+// A rank posing the walkers it steps builds every actor but not the town (Scope::Actors): its
+// actors, groups, templates and draw numbers are the whole world's, the actors of groups that do
+// not walk stand in, absent, and its walkers walk and are drawn as there.
+TEST(SimulationScope, AnActorsWorldNumbersItsActorsAsTheWholeWorldAndDrawsItsWalkersAlike) {
+    const std::string text = R"({
+      "seed": 8,
+      "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
+      "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"},
+                    "bird": {"procedural": "bird"}},
+      "actors": [{"template": "person", "count": 12, "behaviour": "idle"}, {"template": "cesium", "count": 40, "behaviour": "walk"},
+                 {"template": "bird", "count": 10, "behaviour": "flight", "area": {"center": [0, 0], "size": [40, 40]}},
+                 {"template": "person", "count": 30, "behaviour": "walk"}],
+      "effects": {"avoidance": true, "gaze": true},
+      "camera": {"fov": 60, "near": 0.2, "far": 500, "path": [{"time": 0, "eye": [0, 30, 50], "target": [0, 0, 0]}]}
+    })";
+    auto whole = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
+    const auto mesh = sim::NavMesh::fromBytes(whole->navMesh()->toBytes());
+    auto actors = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()), {}, {sim::Simulation::Scope::Actors, mesh});
+    EXPECT_EQ(actors->scope(), sim::Simulation::Scope::Actors);
+    ASSERT_EQ(actors->crowd().size(), whole->crowd().size());
+    ASSERT_EQ(actors->groups().size(), whole->groups().size());
+    for (std::size_t g = 0; g < whole->groups().size(); ++g) EXPECT_EQ(actors->groups()[g].actors, whole->groups()[g].actors) << "group " << g;
+    ASSERT_EQ(actors->templates().size(), whole->templates().size());
+    EXPECT_EQ(actors->root().childCount() + 1, whole->root().childCount()) << "every group node, no town";
+    EXPECT_EQ(actors->effects().of("idle").constructed + actors->effects().of("flight").constructed, 0u) << "the others stand in";
+    EXPECT_GT(actors->effects().of("gaze").constructed, 0u) << "the walkers' effects are built";
+    ActorProcessor wholeProcessor(whole->crowd()), actorsProcessor(actors->crowd());
+    const DrawReferences a = actorDrawReferences(whole->crowd(), whole->root(), wholeProcessor);
+    const DrawReferences b = actorDrawReferences(actors->crowd(), actors->root(), actorsProcessor);
+    EXPECT_EQ(a.nodeCount(), b.nodeCount());
+    EXPECT_EQ(a.drawableCount(), b.drawableCount());
+    for (std::uint32_t n = 0; n < a.drawableCount(); ++n) EXPECT_EQ(a.drawable(n)->name(), b.drawable(n)->name()) << "drawable " << n;
+    // Stepped and drawn the same: the walkers' items are the whole world's, the others' none.
+    const Camera camera = whole->camera().at(0.0, 16.0 / 9.0);
+    std::vector<char> walks(whole->crowd().size(), 0);
+    for (const auto& g : whole->groups())
+        for (ActorId id : g.actors) walks[id] = g.behaviour == "walk";
+    std::size_t walkerItems = 0;
+    for (int f = 0; f < 20; ++f) {
+        whole->step(), actors->step();
+        wholeProcessor.processFrame(whole->root(), camera, whole->now().time);
+        const ActorFrameStatistics& s = actorsProcessor.processFrame(actors->root(), camera, actors->now().time);
+        EXPECT_EQ(s.actorsAbsent, 22u) << "the standing people and the birds";
+        std::vector<const DrawItem*> expected;
+        for (const DrawItem& item : wholeProcessor.drawList().items())
+            if (item.actor != kNoActor && walks[item.actor]) expected.push_back(&item);
+        std::size_t k = 0;
+        for (const DrawItem& item : actorsProcessor.drawList().items()) {
+            ASSERT_NE(item.actor, kNoActor) << "no town";
+            ASSERT_LT(k, expected.size());
+            EXPECT_EQ(item.actor, expected[k]->actor);
+            EXPECT_TRUE(item.world == expected[k]->world) << "actor " << item.actor;
+            ASSERT_EQ(item.skinPaletteSize, expected[k]->skinPaletteSize);
+            for (std::uint32_t j = 0; j < item.skinPaletteSize; ++j) ASSERT_EQ(item.skinPalette[j], expected[k]->skinPalette[j]);
+            ++k;
+        }
+        EXPECT_EQ(k, expected.size());
+        walkerItems += k;
+    }
+    EXPECT_GT(walkerItems, 100u) << "walkers were drawn";
+    // Rank 0 draws: it needs the whole world; a walkers' world cannot pose.
+    sim::Ranks ranks;
+    if (ranks.size() == 1) {
+        EXPECT_THROW(actors->distribute(ranks, true), std::logic_error);
+        auto stepping = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()), {}, {sim::Simulation::Scope::Walkers, mesh});
+        EXPECT_THROW(stepping->distribute(ranks, true), std::logic_error);
+    }
 }
 
 // A mesh built for another scene (other settings) is refused, asking whether the ranks read the same
