@@ -151,11 +151,12 @@ TEST(SimulationKeyPoseCaches, OnePerDeclaredTemplateInUseAndNoneUndeclared) {
     }
 }
 
-// A rank that draws nothing builds only what stepping the walkers needs (Scope::Walkers), on the
-// navigation mesh rank 0 sent it: no crowd, no scene graph, no other behaviour, and its walkers,
-// placed slot for slot as in the whole world, walk exactly as there.
-TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
-    const std::string text = R"({
+namespace {
+
+// A small town with standing people, walkers of two templates between them and birds, walkers
+// gazing and with faces: what the worlds of the ranks (Scope::Walkers, Scope::Actors) must agree on.
+std::string mixedTown() {
+    return R"({
       "seed": 8,
       "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
       "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"},
@@ -163,8 +164,18 @@ TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
       "actors": [{"template": "person", "count": 12, "behaviour": "idle"}, {"template": "cesium", "count": 40, "behaviour": "walk"},
                  {"template": "bird", "count": 10, "behaviour": "flight", "area": {"center": [0, 0], "size": [40, 40]}},
                  {"template": "person", "count": 30, "behaviour": "walk"}],
-      "effects": {"avoidance": true, "gaze": true, "face": true}
+      "effects": {"avoidance": true, "gaze": true, "face": true},
+      "camera": {"fov": 60, "near": 0.2, "far": 500, "path": [{"time": 0, "eye": [0, 30, 50], "target": [0, 0, 0]}]}
     })";
+}
+
+}  // namespace
+
+// A rank that draws nothing builds only what stepping the walkers needs (Scope::Walkers), on the
+// navigation mesh rank 0 sent it: no crowd, no scene graph, no other behaviour, and its walkers,
+// placed slot for slot as in the whole world, walk exactly as there.
+TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
+    const std::string text = mixedTown();
     auto whole = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
     const auto mesh = sim::NavMesh::fromBytes(whole->navMesh()->toBytes());  // as a rank receives it
     auto walkers = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()), {},
@@ -193,17 +204,7 @@ TEST(SimulationScope, AWalkersWorldOnAnotherProcesssMeshWalksAsTheWholeWorld) {
 // actors, groups, templates and draw numbers are the whole world's, the actors of groups that do
 // not walk stand in, absent, and its walkers walk and are drawn as there.
 TEST(SimulationScope, AnActorsWorldNumbersItsActorsAsTheWholeWorldAndDrawsItsWalkersAlike) {
-    const std::string text = R"({
-      "seed": 8,
-      "town": {"blocksX": 2, "blocksZ": 2, "blockTiles": 3, "tileSize": 8, "seed": 5, "tiles": "town/kenney_city_builder"},
-      "templates": {"cesium": {"gltf": "characters/CesiumMan.glb"}, "person": {"procedural": "seed-humanoid", "walkClip": "walk"},
-                    "bird": {"procedural": "bird"}},
-      "actors": [{"template": "person", "count": 12, "behaviour": "idle"}, {"template": "cesium", "count": 40, "behaviour": "walk"},
-                 {"template": "bird", "count": 10, "behaviour": "flight", "area": {"center": [0, 0], "size": [40, 40]}},
-                 {"template": "person", "count": 30, "behaviour": "walk"}],
-      "effects": {"avoidance": true, "gaze": true},
-      "camera": {"fov": 60, "near": 0.2, "far": 500, "path": [{"time": 0, "eye": [0, 30, 50], "target": [0, 0, 0]}]}
-    })";
+    const std::string text = mixedTown();
     auto whole = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()));
     const auto mesh = sim::NavMesh::fromBytes(whole->navMesh()->toBytes());
     auto actors = sim::Simulation::build(sim::parseScene(text, testkit::sharedAssets()), {}, {sim::Simulation::Scope::Actors, mesh});
@@ -214,7 +215,7 @@ TEST(SimulationScope, AnActorsWorldNumbersItsActorsAsTheWholeWorldAndDrawsItsWal
     ASSERT_EQ(actors->templates().size(), whole->templates().size());
     EXPECT_EQ(actors->root().childCount() + 1, whole->root().childCount()) << "every group node, no town";
     EXPECT_EQ(actors->effects().of("idle").constructed + actors->effects().of("flight").constructed, 0u) << "the others stand in";
-    EXPECT_GT(actors->effects().of("gaze").constructed, 0u) << "the walkers' effects are built";
+    for (const char* effect : {"gaze", "face"}) EXPECT_GT(actors->effects().of(effect).constructed, 0u) << "the walkers' " << effect;
     ActorProcessor wholeProcessor(whole->crowd()), actorsProcessor(actors->crowd());
     const DrawReferences a = actorDrawReferences(whole->crowd(), whole->root(), wholeProcessor);
     const DrawReferences b = actorDrawReferences(actors->crowd(), actors->root(), actorsProcessor);

@@ -195,14 +195,25 @@ def run_ranks(exe, mpiexec, ranks, folder, args):
     return os.path.join(folder, "rank0", "out")
 
 
-def mpi(exe, scenes, work):
+def mpi_launcher():
+    """The MPI launcher CTest found."""
     mpiexec = os.environ.get("THRONG_MPIEXEC")
     if not mpiexec:
         sys.exit("THRONG_MPIEXEC names no MPI launcher")
-    # 500 walkers in 16 regions: within 80 frames some cross from one rank's regions to another's.
-    # The scene by its absolute path: each rank starts in a folder of its own.
-    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "80", "--every", "40",
-              "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
+    return mpiexec
+
+
+def mpi_run_options(scenes):
+    """The effects scene with 500 walkers in 16 regions, 80 frames: within them some walkers cross
+    from one rank's regions to another's. The scene by its absolute path: each rank starts in a
+    folder of its own."""
+    return ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "80", "--every", "40",
+            "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
+
+
+def mpi(exe, scenes, work):
+    mpiexec = mpi_launcher()
+    common = mpi_run_options(scenes)
     plain = os.path.join(work, "plain")
     run(exe, plain, *common)
     runs = {n: run_ranks(exe, mpiexec, n, os.path.join(work, f"ranks-{n}"), common) for n in (1, 2, 3, 4)}
@@ -275,14 +286,11 @@ OCCLUSION_CELL_WORK = ("occlusion_tests", "occlusion_cells_hidden")
 
 def mpiPosing(exe, scenes, work):
     """--pose-on-ranks: every rank culls and poses the walkers it steps and sends rank 0 draw records."""
-    mpiexec = os.environ.get("THRONG_MPIEXEC")
-    if not mpiexec:
-        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    mpiexec = mpi_launcher()
     # The effects scene: gaze (a walker may look at another rank's), impostors and key-pose caches
     # with hysteresis (tiers handed over with the walkers), occlusion with rests (rank 0's buffer),
     # standing people and a flock posed on rank 0.
-    common = ["--scene", os.path.abspath(os.path.join(scenes, "effects.json")), "--headless", "--frames", "80", "--every", "40",
-              "--width", "320", "--height", "180", "--seed", "4", "--actors", "500", "--rank-timeout", "60"]
+    common = mpi_run_options(scenes)
     # Refused before anything is built: what posing on the ranks cannot do.
     for extra, said in ((["--processing", "traditional"], "traditional processing reads every actor"),
                         (["--gather", "all"], "--gather all contradicts it")):
@@ -343,9 +351,7 @@ def process_of_rank(launcher_pid, rank):
 
 def start_two_ranks(exe, scenes, out, timeout):
     """A long run of plain.json on 2 ranks under $THRONG_MPIEXEC over TCP only, each rank marked with this process's id."""
-    mpiexec = os.environ.get("THRONG_MPIEXEC")
-    if not mpiexec:
-        sys.exit("THRONG_MPIEXEC names no MPI launcher")
+    mpiexec = mpi_launcher()
     if os.path.exists(out):
         shutil.rmtree(out)
     cmd = [mpiexec, *TCP_ONLY, "-np", "2", "-x", "THRONG_HANG_TEST", exe, "--out", out, "--scene", os.path.join(scenes, "plain.json"),
