@@ -236,6 +236,21 @@ std::vector<Bytes> Ranks::gather(const Bytes& mine, int tag, std::string_view wh
     return all;
 }
 
+std::vector<Bytes> Ranks::allGather(const Bytes& mine, int tag, std::string_view what) {
+    checkTag(tag, what);
+    std::vector<Bytes> all(static_cast<std::size_t>(size_));
+    all[static_cast<std::size_t>(rank_)] = mine;
+#ifdef THRONG_HAVE_MPI
+    if (size_ == 1) return all;
+    std::vector<int> others;
+    for (int r = 0; r < size_; ++r)
+        if (r != rank_) others.push_back(r);
+    const std::vector<const Bytes*> payloads(others.size(), &mine);
+    transfer(others, payloads, others, all, tag, Clock::now() + timeout_, timeout_, what, bytesSent_);
+#endif
+    return all;
+}
+
 Bytes Ranks::broadcast(const Bytes& fromRoot, int tag, std::string_view what) {
     checkTag(tag, what);
     if (size_ == 1) return fromRoot;

@@ -58,7 +58,7 @@ TEST(Ranks, ExchangeDeliversEveryRanksRecords) {
     }
 }
 
-TEST(Ranks, GatherCollectsOnRankZeroAndBroadcastReachesAll) {
+TEST(Ranks, GatherCollectsOnRankZeroAllGatherAndBroadcastReachAll) {
     Ranks ranks;
     const std::vector<Record> mine(static_cast<std::size_t>(ranks.rank() + 1), Record{ranks.rank(), 0, 7, 1.5f});
     const std::vector<Bytes> all = ranks.gather(packRecords<Record>(mine), 11, "draw records");
@@ -71,6 +71,14 @@ TEST(Ranks, GatherCollectsOnRankZeroAndBroadcastReachesAll) {
         }
     } else {
         EXPECT_TRUE(all.empty());
+    }
+    // Every rank gets every rank's message, its own included.
+    const std::vector<Bytes> everyone = ranks.allGather(packRecords<Record>(mine), 13, "walkers near the view");
+    ASSERT_EQ(everyone.size(), static_cast<std::size_t>(ranks.size()));
+    for (int r = 0; r < ranks.size(); ++r) {
+        const auto records = unpackRecords<Record>(everyone[static_cast<std::size_t>(r)], r, "walkers near the view");
+        ASSERT_EQ(records.size(), static_cast<std::size_t>(r + 1));
+        EXPECT_EQ(records.back().from, r);
     }
     const std::vector<Record> camera{{0, 0, 42, 3.25f}};
     const Bytes sent = ranks.rank() == 0 ? packRecords<Record>(camera) : Bytes{};

@@ -168,13 +168,8 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             std::memcpy(message.data() + sizeof(Locomotion::RankStepRecord) + k++ * sizeof(WalkerRecord), &w, sizeof w);
         }
     const std::size_t sentBefore = ranks_.bytesSent();
-    std::vector<Bytes> gathered;
-    if (posing_) {
-        const std::vector<Bytes> outgoing(std::size_t(ranks_.size()), message);
-        gathered = ranks_.exchange(outgoing, kWalkerTag, "walkers");
-    } else {
-        gathered = ranks_.gather(message, kWalkerTag, "walkers");
-    }
+    const std::vector<Bytes> gathered =
+        posing_ ? ranks_.allGather(message, kWalkerTag, "walkers") : ranks_.gather(message, kWalkerTag, "walkers");
     rankSteps_.assign(std::size_t(ranks_.size()), Locomotion::RankStepRecord{});
     Totals totals;
     if (!root && !posing_) {

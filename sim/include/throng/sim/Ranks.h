@@ -68,6 +68,9 @@ public:
     /// Rank 0 receives every rank's `mine` (indexed by rank); the others get an empty list.
     /// Collective, as exchange().
     std::vector<Bytes> gather(const Bytes& mine, int tag, std::string_view what);
+    /// Every rank receives every rank's `mine` (indexed by rank; its own included), each message
+    /// sent once per other rank from the one buffer. Collective, as exchange().
+    std::vector<Bytes> allGather(const Bytes& mine, int tag, std::string_view what);
     /// Every rank receives rank 0's `fromRoot` (ignored elsewhere). Collective, as exchange().
     Bytes broadcast(const Bytes& fromRoot, int tag, std::string_view what);
     /// After a RankError this rank cannot exchange again (messages of the failed call may still be
