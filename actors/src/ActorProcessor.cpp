@@ -267,11 +267,14 @@ void ActorProcessor::processActors(Node& root, const Camera& camera, double time
         cull.setFrameTime(time);
         cull.setOcclusion(f.occlusion);
         root.accept(cull);
-        stats_.nodesOccluded += cull.statistics().nodesOccluded;
-        stats_.occlusionTests += cull.statistics().occlusionTests;
         // One node per test, and the actors rejected with their group's sphere as tested with it. A
         // process testing against another's buffer holds the same nodes: they count there, once.
-        stats_.occlusionObjectsTested += (sharedOcclusion_ ? 0 : cull.statistics().occlusionTests) + stats_.occludedWithGroup;
+        if (!sharedOcclusion_) {
+            stats_.nodesOccluded += cull.statistics().nodesOccluded;
+            stats_.occlusionTests += cull.statistics().occlusionTests;
+            stats_.occlusionObjectsTested += cull.statistics().occlusionTests;
+        }
+        stats_.occlusionObjectsTested += stats_.occludedWithGroup;
         stats_.spheresTested += cull.statistics().spheresTested;
         stats_.lodDistances += cull.statistics().lodDistances;
         stats_.drawItems += cull.statistics().drawItems;

@@ -39,19 +39,19 @@ ActorId Crowd::add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Be
     s.tmpl.push_back(tmpl.get());
     s.behaviour.push_back(behaviour.get());
     s.slot.push_back(slot);
-    s.refLocal.emplace_back(1.0);
-    s.refWorld.emplace_back(1.0);
     s.refSphereLocal.emplace_back(extent.center(), extent.radius() + radius);
-    s.refSphereWorld.emplace_back();
-    s.root.emplace_back();
-    s.sklsWorld.emplace_back(1.0);
+    for (PagedArray<Mat4>* matrices : {&s.refLocal, &s.refWorld, &s.sklsWorld}) matrices->appendUnwritten(1);
+    s.refSphereWorld.appendUnwritten(1);
+    s.root.appendUnwritten(1);
+    s.dofs.appendUnwritten(tmpl->dofValueCount());
+    s.stateWritten.push_back(0);
+    ++deferred_;
     s.sklsRadius.push_back(radius);
     s.eyeDistance.push_back(std::numeric_limits<double>::infinity());
     s.priority.push_back(look.priority);
     s.tint.push_back(look.tint);
     s.body.push_back(look.body);
-    s.dofOffset.push_back(static_cast<std::uint32_t>(s.dofs.size()));
-    s.dofs.insert(s.dofs.end(), tmpl->restDofs().begin(), tmpl->restDofs().end());
+    s.dofOffset.push_back(static_cast<std::uint32_t>(s.dofs.size() - tmpl->dofValueCount()));
     s.nodeOffset.push_back(s.totalNodes);
     s.totalNodes += static_cast<std::uint32_t>(tmpl->nodeCount());
     s.owner.push_back(nullptr);
@@ -59,6 +59,7 @@ ActorId Crowd::add(std::shared_ptr<const ActorTemplate> tmpl, std::shared_ptr<Be
     s.held.push_back(-1);
     s.actorClass.push_back(ActorClass::NotInScene);
     s.present.push_back(1);
+    if (!deferring_) writeInitialState(id);
 
     if (std::find(templates_.begin(), templates_.end(), tmpl) == templates_.end()) templates_.push_back(std::move(tmpl));
     auto known = std::find(behaviours_.begin(), behaviours_.end(), behaviour);
@@ -144,14 +145,31 @@ void Crowd::setPriority(ActorId id, float priority) {
 }
 
 std::span<const float> Crowd::dofs(ActorId id) const {
+    if (!state_.stateWritten[id]) return state_.tmpl[id]->restDofs();
     return std::span<const float>(state_.dofs).subspan(state_.dofOffset[id], state_.tmpl[id]->dofValueCount());
+}
+
+void Crowd::writeInitialState(ActorId id) {
+    State& s = state_;
+    s.refLocal[id] = s.refWorld[id] = s.sklsWorld[id] = Mat4(1.0);
+    s.refSphereWorld[id] = BoundingSphere();
+    s.root[id] = RootPose();
+    const std::span<const float> rest = s.tmpl[id]->restDofs();
+    std::copy(rest.begin(), rest.end(), s.dofs.data() + s.dofOffset[id]);
+    s.stateWritten[id] = 1;
+    --deferred_;
+}
+
+void Crowd::writeAllStates() {
+    if (deferred_ == 0) return;
+    for (ActorId id = 0; id < size(); ++id) writeState(id);
 }
 
 std::size_t Crowd::bytesPerActor(const ActorTemplate& tmpl) const {
     std::size_t bytes = sizeof(const ActorTemplate*) + sizeof(Behaviour*) + sizeof(std::uint32_t) + 3 * sizeof(Mat4) +
                         2 * sizeof(BoundingSphere) + sizeof(RootPose) + 2 * sizeof(double) + sizeof(float) +
                         sizeof(glm::vec4) + 2 * sizeof(std::uint32_t) + sizeof(Node*) + sizeof(std::uint32_t) +
-                        sizeof(std::int32_t) + sizeof(ActorClass) + sizeof(std::uint8_t) + tmpl.dofValueCount() * sizeof(float);
+                        sizeof(std::int32_t) + sizeof(ActorClass) + 2 * sizeof(std::uint8_t) + tmpl.dofValueCount() * sizeof(float);
     // The behaviour's slot, counted with the first behaviour seen (they are similar in size).
     if (!state_.behaviour.empty()) bytes += state_.behaviour.front()->bytesPerSlot();
     return bytes;

@@ -220,6 +220,7 @@ void cullOne(Crowd::State& s, Crowd::TraditionalWorkspace& w, const Node& node, 
 }  // namespace
 
 void traditionalApp(Crowd& crowd, std::span<const ActorId> ids, const FrameContext& context) {
+    crowd.writeAllStates();  // it reads every actor it is given
     Crowd::State& s = crowd.state();
     const std::size_t chunks = inChunks(crowd, ids.size(), context.counter != nullptr, nullptr, [&](Chunk& out, std::size_t begin, std::size_t end) {
         FrameContext local = context;

@@ -43,7 +43,8 @@ KernelFigures measureKernels(const CostModelScene& scene, const Crowd& crowd, co
     const double lodScale2 = settings.lodScale * settings.lodScale;
 
     // Fixed-cost kernels, on the scene's data.
-    const Mat4& someMatrix = s.refWorld.at(0);
+    if (crowd.size() == 0) throw std::invalid_argument("measureKernels: the crowd has no actor to measure on");
+    const Mat4& someMatrix = crowd.referencePoint(0);
     k["composeAffine"] = tallyOf([&](OpTally* t) { composeAffine(someMatrix, someMatrix, t); });
     k["rootPoseMatrix"] = tallyOf([&](OpTally* t) { rootPoseMatrix(s.root[0], t); });
     k["compose"] = tallyOf([&](OpTally* t) { compose(Affine{}, Affine{}, t); });

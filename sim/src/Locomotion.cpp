@@ -296,6 +296,10 @@ bool Locomotion::presence(std::span<const std::uint32_t> slots, std::span<std::u
     for (std::size_t k = 0; k < slots.size(); ++k) present[k] = exchange_->shown(slots[k]);
     return false;
 }
+bool Locomotion::steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const {
+    for (std::size_t k = 0; k < slots.size(); ++k) regions[k] = state_[slots[k]].region;
+    return true;
+}
 bool Locomotion::known(std::uint32_t slot) const { return !exchange_ || exchange_->known(slot); }
 std::optional<std::span<const std::uint32_t>> Locomotion::presentSlots() const {
     return exchange_ ? exchange_->shownSlots() : std::nullopt;

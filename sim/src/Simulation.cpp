@@ -542,6 +542,9 @@ void Simulation::buildActors(const BuildProgress& progress, std::shared_ptr<cons
     }
     navGeometry_ = NavGeometry{};
 
+    // A rank posing the walkers it steps shows a share of them: the others' per-frame state (about
+    // 1.2 KB an actor) is written only if one comes to it.
+    if (scope_ == Scope::Actors) crowd_.deferStateUntilShown();
     Placement place(d, file, crowd_, effects_, nav_, walkersOnly_);
     for (std::size_t gi = 0; gi < d.actors.size(); ++gi) {
         const ActorGroupDescription& g = d.actors[gi];

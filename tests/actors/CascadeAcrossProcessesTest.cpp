@@ -138,12 +138,15 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
         // ranks), their tiers handed with them.
         std::vector<int> owner(kWalkers, -1);
         std::size_t handedOver = 0, handedAsImpostors = 0;
+        // The stripes are the walkers' regions, in every process and the whole world alike.
         auto share = [&](double time) {
             for (auto& part : parts) part->walkers->here.assign(kWalkers, 0);
+            whole->walkers->region.assign(kWalkers, 0);
             for (std::size_t i = 0; i < kWalkers; ++i) {
                 const double x = whole->walkers->referencePoint(std::uint32_t(i), FrameContext{time, 0.0, 0, nullptr}, nullptr)[3].x;
                 const int stripe = std::clamp(int((x / kExtent + 0.5) * processes), 0, processes - 1);
                 parts[std::size_t(stripe)]->walkers->here[i] = 1;
+                whole->walkers->region[i] = std::uint32_t(stripe);
                 if (owner[i] >= 0 && owner[i] != stripe) {
                     const auto tiers = parts[std::size_t(owner[i])]->processor->tiersOf(ActorId(i));
                     parts[std::size_t(stripe)]->processor->setTiers(ActorId(i), tiers);
@@ -151,9 +154,10 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
                 }
                 owner[i] = stripe;
             }
+            for (auto& part : parts) part->walkers->region = whole->walkers->region;
         };
         DrawRecordMerger merger;
-        std::uint64_t impostorItems = 0, occluded = 0;
+        std::uint64_t impostorItems = 0, occluded = 0, cellsHidden = 0;
         for (int f = 0; f < 24; ++f) {
             SCOPED_TRACE("frame " + std::to_string(f));
             const Camera camera = cameraAt(f);
@@ -199,6 +203,12 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
             EXPECT_EQ(sum.occludedRefpoint, one.occludedRefpoint);
             EXPECT_EQ(sum.occludedSklsroot, one.occludedSklsroot);
             EXPECT_EQ(sum.occlusionObjectsTested, one.occlusionObjectsTested) << "what occlusion's rest weighs";
+            EXPECT_EQ(sum.nodesOccluded, one.nodesOccluded) << "nodes are counted by the process drawing the buffer";
+            // Occlusion's cells never span two regions: each process forms one process's cells.
+            EXPECT_EQ(sum.occlusionTests, one.occlusionTests);
+            EXPECT_EQ(sum.occlusionCellsTested, one.occlusionCellsTested);
+            EXPECT_EQ(sum.occlusionCellsHidden, one.occlusionCellsHidden);
+            cellsHidden += one.occlusionCellsHidden;
             EXPECT_EQ(sum.culledWithGroup + sum.occludedWithGroup, one.culledWithGroup + one.occludedWithGroup);
             EXPECT_EQ(sum.actorsPosed, one.actorsPosed);
             EXPECT_EQ(sum.skeletonNodesEvaluated, one.skeletonNodesEvaluated);
@@ -207,6 +217,7 @@ TEST(CascadeAcrossProcesses, MergedRecordsAreTheListOfOneProcessHoldingEveryActo
         EXPECT_GT(impostorItems, 100u) << "the frames cover impostors";
         EXPECT_GT(handedAsImpostors, 3u) << "the frames cover walkers handed over as impostors (" << handedOver << " handed over)";
         EXPECT_GT(occluded, 10u) << "the frames cover occlusion";
+        EXPECT_GT(cellsHidden, 0u) << "the frames cover occlusion's cells";
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <span>
 #include <mutex>
 
 #include "throng/testkit/ActorTestScenes.h"
@@ -17,17 +18,21 @@ using namespace throng::testkit;
 
 namespace {
 template <class T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+bool sameBytes(std::span<const T> a, std::span<const T> b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
-// Runs 15 frames of one random crowd per thread count and checks every thread count against the first.
+// Runs 15 frames of one random crowd per thread count and checks every thread count against the
+// first; the last crowd defers its actors' state until shown (Crowd::deferStateUntilShown), which
+// must not change a bit either.
 void expectSameWithThreads(Processing processing, bool counting) {
-    const unsigned threads[] = {1, 2, 4};
+    const unsigned threads[] = {1, 2, 4, 2};
+    const bool deferred[] = {false, false, false, true};
     std::vector<std::unique_ptr<RandomCrowd>> worlds;
     std::vector<std::unique_ptr<ActorProcessor>> processors;
-    for (unsigned n : threads) {
-        worlds.push_back(makeRandomCrowd(5, 2000, 80.0));
+    for (std::size_t k = 0; k < std::size(threads); ++k) {
+        const unsigned n = threads[k];
+        worlds.push_back(makeRandomCrowd(5, 2000, 80.0, deferred[k]));
         processors.push_back(std::make_unique<ActorProcessor>(worlds.back()->crowd));
         processors.back()->setThreads(n);
         processors.back()->setProcessing(processing);
@@ -45,7 +50,9 @@ void expectSameWithThreads(Processing processing, bool counting) {
         const std::vector<DrawItem> l1(listed.begin(), listed.end());
         ASSERT_GT(l1.size(), 0u);
         for (std::size_t k = 1; k < processors.size(); ++k) {
-            SCOPED_TRACE(::testing::Message() << threads[k] << " threads, frame " << f);
+            SCOPED_TRACE(::testing::Message() << threads[k] << " threads" << (deferred[k] ? ", state deferred" : "") << ", frame " << f);
+            // Every actor of the random crowd is present: the first frame writes every deferred state.
+            ASSERT_EQ(worlds[k]->crowd.deferredStates(), 0u);
             const ActorFrameStatistics& sk = processors[k]->statistics();
             ASSERT_EQ(s1.skeletonNodesEvaluated, sk.skeletonNodesEvaluated);
             ASSERT_EQ(s1.spheresTested, sk.spheresTested);
@@ -55,9 +62,9 @@ void expectSameWithThreads(Processing processing, bool counting) {
                 ASSERT_GT(sk.fmultTotal, 0u);
             }
             const Crowd::State& b = worlds[k]->crowd.state();
-            ASSERT_TRUE(sameBytes(a.refWorld, b.refWorld));
-            ASSERT_TRUE(sameBytes(a.sklsWorld, b.sklsWorld));
-            ASSERT_TRUE(sameBytes(a.dofs, b.dofs));
+            ASSERT_TRUE(sameBytes<Mat4>(a.refWorld, b.refWorld));
+            ASSERT_TRUE(sameBytes<Mat4>(a.sklsWorld, b.sklsWorld));
+            ASSERT_TRUE(sameBytes<float>(a.dofs, b.dofs));
             const auto listedK = processors[k]->drawList().items();
             const std::vector<DrawItem> lk(listedK.begin(), listedK.end());
             ASSERT_EQ(l1.size(), lk.size());

@@ -250,6 +250,9 @@ TEST(SimulationScope, AnActorsWorldNumbersItsActorsAsTheWholeWorldAndDrawsItsWal
         walkerItems += k;
     }
     EXPECT_GT(walkerItems, 100u) << "walkers were drawn";
+    // The stand-ins were never shown: their per-frame state was never written (no memory taken).
+    EXPECT_EQ(actors->crowd().deferredStates(), 22u);
+    EXPECT_EQ(whole->crowd().deferredStates(), 0u);
     // Rank 0 draws: it needs the whole world; a walkers' world cannot pose.
     sim::Ranks ranks;
     if (ranks.size() == 1) {

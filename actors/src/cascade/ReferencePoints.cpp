@@ -40,6 +40,7 @@ void ReferencePointsJob::run(PhaseLoop& loop) const {
         return;
     }
     if (listed) listed->active = false;
+    crowd->writeAllStates();
     Crowd::State& s = crowd->state();
     loop.parallel(crowd->size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         FrameContext chunkContext = context;
@@ -87,6 +88,9 @@ void ReferencePointsJob::runListed(PhaseLoop& loop) const {
                 if (id != kNoActor) l.visit.push_back(id);
         }
     }
+    // Actors visited for the first time get the state they deferred (Crowd::deferStateUntilShown).
+    if (crowd->deferredStates() > 0)
+        for (const ActorId id : l.visit) crowd->writeState(id);
     loop.parallel(l.visit.size(), kLightGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
         FrameContext chunkContext = context;
         chunkContext.counter = loop.counterOf(out);

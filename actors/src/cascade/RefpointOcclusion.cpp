@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "throng/actors/cascade/RefpointOcclusionJob.h"
 #include "throng/scenegraph/OcclusionBuffer.h"
@@ -10,8 +11,25 @@ namespace throng::cascade {
 namespace {
 
 constexpr double kCellSize = 12.0;       // metres: about a street's width
-constexpr std::uint32_t kMaxCellsPerSide = 64;
-constexpr std::size_t kCellGrain = 16;    // cells per chunk of the parallel loop
+constexpr std::size_t kCellGrain = 16;    // buckets per chunk of the parallel loop
+constexpr std::size_t kRegionRun = 32;    // actors per question to their behaviour
+
+// A survivor's cell: a square of the world's ground grid within the region that steps it. Cells
+// are fixed in the world, not fitted to the survivors, and never span two regions: a process that
+// holds only some regions' actors (a rank posing its walkers) bins them exactly as one process.
+RefpointOcclusionJob::Cell cellOf(const Vec3& centre, std::uint32_t region) {
+    const auto grid = [](double v) {
+        return static_cast<std::int32_t>(std::clamp(std::floor(v / kCellSize), -2.0e9, 2.0e9));
+    };
+    return {grid(centre.x), grid(centre.z), region};
+}
+
+std::uint32_t bucketOf(const RefpointOcclusionJob::Cell& c, std::uint32_t mask) {
+    std::uint64_t h = std::uint64_t(std::uint32_t(c.x)) * 0x9E3779B97F4A7C15ull;
+    h ^= (std::uint64_t(std::uint32_t(c.z)) + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
+    h ^= std::uint64_t(c.region) * 0x165667B19E3779F9ull;
+    return std::uint32_t(h ^ (h >> 29)) & mask;
+}
 
 }  // namespace
 
@@ -30,59 +48,73 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
     const Crowd::State& s = *crowd;
     const OcclusionBuffer& buffer = *occlusion;
     Scratch& w = *scratch;
-    const auto sphereOf = [&](std::size_t k) -> const BoundingSphere& { return s.refSphereWorld[candidates[alive[k]].id]; };
+    const auto idOf = [&](std::size_t k) { return candidates[alive[k]].id; };
+    const auto sphereOf = [&](std::size_t k) -> const BoundingSphere& { return s.refSphereWorld[idOf(k)]; };
 
-    // Bin the survivors into cells by their Refpoint on the ground plane (counting sort: stable, so
-    // the order inside a cell is the survivors' order).
-    double minX = sphereOf(0).center().x, maxX = minX;
-    double minZ = sphereOf(0).center().z, maxZ = minZ;
-    for (std::size_t k = 1; k < n; ++k) {
-        const Vec3& c = sphereOf(k).center();
-        minX = std::min(minX, c.x), maxX = std::max(maxX, c.x);
-        minZ = std::min(minZ, c.z), maxZ = std::max(maxZ, c.z);
+    // Each survivor's cell: its region (1 + the behaviour's, 0 where it divides nothing), asked
+    // for runs of actors of one behaviour, then its square.
+    w.cell.resize(n);
+    std::uint32_t slots[kRegionRun], regions[kRegionRun];
+    for (std::size_t k = 0; k < n;) {
+        const Behaviour* behaviour = s.behaviour[idOf(k)];
+        std::size_t m = 0;
+        for (; m < kRegionRun && k + m < n && s.behaviour[idOf(k + m)] == behaviour; ++m) slots[m] = s.slot[idOf(k + m)];
+        const bool divided = behaviour->steppingRegions({slots, m}, {regions, m});
+        for (std::size_t j = 0; j < m; ++j) w.cell[k + j] = cellOf(sphereOf(k + j).center(), divided ? regions[j] + 1 : 0);
+        k += m;
     }
-    const double cell = std::max({kCellSize, (maxX - minX) / kMaxCellsPerSide, (maxZ - minZ) / kMaxCellsPerSide});
-    const auto cellsAlong = [&](double extent) { return std::min<std::uint32_t>(kMaxCellsPerSide, static_cast<std::uint32_t>(extent / cell) + 1); };
-    const std::uint32_t cx = cellsAlong(maxX - minX), cz = cellsAlong(maxZ - minZ), cells = cx * cz;
+    // Cells into hash buckets (counting sort: stable), a bucket's members then by cell, so that
+    // each cell is a run of its bucket.
+    std::uint32_t buckets = 16;
+    while (buckets < n && buckets < (1u << 20)) buckets *= 2;
     w.cellOf.resize(n);
-    w.cellStart.assign(cells + 1, 0);
-    for (std::size_t k = 0; k < n; ++k) {
-        const Vec3& c = sphereOf(k).center();
-        const auto ix = std::min(cx - 1, static_cast<std::uint32_t>((c.x - minX) / cell));
-        const auto iz = std::min(cz - 1, static_cast<std::uint32_t>((c.z - minZ) / cell));
-        w.cellOf[k] = iz * cx + ix;
-        ++w.cellStart[w.cellOf[k] + 1];
-    }
-    for (std::uint32_t c = 0; c < cells; ++c) w.cellStart[c + 1] += w.cellStart[c];
+    w.cellStart.assign(buckets + 1, 0);
+    for (std::size_t k = 0; k < n; ++k) ++w.cellStart[(w.cellOf[k] = bucketOf(w.cell[k], buckets - 1)) + 1];
+    for (std::uint32_t b = 0; b < buckets; ++b) w.cellStart[b + 1] += w.cellStart[b];
     w.cellMembers.resize(n);
     w.cellCursor.assign(w.cellStart.begin(), w.cellStart.end() - 1);
     for (std::size_t k = 0; k < n; ++k) w.cellMembers[w.cellCursor[w.cellOf[k]]++] = static_cast<std::uint32_t>(k);
+    const auto sameCell = [&](std::uint32_t a, std::uint32_t b) { return w.cell[a] == w.cell[b]; };
+    const auto cellOrder = [&](std::uint32_t a, std::uint32_t b) {
+        const Cell &p = w.cell[a], &q = w.cell[b];
+        return std::tie(p.x, p.z, p.region, a) < std::tie(q.x, q.z, q.region, b);
+    };
 
+    // A cell of two or more is tested as one sphere first (around the box of its actors' spheres):
+    // hidden, so are they all; otherwise each is tested.
     w.hidden.assign(n, 0);
-    loop.parallel(cells, kCellGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
-        for (std::size_t c = begin; c < end; ++c) {
-            const std::uint32_t first = w.cellStart[c], last = w.cellStart[c + 1];
-            if (first == last) continue;
-            if (last - first > 1) {
-                // The cell's sphere: around the box of its actors' spheres.
-                Vec3 lo(1e300), hi(-1e300);
-                for (std::uint32_t m = first; m < last; ++m) {
-                    const BoundingSphere& b = sphereOf(w.cellMembers[m]);
-                    lo = glm::min(lo, b.center() - Vec3(b.radius()));
-                    hi = glm::max(hi, b.center() + Vec3(b.radius()));
-                }
-                ++out.counts.occlusionCellsTested;
-                ++out.counts.occlusionTests;
-                if (buffer.occluded(BoundingSphere(0.5 * (lo + hi), 0.5 * glm::length(hi - lo)))) {
-                    ++out.counts.occlusionCellsHidden;
-                    for (std::uint32_t m = first; m < last; ++m) w.hidden[w.cellMembers[m]] = 1;
-                    continue;
-                }
+    const auto testCell = [&](const std::uint32_t* first, const std::uint32_t* last, ChunkOutput& out) {
+        if (last - first > 1) {
+            Vec3 lo(1e300), hi(-1e300);
+            for (const std::uint32_t* m = first; m < last; ++m) {
+                const BoundingSphere& b = sphereOf(*m);
+                lo = glm::min(lo, b.center() - Vec3(b.radius()));
+                hi = glm::max(hi, b.center() + Vec3(b.radius()));
             }
-            for (std::uint32_t m = first; m < last; ++m) {
-                const std::uint32_t k = w.cellMembers[m];
-                ++out.counts.occlusionTests;
-                w.hidden[k] = buffer.occluded(sphereOf(k)) ? 1 : 0;
+            ++out.counts.occlusionCellsTested;
+            ++out.counts.occlusionTests;
+            if (buffer.occluded(BoundingSphere(0.5 * (lo + hi), 0.5 * glm::length(hi - lo)))) {
+                ++out.counts.occlusionCellsHidden;
+                for (const std::uint32_t* m = first; m < last; ++m) w.hidden[*m] = 1;
+                return;
+            }
+        }
+        for (const std::uint32_t* m = first; m < last; ++m) {
+            ++out.counts.occlusionTests;
+            w.hidden[*m] = buffer.occluded(sphereOf(*m)) ? 1 : 0;
+        }
+    };
+    loop.parallel(buckets, kCellGrain, [&](ChunkOutput& out, std::size_t begin, std::size_t end) {
+        for (std::size_t bucket = begin; bucket < end; ++bucket) {
+            std::uint32_t* const from = w.cellMembers.data() + w.cellStart[bucket];
+            std::uint32_t* const to = w.cellMembers.data() + w.cellStart[bucket + 1];
+            // Most buckets hold one cell; those that hold more are sorted into runs of one cell.
+            if (std::any_of(from, to, [&](std::uint32_t k) { return !sameCell(*from, k); })) std::sort(from, to, cellOrder);
+            for (std::uint32_t* first = from; first < to;) {
+                std::uint32_t* last = first + 1;
+                while (last < to && sameCell(*first, *last)) ++last;
+                testCell(first, last, out);
+                first = last;
             }
         }
     });

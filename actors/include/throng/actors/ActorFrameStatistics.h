@@ -56,14 +56,16 @@ struct ActorFrameStatistics {
     std::uint64_t occludedSklsroot = 0;    ///< by their Sklsroot Bsphere, after CULL 2
     std::uint64_t occlusionCellsTested = 0;///< cells of nearby actors tested as one sphere after CULL 1
     std::uint64_t occlusionCellsHidden = 0;///< of those, hidden (their actors rejected with one test)
-    std::uint64_t occlusionTests = 0;      ///< sphere tests against the buffer, all kinds
+    /// Sphere tests against the buffer, all kinds. Cells never span two regions of the actors'
+    /// behaviour, and a process testing against another's buffer (setSharedOcclusionBuffer) counts
+    /// no node, that one does: split over processes by region, the sums are one process's.
+    std::uint64_t occlusionTests = 0;
     /// Objects tested against the buffer: generic nodes, the actors rejected with their group's
     /// sphere, actors after CULL 1 (alone or with their cell) and after CULL 2, once per stage (a
-    /// process testing against another's buffer counts no node: that one counts them). Unlike the tests, which the cells a process forms
-    /// make, it does not depend on which actors a process holds: occlusion's rest weighs the
-    /// rejections against it.
+    /// process testing against another's buffer counts no node). However the actors are split over
+    /// processes, the sum is one process's: occlusion's rest weighs the rejections against it.
     std::uint64_t occlusionObjectsTested = 0;
-    std::uint64_t nodesOccluded = 0;       ///< generic nodes rejected by occlusion (town tiles...)
+    std::uint64_t nodesOccluded = 0;       ///< generic nodes rejected by occlusion (town tiles...); see occlusionTests
     std::uint64_t occludersDrawn = 0;      ///< Occluder nodes drawn into the buffer
     bool occlusionRested = false;          ///< occlusion rested this frame (OcclusionSettings::restFrames)
 

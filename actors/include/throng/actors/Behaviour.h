@@ -85,6 +85,15 @@ public:
     /// Whether this process holds actor `slot`'s state of the last step, absent or not: an absent
     /// actor that someone present may look at is known. Default true.
     virtual bool known(std::uint32_t slot) const { (void)slot; return true; }
+    /// The part of the world that steps each of `slots` (a walker's region), written to
+    /// regions[k]: actors of different parts are never binned together (occlusion's cells), so that
+    /// a process holding some of the parts bins its actors as one process holding all of them would.
+    /// Returns false when this behaviour divides nothing (`regions` is then left as it is). One call
+    /// serves many actors. Default false.
+    virtual bool steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const {
+        (void)slots, (void)regions;
+        return false;
+    }
     /// Whether actor `slot` is present (see presence()).
     bool present(std::uint32_t slot) const {
         std::uint8_t here = 1;

@@ -18,6 +18,7 @@
 #include "throng/actors/ActorTemplate.h"
 #include "throng/actors/Affine.h"
 #include "throng/actors/Behaviour.h"
+#include "throng/actors/PagedArray.h"
 #include "throng/actors/RootPose.h"
 #include "throng/actors/detail/PoseBatch.h"
 #include "throng/scenegraph/BoundingSphere.h"
@@ -72,25 +73,28 @@ public:
         std::vector<const ActorTemplate*> tmpl;     ///< template of each actor
         std::vector<Behaviour*> behaviour;          ///< its behaviour
         std::vector<std::uint32_t> slot;            ///< its slot in the behaviour
-        std::vector<Mat4> refLocal;                 ///< Reference Point in the parent frame
-        std::vector<Mat4> refWorld;                 ///< Reference Point in the world
+        PagedArray<Mat4> refLocal;                  ///< Reference Point in the parent frame
+        PagedArray<Mat4> refWorld;                  ///< Reference Point in the world
         std::vector<BoundingSphere> refSphereLocal; ///< Refpoint Bsphere, Reference Point frame
-        std::vector<BoundingSphere> refSphereWorld; ///< Refpoint Bsphere, world
-        std::vector<RootPose> root;                 ///< Skeleton Root relative to the Reference Point
-        std::vector<Mat4> sklsWorld;                ///< Skeleton Root in the world
+        PagedArray<BoundingSphere> refSphereWorld;  ///< Refpoint Bsphere, world
+        PagedArray<RootPose> root;                  ///< Skeleton Root relative to the Reference Point
+        PagedArray<Mat4> sklsWorld;                 ///< Skeleton Root in the world
         std::vector<double> sklsRadius;             ///< Sklsroot Bsphere radius
         std::vector<double> eyeDistance;            ///< distance eye - Skeleton Root (infinite if not computed)
         std::vector<float> priority;                ///< detail priority
         std::vector<glm::vec4> tint;                ///< colour multiplier
         std::vector<BodyLook> body;                 ///< colours per body region
         std::vector<std::uint32_t> dofOffset;       ///< first DOF value in `dofs`
-        std::vector<float> dofs;                    ///< DOF values of every actor
+        PagedArray<float> dofs;                     ///< DOF values of every actor
         std::vector<std::uint32_t> nodeOffset;      ///< first Skeleton node entry in per-node workspaces
         std::vector<Node*> owner;                   ///< the node that holds the actor, or null
         std::vector<std::uint32_t> member;          ///< its index within that node
         std::vector<std::int32_t> held;             ///< index into heldObjects, or -1
         std::vector<ActorClass> actorClass;         ///< classification in the last frame
         std::vector<std::uint8_t> present;          ///< 1 when its state is this step's (Behaviour::presence), as of phase 1
+        /// 1 once the per-frame arrays above that are PagedArrays hold the actor's values; 0 while
+        /// they are deferred (Crowd::deferStateUntilShown): unwritten, read as zero bytes.
+        std::vector<std::uint8_t> stateWritten;
         std::vector<std::vector<HeldObject>> heldObjects;  ///< held objects, per actor that holds any
         std::uint32_t totalNodes = 0;               ///< sum of the actors' Skeleton node counts
     };
@@ -150,14 +154,31 @@ public:
     /// Sets an actor's detail priority (positive).
     void setPriority(ActorId id, float priority);
 
+    /// From now on, actors added get no per-frame state (transforms, world spheres, DOF values)
+    /// until they are first present: a process that shows only its share of a scene's actors (a
+    /// rank posing the walkers it steps) then takes no memory for the others'. Phase 1 writes the
+    /// state of the actors it visits (writeState); until then the accessors below read an actor's
+    /// initial values. Processing that reads every actor must call writeAllStates first.
+    void deferStateUntilShown() { deferring_ = true; }
+    /// Writes actor `id`'s initial per-frame state if it was deferred.
+    void writeState(ActorId id) {
+        if (!state_.stateWritten[id]) writeInitialState(id);
+    }
+    /// Writes every deferred actor's initial per-frame state.
+    void writeAllStates();
+    /// Actors whose per-frame state is still deferred.
+    std::size_t deferredStates() const { return deferred_; }
+
     /// The actor's template.
     const ActorTemplate& templateOf(ActorId id) const { return *state_.tmpl[id]; }
     /// Its Reference Point in the world, as of the last frame.
-    const Mat4& referencePoint(ActorId id) const { return state_.refWorld[id]; }
+    const Mat4& referencePoint(ActorId id) const { return state_.stateWritten[id] ? state_.refWorld[id] : kIdentity; }
     /// Its Skeleton Root in the world, as of the last frame it was visible.
-    const Mat4& skeletonRoot(ActorId id) const { return state_.sklsWorld[id]; }
+    const Mat4& skeletonRoot(ActorId id) const { return state_.stateWritten[id] ? state_.sklsWorld[id] : kIdentity; }
     /// Refpoint Bsphere in the world, as of the last frame.
-    const BoundingSphere& refpointSphere(ActorId id) const { return state_.refSphereWorld[id]; }
+    const BoundingSphere& refpointSphere(ActorId id) const {
+        return state_.stateWritten[id] ? state_.refSphereWorld[id] : kNoSphere;
+    }
     /// Radius of the Sklsroot Bsphere.
     double skeletonRootRadius(ActorId id) const { return state_.sklsRadius[id]; }
     /// Eye distance computed in the last frame (infinite when the actor was culled before it).
@@ -195,7 +216,10 @@ public:
 
 private:
     void claim(ActorId id, Node* owner, std::uint32_t member, const char* who);
-    void updateSpheres(ActorId id);
+    void writeInitialState(ActorId id);
+
+    static inline const Mat4 kIdentity{1.0};
+    static inline const BoundingSphere kNoSphere{};
 
     State state_;
     TraditionalWorkspace traditional_;
@@ -203,6 +227,8 @@ private:
     std::vector<std::shared_ptr<Behaviour>> behaviours_;
     std::vector<std::vector<ActorId>> actorsBySlot_;  // per behaviour, per slot: its actor
     std::size_t inScene_ = 0;                         // actors with an owner
+    std::size_t deferred_ = 0;                        // actors whose per-frame state is unwritten
+    bool deferring_ = false;                          // actors added now defer theirs
     std::vector<Node*> nodes_;
     std::unordered_map<const Node*, std::size_t> nodeSlot_;  // where each node is in nodes_ (release in O(1))
     double time_ = 0.0;

@@ -32,6 +32,9 @@ public:
         return base_->presence(slots, present);
     }
     bool known(std::uint32_t slot) const override { return base_->known(slot); }
+    bool steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const override {
+        return base_->steppingRegions(slots, regions);
+    }
     std::optional<std::span<const std::uint32_t>> presentSlots() const override { return base_->presentSlots(); }
     double poseMargin(std::uint32_t slot) const override { return base_->poseMargin(slot); }
     double clipTime(std::uint32_t slot, double time) const override { return base_->clipTime(slot, time); }

@@ -218,6 +218,8 @@ public:
     bool posesFromTemplateClips() const override { return true; }
     bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override;
     bool known(std::uint32_t slot) const override;
+    /// Each walker's region (as region()).
+    bool steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const override;
     std::optional<std::span<const std::uint32_t>> presentSlots() const override;
     double poseMargin(std::uint32_t slot) const override;
     double clipTime(std::uint32_t slot, double time) const override;

@@ -2,7 +2,9 @@
 // Phase 2 of actor processing, occlusion: the Refpoint Bspheres that passed CULL 1 against the
 // frame's occlusion buffer, before any Skeleton Root, behaviour or pose is computed for them.
 // Nearby actors are binned into cells on the ground plane and each cell is tested as one sphere
-// first: a street hidden behind a block costs one test, not one per actor.
+// first: a street hidden behind a block costs one test, not one per actor. Cells are fixed in the
+// world and split by the region stepping their actors, so that how many tests a frame takes does
+// not depend on how the actors are split over processes.
 
 #include <span>
 #include <vector>
@@ -19,12 +21,20 @@ namespace throng::cascade {
 
 /// Removes the survivors of CULL 1 that the occlusion buffer hides.
 struct RefpointOcclusionJob {
+    /// A cell of nearby survivors: a square of the ground grid (fixed in the world) within one
+    /// region of the behaviour stepping them (Behaviour::steppingRegions; 0: none).
+    struct Cell {
+        std::int32_t x = 0, z = 0;               ///< the square, in cells from the world's origin
+        std::uint32_t region = 0;                ///< 1 + the region, 0 for actors of no region
+        friend bool operator==(const Cell&, const Cell&) = default;
+    };
     /// The cells of nearby survivors, kept between frames.
     struct Scratch {
-        std::vector<std::uint32_t> cellOf;       ///< per survivor: its cell
-        std::vector<std::uint32_t> cellStart;    ///< per cell: first entry in cellMembers (one more at the end)
-        std::vector<std::uint32_t> cellMembers;  ///< survivor positions, cell by cell
-        std::vector<std::uint32_t> cellCursor;   ///< per cell: where its next member goes
+        std::vector<Cell> cell;                  ///< per survivor: its cell
+        std::vector<std::uint32_t> cellOf;       ///< per survivor: its cell's hash bucket
+        std::vector<std::uint32_t> cellStart;    ///< per bucket: first entry in cellMembers (one more at the end)
+        std::vector<std::uint32_t> cellMembers;  ///< survivor positions, bucket by bucket, cell by cell
+        std::vector<std::uint32_t> cellCursor;   ///< per bucket: where its next member goes
         std::vector<std::uint8_t> hidden;        ///< per survivor: rejected by occlusion
     };
 

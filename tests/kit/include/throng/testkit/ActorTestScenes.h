@@ -46,8 +46,10 @@ struct RandomCrowd {
     std::vector<ActorId> ids;
 };
 
-inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int actors, double extent) {
+/// `deferState`: the crowd defers its actors' per-frame state until shown (Crowd::deferStateUntilShown).
+inline std::unique_ptr<RandomCrowd> makeRandomCrowd(std::uint64_t seed, int actors, double extent, bool deferState = false) {
     auto scene = std::make_unique<RandomCrowd>();
+    if (deferState) scene->crowd.deferStateUntilShown();
     static const auto humanoid = makeSeedHumanoid();
     static const auto table3 = makeTable3Template();
     auto keyframes = std::make_shared<KeyframeBehaviour>(std::vector<double>{30.0, 1e9});
@@ -137,14 +139,21 @@ inline std::shared_ptr<const ActorTemplate> skinnedBar() {
 }
 
 /// Key-framed actors of which this process holds those marked in `here` (per slot; empty: every
-/// one), as a rank holds its share of a crowd (Behaviour::presence).
+/// one), as a rank holds its share of a crowd (Behaviour::presence), each stepped in the region
+/// `region` gives it (empty: no regions).
 class KeyframeShare : public KeyframeBehaviour {
 public:
-    std::vector<std::uint8_t> here;  ///< per slot, 1 when held here
+    std::vector<std::uint8_t> here;     ///< per slot, 1 when held here
+    std::vector<std::uint32_t> region;  ///< per slot, the region stepping it
     bool presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const override {
         if (here.empty()) return true;
         for (std::size_t k = 0; k < slots.size(); ++k) present[k] = here[slots[k]];
         return false;
+    }
+    bool steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const override {
+        if (region.empty()) return false;
+        for (std::size_t k = 0; k < slots.size(); ++k) regions[k] = region[slots[k]];
+        return true;
     }
 };
 
