@@ -131,16 +131,17 @@ std::uint32_t Locomotion::addActor(const Actor& a) {
     s.blendMargin = known->blendMargin;
     actors_.push_back(a);
     state_.push_back(s);
+    regionOf_.push_back(0);
     return static_cast<std::uint32_t>(actors_.size() - 1);
 }
 
 void Locomotion::start() {
     started_ = true;
-    regions_ = std::make_unique<locomotion::RegionStepper>(*nav_, settings_, actors_, state_);
+    regions_ = std::make_unique<locomotion::RegionStepper>(*nav_, settings_, actors_, state_, regionOf_);
     regions_->place();
     firstRegion_ = 0, endRegion_ = regions_->count();
     if (ranks_) {
-        exchange_ = std::make_unique<locomotion::RankExchange>(*ranks_, state_);
+        exchange_ = std::make_unique<locomotion::RankExchange>(*ranks_, state_, regionOf_);
         exchange_->setPosing(posedWhereStepped_);
         std::tie(firstRegion_, endRegion_) = exchange_->assign(*regions_);
     }
@@ -215,7 +216,7 @@ void Locomotion::advance(const FrameContext& context) {
             for (const locomotion::HandoverRecord& h : regions.region(r).leaving) {
                 ++mine.handovers;
                 if (exchange_->rankOf(h.to) != exchange_->rank())  // gone: this rank no longer steps it
-                    ++mine.handedToRanks, state_[h.slot].region = h.to;
+                    ++mine.handedToRanks, regionOf_[h.slot] = h.to;
             }
         const Stopwatch wait;
         mine.borderBytes += exchange_->routeHandovers(regions);
@@ -281,23 +282,24 @@ void Locomotion::walk(std::uint32_t slot, double dt) {
 glm::vec3 Locomotion::position(std::uint32_t slot) const { return state_[slot].position; }
 double Locomotion::speed(std::uint32_t slot) const { return state_[slot].speed; }
 glm::vec3 Locomotion::destination(std::uint32_t slot) const { return state_[slot].target; }
-std::uint32_t Locomotion::region(std::uint32_t slot) const { return state_[slot].region; }
+std::uint32_t Locomotion::region(std::uint32_t slot) const { return regionOf_[slot]; }
 BoundingSphere Locomotion::skeletonRootExtent(std::uint32_t slot) const { return state_[slot].extent; }
 double Locomotion::poseMargin(std::uint32_t slot) const { return state_[slot].blendMargin; }
 std::size_t Locomotion::stepBytes() const {
     if (!regions_) return 0;
     return actors_.capacity() * sizeof(Actor) + state_.capacity() * sizeof(locomotion::WalkerState) +
-           clipBounds_.capacity() * sizeof(ClipBounds) + ownSlots_.capacity() * sizeof(std::uint32_t) + regions_->bytes();
+           regionOf_.capacity() * sizeof(std::uint32_t) + clipBounds_.capacity() * sizeof(ClipBounds) + ownSlots_.capacity() * sizeof(std::uint32_t) +
+           regions_->bytes();
 }
 
-std::size_t Locomotion::bytesPerSlot() const { return sizeof(Actor) + sizeof(WalkerState); }
+std::size_t Locomotion::bytesPerSlot() const { return sizeof(Actor) + sizeof(WalkerState) + sizeof(std::uint32_t); }
 bool Locomotion::presence(std::span<const std::uint32_t> slots, std::span<std::uint8_t> present) const {
     if (!exchange_ || exchange_->everyoneShown()) return true;
     for (std::size_t k = 0; k < slots.size(); ++k) present[k] = exchange_->shown(slots[k]);
     return false;
 }
 bool Locomotion::steppingRegions(std::span<const std::uint32_t> slots, std::span<std::uint32_t> regions) const {
-    for (std::size_t k = 0; k < slots.size(); ++k) regions[k] = state_[slots[k]].region;
+    for (std::size_t k = 0; k < slots.size(); ++k) regions[k] = regionOf_[slots[k]];
     return true;
 }
 bool Locomotion::known(std::uint32_t slot) const { return !exchange_ || exchange_->known(slot); }

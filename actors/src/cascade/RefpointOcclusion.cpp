@@ -10,24 +10,20 @@
 namespace throng::cascade {
 namespace {
 
-constexpr double kCellSize = 12.0;       // metres: about a street's width
-constexpr std::size_t kCellGrain = 16;    // buckets per chunk of the parallel loop
-constexpr std::size_t kRegionRun = 32;    // actors per question to their behaviour
+constexpr double kCellSize = 12.0;            // metres: about a street's width
+constexpr std::size_t kCellGrain = 64;         // buckets per chunk of the parallel loop
+constexpr std::size_t kRegionRun = 32;         // actors per question to their behaviour
+constexpr std::int64_t kMaxSquares = 1 << 16;  // a window of squares binned in order (3 km by 3 km)
 
-// A survivor's cell: a square of the world's ground grid within the region that steps it. Cells
-// are fixed in the world, not fitted to the survivors, and never span two regions: a process that
-// holds only some regions' actors (a rank posing its walkers) bins them exactly as one process.
+// The cell holding `centre`: its square of the world's ground grid within `region`.
 RefpointOcclusionJob::Cell cellOf(const Vec3& centre, std::uint32_t region) {
-    const auto grid = [](double v) {
-        return static_cast<std::int32_t>(std::clamp(std::floor(v / kCellSize), -2.0e9, 2.0e9));
-    };
+    const auto grid = [](double v) { return static_cast<std::int32_t>(std::clamp(std::floor(v / kCellSize), -2.0e9, 2.0e9)); };
     return {grid(centre.x), grid(centre.z), region};
 }
 
-std::uint32_t bucketOf(const RefpointOcclusionJob::Cell& c, std::uint32_t mask) {
+std::uint32_t hashOf(const RefpointOcclusionJob::Cell& c, std::uint32_t mask) {
     std::uint64_t h = std::uint64_t(std::uint32_t(c.x)) * 0x9E3779B97F4A7C15ull;
     h ^= (std::uint64_t(std::uint32_t(c.z)) + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
-    h ^= std::uint64_t(c.region) * 0x165667B19E3779F9ull;
     return std::uint32_t(h ^ (h >> 29)) & mask;
 }
 
@@ -51,8 +47,10 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
     const auto idOf = [&](std::size_t k) { return candidates[alive[k]].id; };
     const auto sphereOf = [&](std::size_t k) -> const BoundingSphere& { return s.refSphereWorld[idOf(k)]; };
 
-    // Each survivor's cell: its region (1 + the behaviour's, 0 where it divides nothing), asked
-    // for runs of actors of one behaviour, then its square.
+    // Each survivor's cell: its square of the ground grid, fixed in the world (not fitted to the
+    // survivors), and its region (1 + the behaviour's, 0 where it divides nothing), asked for runs
+    // of actors of one behaviour. Cells never span two regions, so that processes each showing
+    // some regions' actors form one process's cells between them.
     w.cell.resize(n);
     std::uint32_t slots[kRegionRun], regions[kRegionRun];
     for (std::size_t k = 0; k < n;) {
@@ -63,21 +61,34 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
         for (std::size_t j = 0; j < m; ++j) w.cell[k + j] = cellOf(sphereOf(k + j).center(), divided ? regions[j] + 1 : 0);
         k += m;
     }
-    // Cells into hash buckets (counting sort: stable), a bucket's members then by cell, so that
-    // each cell is a run of its bucket.
+    // Squares into buckets (counting sort: stable): a bucket is a square of the survivors' window,
+    // in order (the buffer is then read square after square), or where the window is too wide, a
+    // hash of the square.
+    std::int64_t x0 = w.cell[0].x, x1 = x0, z0 = w.cell[0].z, z1 = z0;
+    for (const Cell& c : w.cell) {
+        x0 = std::min<std::int64_t>(x0, c.x), x1 = std::max<std::int64_t>(x1, c.x);
+        z0 = std::min<std::int64_t>(z0, c.z), z1 = std::max<std::int64_t>(z1, c.z);
+    }
+    const std::int64_t across = x1 - x0 + 1, squares = across * (z1 - z0 + 1);
+    const bool window = squares <= kMaxSquares;
     std::uint32_t buckets = 16;
-    while (buckets < n && buckets < (1u << 20)) buckets *= 2;
+    if (window) {
+        buckets = std::uint32_t(squares);
+    } else {
+        while (buckets < n && buckets < (1u << 20)) buckets *= 2;
+    }
+    const auto bucketOf = [&](const Cell& c) { return window ? std::uint32_t((c.z - z0) * across + (c.x - x0)) : hashOf(c, buckets - 1); };
     w.cellOf.resize(n);
     w.cellStart.assign(buckets + 1, 0);
-    for (std::size_t k = 0; k < n; ++k) ++w.cellStart[(w.cellOf[k] = bucketOf(w.cell[k], buckets - 1)) + 1];
+    for (std::size_t k = 0; k < n; ++k) ++w.cellStart[(w.cellOf[k] = bucketOf(w.cell[k])) + 1];
     for (std::uint32_t b = 0; b < buckets; ++b) w.cellStart[b + 1] += w.cellStart[b];
     w.cellMembers.resize(n);
     w.cellCursor.assign(w.cellStart.begin(), w.cellStart.end() - 1);
     for (std::size_t k = 0; k < n; ++k) w.cellMembers[w.cellCursor[w.cellOf[k]]++] = static_cast<std::uint32_t>(k);
     const auto sameCell = [&](std::uint32_t a, std::uint32_t b) { return w.cell[a] == w.cell[b]; };
-    const auto cellOrder = [&](std::uint32_t a, std::uint32_t b) {
+    const auto cellOrder = [&](std::uint32_t a, std::uint32_t b) {  // a window's bucket is one square
         const Cell &p = w.cell[a], &q = w.cell[b];
-        return std::tie(p.x, p.z, p.region, a) < std::tie(q.x, q.z, q.region, b);
+        return window ? std::tie(p.region, a) < std::tie(q.region, b) : std::tie(p.x, p.z, p.region, a) < std::tie(q.x, q.z, q.region, b);
     };
 
     // A cell of two or more is tested as one sphere first (around the box of its actors' spheres):
@@ -108,8 +119,9 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
         for (std::size_t bucket = begin; bucket < end; ++bucket) {
             std::uint32_t* const from = w.cellMembers.data() + w.cellStart[bucket];
             std::uint32_t* const to = w.cellMembers.data() + w.cellStart[bucket + 1];
-            // Most buckets hold one cell; those that hold more are sorted into runs of one cell.
-            if (std::any_of(from, to, [&](std::uint32_t k) { return !sameCell(*from, k); })) std::sort(from, to, cellOrder);
+            // A bucket holding more than one cell (regions in a square, squares in a hash) is
+            // sorted into runs of one.
+            if (std::any_of(from + 1, to, [&](std::uint32_t k) { return !sameCell(*from, k); })) std::sort(from, to, cellOrder);
             for (std::uint32_t* first = from; first < to;) {
                 std::uint32_t* last = first + 1;
                 while (last < to && sameCell(*first, *last)) ++last;

@@ -43,7 +43,8 @@ std::uint8_t holding(const GatherViewRecord& view, const glm::vec3& p) {
 
 }  // namespace
 
-RankExchange::RankExchange(Ranks& ranks, std::span<WalkerState> walkers) : ranks_(ranks), state_(walkers) {}
+RankExchange::RankExchange(Ranks& ranks, std::span<WalkerState> walkers, std::span<std::uint32_t> regionOf)
+    : ranks_(ranks), state_(walkers), regionOf_(regionOf) {}
 
 int RankExchange::rank() const { return ranks_.rank(); }
 
@@ -162,7 +163,7 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
             if (held_[i] != pass) continue;
             const WalkerState& s = state_[own[i]];
             WalkerRecord w;
-            w.slot = own[i], w.region = s.region;
+            w.slot = own[i], w.region = regionOf_[own[i]];
             for (int c = 0; c < 3; ++c) w.position[c] = s.position[c];
             w.heading = s.heading, w.speed = s.speed, w.runWeight = s.runWeight, w.phase = s.phase;
             std::memcpy(message.data() + sizeof(Locomotion::RankStepRecord) + k++ * sizeof(WalkerRecord), &w, sizeof w);
@@ -212,7 +213,7 @@ RankExchange::Totals RankExchange::gather(Locomotion::RankStepRecord mine, std::
                 throw RankError(int(r), "rank " + std::to_string(r) + " sent a walker record for actor " + std::to_string(w.slot) +
                                             " in region " + std::to_string(w.region) + ", which do not exist");
             WalkerState& s = state_[w.slot];
-            s.region = w.region;
+            regionOf_[w.slot] = w.region;
             s.position = glm::vec3(w.position[0], w.position[1], w.position[2]);
             s.heading = w.heading, s.speed = w.speed, s.runWeight = w.runWeight, s.phase = w.phase;
             if (view.on) present_[w.slot] = posing_ ? 1 : i < step.shown ? 2 : 1;

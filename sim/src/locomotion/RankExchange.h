@@ -32,8 +32,9 @@ public:
         std::size_t deferred = 0;    ///< walkers of far regions that did not step
     };
 
-    /// The exchanges of this rank of `ranks`, for `walkers` (both stay the caller's).
-    RankExchange(Ranks& ranks, std::span<WalkerState> walkers);
+    /// The exchanges of this rank of `ranks`, for `walkers` owned by the regions `regionOf` says
+    /// (all stay the caller's).
+    RankExchange(Ranks& ranks, std::span<WalkerState> walkers, std::span<std::uint32_t> regionOf);
 
     /// Splits the regions of `regions` over the ranks (consecutive regions per rank, the most
     /// walkers any rank starts with as few as it can be). Returns this rank's [first, end).
@@ -90,6 +91,7 @@ private:
 
     Ranks& ranks_;
     std::span<WalkerState> state_;
+    std::span<std::uint32_t> regionOf_;
     std::uint32_t firstRegion_ = 0, endRegion_ = 0;
     std::vector<int> regionRank_;
     std::vector<Locomotion::RankStepRecord> rankSteps_;

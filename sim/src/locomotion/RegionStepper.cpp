@@ -16,8 +16,8 @@
 namespace throng::sim::locomotion {
 
 RegionStepper::RegionStepper(const NavMesh& nav, const Locomotion::Settings& settings, std::span<const Locomotion::Actor> actors,
-                             std::span<WalkerState> walkers)
-    : nav_(nav), settings_(settings), actors_(actors), state_(walkers) {}
+                             std::span<WalkerState> walkers, std::span<std::uint32_t> regionOf)
+    : nav_(nav), settings_(settings), actors_(actors), state_(walkers), regionOf_(regionOf) {}
 
 RegionStepper::~RegionStepper() {
     for (Region& r : regions_) {
@@ -93,9 +93,9 @@ void RegionStepper::place() {
     pending_.assign(regions_.size(), 0.0);
     stepping_.assign(regions_.size(), 1);
     for (std::uint32_t slot = 0; slot < state_.size(); ++slot) {
-        WalkerState& s = state_[slot];
-        s.region = grid.regionOf(s.position.x, s.position.z);
-        regions_[s.region].owned.push_back(slot);
+        const WalkerState& s = state_[slot];
+        regionOf_[slot] = grid.regionOf(s.position.x, s.position.z);
+        regions_[regionOf_[slot]].owned.push_back(slot);
     }
     // Room for the agents a region starts with (or its share of the crowd) and a quarter more, and
     // its ghosts; a DetourCrowd grows when people gather (an ORCA crowd grows as it goes); DetourCrowd
@@ -257,7 +257,7 @@ void RegionStepper::importHandovers(std::uint32_t r) {
     std::sort(region.arriving.begin(), region.arriving.end(), [](const HandoverRecord& a, const HandoverRecord& b) { return a.slot < b.slot; });
     for (const HandoverRecord& h : region.arriving) {
         WalkerState& s = state_[h.slot];  // as the record has it: it may come from another rank
-        s.region = r;
+        regionOf_[h.slot] = r;
         s.position = glm::vec3(h.position[0], h.position[1], h.position[2]);
         s.velocity = glm::vec3(h.velocity[0], h.velocity[1], h.velocity[2]);
         s.target = glm::vec3(h.target[0], h.target[1], h.target[2]);

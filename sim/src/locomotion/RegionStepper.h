@@ -45,10 +45,10 @@ public:
         std::vector<HandoverRecord> arriving;     ///< agents that crossed into it
     };
 
-    /// The regions of `settings` on `nav`, stepping `walkers` (one per actor of `actors`). All
-    /// three stay the caller's.
+    /// The regions of `settings` on `nav`, stepping `walkers` (one per actor of `actors`), the
+    /// region owning each in `regionOf`. All four stay the caller's.
     RegionStepper(const NavMesh& nav, const Locomotion::Settings& settings, std::span<const Locomotion::Actor> actors,
-                  std::span<WalkerState> walkers);
+                  std::span<WalkerState> walkers, std::span<std::uint32_t> regionOf);
     ~RegionStepper();
     RegionStepper(const RegionStepper&) = delete;
     RegionStepper& operator=(const RegionStepper&) = delete;
@@ -105,6 +105,7 @@ private:
     const Locomotion::Settings& settings_;
     std::span<const Locomotion::Actor> actors_;
     std::span<WalkerState> state_;
+    std::span<std::uint32_t> regionOf_;
     std::vector<Region> regions_;
     // Far regions: each region's bounds, the time since it last stepped, whether it steps in this
     // step, and the steps so far (which far regions take their turn).

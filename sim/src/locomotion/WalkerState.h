@@ -2,7 +2,8 @@
 // Internal to sim: what Locomotion knows of one walker while it moves. The region stepper moves it
 // (DetourCrowd's position and velocity, destinations), the walker behaviour turns it into a gait
 // (heading, speed, walk phase, run weight) and poses it, and the rank exchange copies it between
-// processes. The records the regions and ranks exchange are here too.
+// processes. The region owning each walker is kept apart, one number per walker, so that a frame
+// reads it without the rest (occlusion's cells). The records the regions and ranks exchange are here too.
 
 #include <cstdint>
 
@@ -23,7 +24,6 @@ struct WalkerState {
     glm::vec3 target{0.0f};     ///< where it is walking to
     glm::vec3 velocity{0.0f};   ///< DetourCrowd's, after the last step
     int agent = -1;             ///< index in its region's crowd
-    std::uint32_t region = 0;   ///< the region owning it
     BoundingSphere extent;      ///< where its Skeleton Root may go, Reference Point frame
     double blendMargin = 0.0;   ///< how far walk-run blends reach beyond the Sklsroot Bsphere
     std::uint8_t carried = 0;   ///< what the process posing it keeps with it (Locomotion::carried)

@@ -38,7 +38,9 @@ public:
     ~PagedArray() { release(); }
     /// A copy of `other` (its unwritten elements are written here as zero bytes).
     PagedArray(const PagedArray& other) { append(std::span<const T>(other.data(), other.size())); }
+    /// Takes `other`'s pages; `other` is left empty.
     PagedArray(PagedArray&& other) noexcept { swap(other); }
+    /// Becomes a copy of `other`.
     PagedArray& operator=(const PagedArray& other) {
         if (this != &other) {
             PagedArray copy(other);
@@ -46,6 +48,7 @@ public:
         }
         return *this;
     }
+    /// Takes `other`'s pages, giving back its own; `other` is left empty.
     PagedArray& operator=(PagedArray&& other) noexcept {
         PagedArray moved(std::move(other));
         swap(moved);
@@ -60,11 +63,17 @@ public:
     T* data() { return data_; }
     /// First element, read-only.
     const T* data() const { return data_; }
+    /// Element `i` (< size(), unchecked).
     T& operator[](std::size_t i) { return data_[i]; }
+    /// Element `i` (< size(), unchecked), read-only.
     const T& operator[](std::size_t i) const { return data_[i]; }
+    /// First element, for ranges and spans.
     T* begin() { return data_; }
+    /// One past the last element.
     T* end() { return data_ + size_; }
+    /// First element, read-only.
     const T* begin() const { return data_; }
+    /// One past the last element, read-only.
     const T* end() const { return data_ + size_; }
 
     /// Appends `value`.

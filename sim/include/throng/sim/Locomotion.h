@@ -246,6 +246,7 @@ private:
     EffectCounters* counters_;
     std::vector<Actor> actors_;
     std::vector<locomotion::WalkerState> state_;
+    std::vector<std::uint32_t> regionOf_;  // per slot: the region owning it (apart: a frame reads it alone)
     std::vector<ClipBounds> clipBounds_;
     bool started_ = false;
     std::size_t lastGhosts_ = 0, lastHandovers_ = 0, lastDeferred_ = 0;

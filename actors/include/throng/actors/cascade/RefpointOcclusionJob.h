@@ -24,14 +24,16 @@ struct RefpointOcclusionJob {
     /// A cell of nearby survivors: a square of the ground grid (fixed in the world) within one
     /// region of the behaviour stepping them (Behaviour::steppingRegions; 0: none).
     struct Cell {
-        std::int32_t x = 0, z = 0;               ///< the square, in cells from the world's origin
+        std::int32_t x = 0;                      ///< the square along x, in squares from the world's origin
+        std::int32_t z = 0;                      ///< the square along z
         std::uint32_t region = 0;                ///< 1 + the region, 0 for actors of no region
+        /// Same square, same region.
         friend bool operator==(const Cell&, const Cell&) = default;
     };
     /// The cells of nearby survivors, kept between frames.
     struct Scratch {
         std::vector<Cell> cell;                  ///< per survivor: its cell
-        std::vector<std::uint32_t> cellOf;       ///< per survivor: its cell's hash bucket
+        std::vector<std::uint32_t> cellOf;       ///< per survivor: its cell's bucket (a square of the window, or a hash)
         std::vector<std::uint32_t> cellStart;    ///< per bucket: first entry in cellMembers (one more at the end)
         std::vector<std::uint32_t> cellMembers;  ///< survivor positions, bucket by bucket, cell by cell
         std::vector<std::uint32_t> cellCursor;   ///< per bucket: where its next member goes
