@@ -283,6 +283,45 @@ TEST(Cascade, OcclusionRejectsOnlyWhatTheBufferHidesWhateverTheThreads) {
     EXPECT_EQ(drawn[0], drawn[1]);
 }
 
+// Occlusion's cells are squares fixed in the world: survivors spread over more than 3 km (two far
+// actors high at the sides of the view) are binned by a hash of their squares instead of in order over
+// their window, and the crowd near the wall forms the same cells, hides the same actors.
+TEST(Cascade, OcclusionCellsAreTheSameWhenTheSurvivorsSpreadTooWideToBinInOrder) {
+    const auto build = [](bool far) {
+        auto scene = makeRandomCrowd(11, 1500, 60.0);
+        auto wall = std::make_shared<Transform>();
+        wall->addChild(std::make_shared<Occluder>(std::vector<AxisBox>{AxisBox{glm::vec3(-70, -20, -1), glm::vec3(70, 20, 1)}},
+                                                  AxisBox{glm::vec3(-71, -21, -2), glm::vec3(71, 21, 2)}));
+        scene->root->addChild(wall);
+        if (far) {
+            static const auto humanoid = makeSeedHumanoid();
+            auto keyframes = std::make_shared<KeyframeBehaviour>(std::vector<double>{30.0, 1e9});
+            for (double x : {-3000.0, 3000.0}) {
+                KeyframeBehaviour::Actor a;
+                a.tmpl = humanoid;
+                a.position = Vec3(x, 2000.0, -5000.0);  // seen above the wall
+                scene->root->addChild(scene->crowd.makeActorNode(scene->crowd.add(humanoid, keyframes, keyframes->addActor(a))));
+            }
+        }
+        return scene;
+    };
+    Camera camera;
+    camera.setPerspective(1.0, 1.6, 0.1, 10000.0);
+    camera.setLookAt(Vec3(0, 5, 90), Vec3(0, 0, 0), Vec3(0, 1, 0));
+    auto near = build(false), wide = build(true);
+    ActorProcessor inOrder(near->crowd), hashed(wide->crowd);
+    inOrder.setOcclusion(OcclusionSettings{});
+    hashed.setOcclusion(OcclusionSettings{});
+    const ActorFrameStatistics a = inOrder.processFrame(*near->root, camera, 0.0);
+    const ActorFrameStatistics b = hashed.processFrame(*wide->root, camera, 0.0);
+    EXPECT_EQ(b.b + b.c1 + b.c2 + b.c3_1 + b.c3_2, a.b + a.c1 + a.c2 + a.c3_1 + a.c3_2 + 2) << "both far actors are seen";
+    ASSERT_GT(a.occlusionCellsTested, 10u);
+    EXPECT_EQ(b.occlusionCellsTested, a.occlusionCellsTested);
+    EXPECT_EQ(b.occlusionCellsHidden, a.occlusionCellsHidden);
+    EXPECT_GT(a.occlusionCellsHidden, 0u) << "the wall hides whole cells";
+    for (ActorId id : near->ids) ASSERT_EQ(wide->crowd.actorClass(id), near->crowd.actorClass(id)) << "actor " << id;
+}
+
 // A narrow pillar hides a few actors of a wide crowd: with rest declared, the frame after the one
 // that measured so little rests: no buffer, no test, every actor processed exactly as without
 // occlusion (same classes, same draw list), whatever the threads; then it measures again.

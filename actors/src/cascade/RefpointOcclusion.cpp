@@ -17,7 +17,9 @@ constexpr std::int64_t kMaxSquares = 1 << 16;  // a window of squares binned in 
 
 // The cell holding `centre`: its square of the world's ground grid within `region`.
 RefpointOcclusionJob::Cell cellOf(const Vec3& centre, std::uint32_t region) {
-    const auto grid = [](double v) { return static_cast<std::int32_t>(std::clamp(std::floor(v / kCellSize), -2.0e9, 2.0e9)); };
+    const auto grid = [](double v) {  // a sphere far off (or not finite) lands at the edge, never outside int32
+        return std::isfinite(v) ? static_cast<std::int32_t>(std::clamp(std::floor(v / kCellSize), -2.0e9, 2.0e9)) : 0;
+    };
     return {grid(centre.x), grid(centre.z), region};
 }
 
@@ -69,8 +71,9 @@ void RefpointOcclusionJob::run(PhaseLoop& loop) const {
         x0 = std::min<std::int64_t>(x0, c.x), x1 = std::max<std::int64_t>(x1, c.x);
         z0 = std::min<std::int64_t>(z0, c.z), z1 = std::max<std::int64_t>(z1, c.z);
     }
-    const std::int64_t across = x1 - x0 + 1, squares = across * (z1 - z0 + 1);
-    const bool window = squares <= kMaxSquares;
+    const std::int64_t across = x1 - x0 + 1, deep = z1 - z0 + 1;
+    const bool window = across <= kMaxSquares && deep <= kMaxSquares && across * deep <= kMaxSquares;
+    const std::int64_t squares = window ? across * deep : 0;
     std::uint32_t buckets = 16;
     if (window) {
         buckets = std::uint32_t(squares);
